@@ -1,0 +1,63 @@
+#include "geometry/mesh_import.h"
+
+#include "geometry/input_error.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+
+ImportedMesh importMesh(const std::string& path, const MeshImportOptions& options) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path + ": no such file; check the path");
+  if (!fs::is_regular_file(path, ec)) throw InputError(path + ": not a regular file; give a mesh file (STL or OBJ)");
+  if (fs::file_size(path, ec) == 0) throw InputError(path + ": the file is empty; give a mesh file (STL or OBJ)");
+
+  Assimp::Importer importer;
+  // Points and lines are not a surface: ask assimp to drop them.
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* scene = importer.ReadFile(
+      path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType |
+                aiProcess_ValidateDataStructure);
+  if (scene == nullptr) {
+    std::string why = importer.GetErrorString();
+    while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
+    throw InputError(path + ": cannot read as a mesh (" + why + "); give a valid STL (ASCII or binary) or OBJ file");
+  }
+
+  ImportedMesh out;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    const int base = static_cast<int>(out.mesh.vertices.size());
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const aiVector3D& p = mesh->mVertices[v];
+      const Eigen::Vector3d x(p.x, p.y, p.z);
+      if (!x.allFinite()) throw InputError(path + ": vertex " + std::to_string(v) + " has a non-finite coordinate; repair the file");
+      out.mesh.vertices.push_back(x * options.metresPerUnit);
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      out.mesh.triangles.push_back({base + static_cast<int>(face.mIndices[0]), base + static_cast<int>(face.mIndices[1]),
+                                    base + static_cast<int>(face.mIndices[2])});
+    }
+  }
+  if (out.mesh.triangles.empty()) throw InputError(path + ": the file holds no triangles; give a closed triangle mesh");
+
+  out.fileVertices = out.mesh.vertices.size();
+  const double diagonal = boundingBox(out.mesh.vertices).diagonal().norm();
+  const double tolerance = options.weldTolerance >= 0 ? options.weldTolerance : 1e-6 * diagonal;
+  out.weld = weldVertices(out.mesh, tolerance);
+  if (out.mesh.triangles.empty())
+    throw InputError(path + ": every triangle collapsed when vertices were welded (the mesh has no extent); check the file");
+  return out;
+}
+
+}  // namespace tessera

@@ -1,0 +1,26 @@
+#pragma once
+#include "geometry/mesh_weld.h"
+#include "geometry/triangle_mesh.h"
+
+#include <string>
+
+namespace tessera {
+
+struct MeshImportOptions {
+  double metresPerUnit = 1e-3;  ///< the file's length unit in metres (mm -> 1e-3); files carry none
+  double weldTolerance = -1.0;  ///< m; vertices closer than this are merged. < 0: 1e-6 x bounding-box diagonal
+};
+
+struct ImportedMesh {
+  TriangleMesh mesh;            ///< in metres, welded
+  std::size_t fileVertices = 0; ///< vertex count as read, before welding
+  WeldReport weld;
+};
+
+/// Reads STL (ASCII or binary), OBJ and the other formats assimp knows, triangulates polygons,
+/// bakes node transforms, scales to metres and welds duplicate vertices.
+/// Throws InputError naming the file for: missing or unreadable file, empty file, a file assimp
+/// cannot parse, no triangles, non-finite coordinates.
+ImportedMesh importMesh(const std::string& path, const MeshImportOptions& options);
+
+}  // namespace tessera

@@ -1,0 +1,46 @@
+#pragma once
+#include "geometry/mesh_features.h"
+#include "geometry/triangle_mesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace tessera {
+
+enum class NodeKind : std::uint8_t { Face = 0, Edge = 1, Corner = 2 };
+
+struct SurfaceNodeOptions {
+  double spacing = 0.6e-3;         ///< m; target distance between neighbouring nodes
+  double featureAngle = 0.5236;    ///< rad (30 deg); edges bending more than this are sharp
+  int quadraturePerSpacing = 12;   ///< area quadrature points per spacing length (area accuracy)
+};
+
+/// Surface nodes of a solid with area weights, as arrays (one entry per node).
+/// Every node belongs to one patch (a face region between sharp edges) and carries that patch's
+/// outward normal and a share of its area. A node on a sharp edge or corner appears once per
+/// patch meeting there, at the same position, so each patch's weights sum to the patch area and
+/// the normal of every node is a face normal (never an average across an edge).
+struct SurfaceNodes {
+  std::vector<Eigen::Vector3d> positions;  ///< m
+  std::vector<Eigen::Vector3d> normals;    ///< unit, outward
+  std::vector<double> areas;               ///< m^2; sum = surface area
+  std::vector<int> patches;                ///< patch id (see MeshFeatures)
+  std::vector<NodeKind> kinds;
+
+  std::size_t size() const { return positions.size(); }
+};
+
+/// Samples nodes on a validated, outward-oriented mesh:
+///  - a node at every corner;
+///  - nodes along every sharp-edge chain, evenly at most `spacing` apart;
+///  - face nodes by farthest-point sampling of each patch, seeded with its edge and corner nodes,
+///    stopped when every surface point is within 0.9 x spacing of a node (this leaves
+///    neighbouring nodes about `spacing` apart);
+///  - area weights: the patch is cut into small quadrature triangles (edge length <= spacing /
+///    quadraturePerSpacing), each given wholly to its nearest node of the same patch (a discrete
+///    Voronoi partition), so the weights sum to the area exactly up to rounding.
+/// Throws InputError when spacing <= 0.
+SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& features,
+                                const SurfaceNodeOptions& options);
+
+}  // namespace tessera

@@ -1,0 +1,45 @@
+#pragma once
+#include "levelset/shape.h"
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+/// The asset bundle: a directory holding bundle.h5 (everything the solver needs) and one
+/// <shape>.vdb per shape (the same grid for other tools). Schema: docs/bundle.md.
+inline constexpr const char* kBundleFormatName = "tessera-bundle";
+inline constexpr int kBundleFormatVersion = 1;
+inline constexpr const char* kBundleFileName = "bundle.h5";
+
+/// A placed block: a shape at a pose.
+struct Body {
+  std::string name;                                             ///< e.g. "r3c4"
+  int shape = 0;                                                ///< index into Bundle::shapes
+  Eigen::Vector3d position{0, 0, 0};                            ///< m, world position of the body-frame origin
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< unit; body frame -> world
+  bool fixed = false;                                           ///< boundary block: never moves
+};
+
+struct Bundle {
+  std::string generator;        ///< tool and version that wrote it
+  std::vector<Shape> shapes;
+  std::vector<Body> bodies;
+
+  /// Index of the shape with this name, or -1.
+  int findShape(const std::string& name) const;
+};
+
+/// Reads a bundle directory (or the bundle.h5 inside it). Throws InputError naming the file for
+/// a missing or corrupt bundle and for an unknown format version.
+Bundle readBundle(const std::string& path);
+
+/// Writes the bundle into `directory` (created if needed): each <shape>.vdb, then bundle.h5,
+/// each to a temporary name renamed on success, so a failure leaves the previous bundle intact.
+void writeBundle(const std::string& directory, const Bundle& bundle);
+
+/// The generator string of this build ("tessera 0.1.0").
+std::string generatorVersion();
+
+}  // namespace tessera

@@ -1,0 +1,83 @@
+#pragma once
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace tessera {
+
+struct SdfSample {
+  double phi;                 ///< m; negative inside
+  Eigen::Vector3d gradient;   ///< d phi / dx (unit length away from kinks)
+};
+
+/// A signed-distance field on a dense regular grid (the solver-side copy of an OpenVDB grid).
+/// Grid node (i, j, k) sits at origin + voxelSize * (i, j, k); values are stored with k fastest:
+/// values[(i * dims[1] + j) * dims[2] + k]. Negative inside. The grid covers the shape's bounding
+/// box plus an exterior band; node values farther outside than the band hold `background`.
+/// Sampling is read-only and thread-safe.
+struct DenseSdf {
+  Eigen::Vector3d origin{0, 0, 0};  ///< m, position of node (0, 0, 0) in the body frame
+  double voxelSize = 0.0;           ///< m
+  std::array<int, 3> dims{0, 0, 0}; ///< nodes along x, y, z
+  std::vector<float> values;        ///< m
+  float background = 0.0f;          ///< m, value beyond the exterior band (positive)
+
+  std::size_t index(int i, int j, int k) const {
+    return (static_cast<std::size_t>(i) * dims[1] + j) * dims[2] + k;
+  }
+  float at(int i, int j, int k) const { return values[index(i, j, k)]; }
+  Eigen::Vector3d nodePosition(int i, int j, int k) const { return origin + voxelSize * Eigen::Vector3d(i, j, k); }
+  Eigen::Vector3d upperCorner() const {
+    return origin + voxelSize * Eigen::Vector3d(dims[0] - 1, dims[1] - 1, dims[2] - 1);
+  }
+  bool contains(const Eigen::Vector3d& x) const {
+    return (x.array() >= origin.array()).all() && (x.array() <= upperCorner().array()).all();
+  }
+
+  /// Trilinear interpolation of the node values and its exact gradient.
+  /// Outside the grid: the value at the nearest grid point plus the distance to it (positive,
+  /// continuous, growing away from the grid), with the gradient pointing away from the grid.
+  SdfSample sample(const Eigen::Vector3d& x) const {
+    const Eigen::Vector3d clamped = x.cwiseMax(origin).cwiseMin(upperCorner());
+    const Eigen::Vector3d u = (clamped - origin) / voxelSize;
+    int i0[3];
+    double w[3];
+    for (int a = 0; a < 3; ++a) {
+      i0[a] = std::min(static_cast<int>(std::floor(u[a])), dims[a] - 2);
+      w[a] = u[a] - i0[a];
+    }
+    double c[2][2][2];
+    for (int di = 0; di < 2; ++di)
+      for (int dj = 0; dj < 2; ++dj)
+        for (int dk = 0; dk < 2; ++dk) c[di][dj][dk] = at(i0[0] + di, i0[1] + dj, i0[2] + dk);
+    // Interpolate along z, then y, then x; differentiate each stage.
+    double cy[2][2], cyz[2][2];
+    for (int di = 0; di < 2; ++di)
+      for (int dj = 0; dj < 2; ++dj) {
+        cy[di][dj] = c[di][dj][0] + w[2] * (c[di][dj][1] - c[di][dj][0]);
+        cyz[di][dj] = c[di][dj][1] - c[di][dj][0];
+      }
+    const double cx0 = cy[0][0] + w[1] * (cy[0][1] - cy[0][0]), cx1 = cy[1][0] + w[1] * (cy[1][1] - cy[1][0]);
+    SdfSample s;
+    s.phi = cx0 + w[0] * (cx1 - cx0);
+    s.gradient.x() = (cx1 - cx0) / voxelSize;
+    const double dy0 = cy[0][1] - cy[0][0], dy1 = cy[1][1] - cy[1][0];
+    s.gradient.y() = (dy0 + w[0] * (dy1 - dy0)) / voxelSize;
+    const double dz00 = cyz[0][0] + w[1] * (cyz[0][1] - cyz[0][0]);
+    const double dz10 = cyz[1][0] + w[1] * (cyz[1][1] - cyz[1][0]);
+    s.gradient.z() = (dz00 + w[0] * (dz10 - dz00)) / voxelSize;
+
+    const Eigen::Vector3d away = x - clamped;
+    const double gap = away.norm();
+    if (gap > 0) {
+      s.phi += gap;
+      s.gradient = away / gap;
+    }
+    return s;
+  }
+};
+
+}  // namespace tessera

@@ -1,0 +1,53 @@
+#pragma once
+#include <hdf5.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tessera::h5 {
+
+/// Owns one HDF5 identifier (file, group, dataset, dataspace, attribute, datatype).
+class Handle {
+public:
+  Handle() = default;
+  explicit Handle(hid_t id) : id_(id) {}
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& other) noexcept : id_(other.id_) { other.id_ = H5I_INVALID_HID; }
+  Handle& operator=(Handle&& other) noexcept;
+  ~Handle();
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+
+private:
+  hid_t id_ = H5I_INVALID_HID;
+};
+
+/// Errors from these helpers are std::runtime_error with the object path; callers that read
+/// user files turn them into InputError naming the file.
+Handle createFile(const std::string& path);
+Handle openFileReadOnly(const std::string& path);
+Handle createGroup(hid_t parent, const std::string& name);
+Handle openGroup(hid_t parent, const std::string& name);
+bool exists(hid_t parent, const std::string& name);
+std::vector<std::string> childNames(hid_t group);
+
+template <class T>
+void writeDataset(hid_t parent, const std::string& name, const std::vector<T>& data, const std::vector<hsize_t>& dims);
+/// Reads a whole dataset; `dims` receives its shape. Throws if the element count is off.
+template <class T>
+std::vector<T> readDataset(hid_t parent, const std::string& name, std::vector<hsize_t>* dims = nullptr);
+
+/// A 1-D dataset of fixed-length strings (length of the longest, at least 1).
+void writeStrings(hid_t parent, const std::string& name, const std::vector<std::string>& values);
+std::vector<std::string> readStrings(hid_t parent, const std::string& name);
+
+void writeAttribute(hid_t object, const std::string& name, const std::string& value);
+void writeAttribute(hid_t object, const std::string& name, double value);
+void writeAttribute(hid_t object, const std::string& name, std::int64_t value);
+std::string readStringAttribute(hid_t object, const std::string& name);
+double readDoubleAttribute(hid_t object, const std::string& name);
+std::int64_t readIntAttribute(hid_t object, const std::string& name);
+
+}  // namespace tessera::h5

@@ -1,0 +1,39 @@
+#pragma once
+#include "geometry/mass_properties.h"
+#include "geometry/surface_nodes.h"
+#include "geometry/triangle_mesh.h"
+#include "levelset/dense_sdf.h"
+
+#include <string>
+
+namespace tessera {
+
+/// Where a shape came from.
+struct ShapeSource {
+  std::string file;            ///< mesh file as given to prep (or a generator description)
+  std::string unit = "m";      ///< the file's length unit
+  double metresPerUnit = 1.0;  ///< m per file unit
+};
+
+/// The resolution a shape was prepared at.
+struct ShapeResolution {
+  double voxelSize = 0.25e-3;    ///< m, signed-distance grid spacing
+  double nodeSpacing = 0.6e-3;   ///< m, target surface node spacing
+  double featureAngle = 0.5236;  ///< rad, edges bending more than this are sharp
+  int exteriorBandVoxels = 3;    ///< exact distances (and grid padding) outside the surface, voxels
+};
+
+/// One distinct block shape, solver-ready. Everything but `mass` is in the body frame: the
+/// principal frame with its origin at the centroid. A point x_mesh of the source mesh (in metres)
+/// is x_body = R^T (x_mesh - c) with c = mass.centroid, R = mass.principalAxes.
+struct Shape {
+  std::string name;
+  ShapeSource source;
+  ShapeResolution resolution;
+  MassProperties mass;   ///< per unit density; centroid, inertia and axes in the source mesh frame (m)
+  TriangleMesh mesh;     ///< body frame, m
+  SurfaceNodes nodes;    ///< body frame
+  DenseSdf sdf;          ///< body frame
+};
+
+}  // namespace tessera

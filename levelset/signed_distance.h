@@ -1,0 +1,28 @@
+#pragma once
+#include "geometry/triangle_mesh.h"
+#include "levelset/dense_sdf.h"
+
+#include <string>
+
+namespace tessera {
+
+struct SignedDistanceOptions {
+  double voxelSize = 0.25e-3;  ///< m
+  int exteriorBandVoxels = 3;  ///< exact distances this many voxels outside the surface; the grid is padded as much
+};
+
+/// The signed distance to a closed, outward-oriented mesh, sampled by OpenVDB
+/// (tools::meshToSignedDistanceField) on the nodes of a grid covering the mesh's bounding box
+/// padded by the exterior band. The interior is filled completely (exact distances everywhere
+/// inside, not only a narrow band); outside, exact within the band and `background` beyond.
+DenseSdf buildSignedDistance(const TriangleMesh& mesh, const SignedDistanceOptions& options);
+
+/// Writes the field as an OpenVDB level-set grid named `gridName` (viewable in ParaView,
+/// Houdini, Blender). Metadata records the unit (m). Written to a temporary file, then renamed.
+void writeVdb(const DenseSdf& sdf, const std::string& path, const std::string& gridName);
+
+/// Reads the grid named `gridName` back into a dense field over the given grid's layout
+/// (origin, dims, voxel size of `layout`). Throws InputError if the file or grid is missing.
+DenseSdf readVdb(const std::string& path, const std::string& gridName, const DenseSdf& layout);
+
+}  // namespace tessera

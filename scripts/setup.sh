@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Tessera needs (only those missing), then configures and builds.
+# Usage: scripts/setup.sh            (run as root, or with sudo available)
+# Env:   BUILD_DIR (default: build), BUILD_TYPE (default: Release), JOBS (default: nproc)
+set -euo pipefail
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build_dir=${BUILD_DIR:-"$here/build"}
+build_type=${BUILD_TYPE:-Release}
+jobs=${JOBS:-$(nproc)}
+
+# Exactly the packages the build, tests and benchmarks use.
+packages=(
+  build-essential cmake pkg-config
+  libcgal-dev libgmp-dev libmpfr-dev           # mesh validation (CGAL)
+  libeigen3-dev                                 # linear algebra
+  libopenvdb-dev libtbb-dev libboost-iostreams-dev libblosc-dev  # level sets (OpenVDB needs Boost.Iostreams for its CMake module)
+  libassimp-dev                                 # mesh import
+  libhdf5-dev                                   # asset bundle
+  libcli11-dev nlohmann-json3-dev               # command line, JSON output
+  catch2                                        # tests
+  libbenchmark-dev                              # benchmarks (bench/)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -q
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
+cmake --build "$build_dir" -j "$jobs"

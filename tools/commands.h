@@ -1,0 +1,11 @@
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace tessera::tools {
+
+/// Each command adds its subcommand, flags and callback to the application.
+/// Callbacks throw InputError for bad input; main() prints it and exits with status 2.
+void addPrepCommand(CLI::App& app);
+void addInspectCommand(CLI::App& app);
+
+}  // namespace tessera::tools

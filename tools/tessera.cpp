@@ -1,0 +1,28 @@
+// tessera: the command line of the Tessera toolkit. Subcommands live in *_command.cpp.
+#include "geometry/input_error.h"
+#include "levelset/bundle.h"
+#include "tools/commands.h"
+
+#include <cstdio>
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"Tessera: load and failure of slabs of topologically interlocked blocks (LS-DEM).\n"
+               "Lengths on the command line are in the unit given by --unit; files inside Tessera are SI."};
+  app.set_version_flag("--version", tessera::generatorVersion());
+  app.require_subcommand(1);
+  tessera::tools::addPrepCommand(app);
+  tessera::tools::addInspectCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const tessera::InputError& e) {
+    std::cerr << "tessera: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "tessera: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
