@@ -16,14 +16,14 @@ struct SdfSample {
 /// A signed-distance field on a dense regular grid (the solver-side copy of an OpenVDB grid).
 /// Grid node (i, j, k) sits at origin + voxelSize * (i, j, k); values are stored with k fastest:
 /// values[(i * dims[1] + j) * dims[2] + k]. Negative inside. The grid covers the shape's bounding
-/// box plus an exterior band; node values farther outside than the band hold `background`.
+/// box plus an exterior band; every node holds the signed distance to the polyhedron.
 /// Sampling is read-only and thread-safe.
 struct DenseSdf {
   Eigen::Vector3d origin{0, 0, 0};  ///< m, position of node (0, 0, 0) in the body frame
   double voxelSize = 0.0;           ///< m
   std::array<int, 3> dims{0, 0, 0}; ///< nodes along x, y, z
   std::vector<float> values;        ///< m
-  float background = 0.0f;          ///< m, value beyond the exterior band (positive)
+  float background = 0.0f;          ///< m, the exterior band width: the .vdb's inactive value
 
   std::size_t index(int i, int j, int k) const {
     return (static_cast<std::size_t>(i) * dims[1] + j) * dims[2] + k;

@@ -2,10 +2,12 @@
 #include "levelset/signed_distance.h"
 
 #include "geometry/input_error.h"
+#include "geometry/point_mesh_distance.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <filesystem>
@@ -41,24 +43,32 @@ DenseSdf buildSignedDistance(const TriangleMesh& mesh, const SignedDistanceOptio
   const openvdb::FloatGrid::Ptr grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(
       *transform, points, triangles, quads, exteriorBand, std::numeric_limits<float>::max());
 
-  // Dense copy over the mesh bounding box, padded by the band, in grid index space.
+  // Dense grid over the mesh bounding box, padded by the band, in grid index space. (The 1e-4
+  // voxel slack keeps a box face lying on a grid plane from flipping the layout on rounding.)
   const Eigen::AlignedBox3d box = boundingBox(mesh.vertices);
   DenseSdf sdf;
   sdf.voxelSize = h;
   sdf.background = grid->background();
   Eigen::Array3i lo, hi;
   for (int a = 0; a < 3; ++a) {
-    lo[a] = static_cast<int>(std::floor(box.min()[a] / h)) - options.exteriorBandVoxels;
-    hi[a] = static_cast<int>(std::ceil(box.max()[a] / h)) + options.exteriorBandVoxels;
+    lo[a] = static_cast<int>(std::floor(box.min()[a] / h + 1e-4)) - options.exteriorBandVoxels;
+    hi[a] = static_cast<int>(std::ceil(box.max()[a] / h - 1e-4)) + options.exteriorBandVoxels;
     sdf.dims[a] = hi[a] - lo[a] + 1;
   }
   sdf.origin = h * lo.cast<double>().matrix();
   sdf.values.resize(static_cast<std::size_t>(sdf.dims[0]) * sdf.dims[1] * sdf.dims[2]);
-  const auto accessor = grid->getConstAccessor();
-  for (int i = 0; i < sdf.dims[0]; ++i)
+  // OpenVDB's sign is robust (its inside/outside flood fill), but away from the surface its
+  // interior distances are approximate (measured: up to 0.4 voxel near concave edges). Every node
+  // therefore takes the exact distance to the polyhedron (CGAL AABB tree) with OpenVDB's sign.
+  const PointMeshDistance exact(mesh);
+  tbb::parallel_for(0, sdf.dims[0], [&](int i) {
+    const auto accessor = grid->getConstAccessor();
     for (int j = 0; j < sdf.dims[1]; ++j)
-      for (int k = 0; k < sdf.dims[2]; ++k)
-        sdf.values[sdf.index(i, j, k)] = accessor.getValue(openvdb::Coord(lo[0] + i, lo[1] + j, lo[2] + k));
+      for (int k = 0; k < sdf.dims[2]; ++k) {
+        const double sign = accessor.getValue(openvdb::Coord(lo[0] + i, lo[1] + j, lo[2] + k)) < 0 ? -1.0 : 1.0;
+        sdf.values[sdf.index(i, j, k)] = static_cast<float>(sign * exact.distance(sdf.nodePosition(i, j, k)));
+      }
+  });
   return sdf;
 }
 

@@ -11,10 +11,10 @@ struct SignedDistanceOptions {
   int exteriorBandVoxels = 3;  ///< exact distances this many voxels outside the surface; the grid is padded as much
 };
 
-/// The signed distance to a closed, outward-oriented mesh, sampled by OpenVDB
-/// (tools::meshToSignedDistanceField) on the nodes of a grid covering the mesh's bounding box
-/// padded by the exterior band. The interior is filled completely (exact distances everywhere
-/// inside, not only a narrow band); outside, exact within the band and `background` beyond.
+/// The signed distance to a closed, outward-oriented mesh on the nodes of a grid covering the
+/// mesh's bounding box padded by the exterior band. The sign comes from OpenVDB
+/// (tools::meshToSignedDistanceField, interior filled); the magnitude at every node, inside and
+/// out, is the exact distance to the polyhedron (CGAL AABB tree). `background` is the band width.
 DenseSdf buildSignedDistance(const TriangleMesh& mesh, const SignedDistanceOptions& options);
 
 /// Writes the field as an OpenVDB level-set grid named `gridName` (viewable in ParaView,

@@ -1,0 +1,86 @@
+// Import: the same mesh as ASCII STL, binary STL and OBJ gives the same mesh; units scale;
+// duplicate vertices are welded; unreadable files are refused with the file name.
+#include "geometry/block_generators.h"
+#include "geometry/input_error.h"
+#include "geometry/mass_properties.h"
+#include "geometry/mesh_export.h"
+#include "geometry/mesh_import.h"
+#include "geometry/mesh_weld.h"
+#include "tests/fixtures/analytic_meshes.h"
+#include "tests/fixtures/temp_dir.h"
+
+#include <catch2/catch.hpp>
+
+using namespace tessera;
+using Catch::Matchers::Contains;
+
+namespace {
+
+ImportedMesh importAs(const std::string& path, double metresPerUnit) {
+  MeshImportOptions options;
+  options.metresPerUnit = metresPerUnit;
+  return importMesh(path, options);
+}
+
+}  // namespace
+
+TEST_CASE("ASCII STL, binary STL and OBJ import to the same welded mesh") {
+  test::TempDir dir;
+  // Dyadic coordinates: exact in the single precision assimp stores.
+  const TriangleMesh source = test::lPrism(0.5);
+  writeMesh(source, dir / "l.stl", MeshFileFormat::StlAscii, 1.0);
+  writeMesh(source, dir / "lb.stl", MeshFileFormat::StlBinary, 1.0);
+  writeMesh(source, dir / "l.obj", MeshFileFormat::Obj, 1.0);
+  const ImportedMesh ascii = importAs(dir / "l.stl", 1.0);
+  const ImportedMesh binary = importAs(dir / "lb.stl", 1.0);
+  const ImportedMesh obj = importAs(dir / "l.obj", 1.0);
+  // Welding numbers vertices in order of first use; triangles and their corners keep their order.
+  for (const ImportedMesh* m : {&ascii, &binary, &obj}) {
+    REQUIRE(m->mesh.vertices.size() == source.vertices.size());
+    REQUIRE(m->mesh.triangles.size() == source.triangles.size());
+    for (int t = 0; t < static_cast<int>(source.triangles.size()); ++t)
+      for (int k = 0; k < 3; ++k) REQUIRE(triangleCorner(m->mesh, t, k) == triangleCorner(source, t, k));
+  }
+  // STL stores three vertices per facet: 20 facets -> 60 vertices welded to 12.
+  REQUIRE(ascii.fileVertices == 60);
+  REQUIRE(ascii.weld.mergedVertices == 48);
+}
+
+TEST_CASE("the unit scales the mesh to metres") {
+  test::TempDir dir;
+  const TriangleMesh block = makePlanarBlock(10, 3.18, 5 * M_PI / 180);  // mm
+  writeMesh(block, dir / "mm.obj", MeshFileFormat::Obj, 1.0);
+  TriangleMesh inMetres = block;
+  for (auto& v : inMetres.vertices) v *= 1e-3;
+  writeMesh(inMetres, dir / "m.obj", MeshFileFormat::Obj, 1.0);
+  const MassProperties fromMm = computeMassProperties(importAs(dir / "mm.obj", 1e-3).mesh);
+  const MassProperties fromM = computeMassProperties(importAs(dir / "m.obj", 1.0).mesh);
+  // Files hold single-precision numbers: agreement to ~1e-7 relative.
+  REQUIRE(fromMm.volume == Approx(fromM.volume).epsilon(1e-6));
+  REQUIRE(fromMm.volume == Approx(318e-9).epsilon(1e-3));
+  REQUIRE(fromMm.principalMoments.x() == Approx(fromM.principalMoments.x()).epsilon(1e-6));
+}
+
+TEST_CASE("welding merges vertices within the tolerance and drops collapsed triangles") {
+  TriangleMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1e-9, 0, 0}, {1, 1e-9, 0}, {0.5, 0.5, 1}};
+  m.triangles = {{0, 1, 2}, {3, 4, 5}, {0, 3, 5}};
+  const WeldReport report = weldVertices(m, 1e-6);
+  REQUIRE(report.mergedVertices == 2);
+  REQUIRE(report.collapsedTriangles == 1);
+  REQUIRE(m.vertices.size() == 4);
+  REQUIRE(m.triangles == std::vector<std::array<int, 3>>{{0, 1, 2}, {0, 1, 3}});
+}
+
+TEST_CASE("unreadable files are refused naming the file") {
+  test::TempDir dir;
+  REQUIRE_THROWS_WITH(importAs(dir / "missing.stl", 1), Contains("missing.stl") && Contains("no such file"));
+  test::writeFile(dir / "empty.stl", "");
+  REQUIRE_THROWS_WITH(importAs(dir / "empty.stl", 1), Contains("empty.stl") && Contains("empty"));
+  std::string noise;
+  for (int i = 0; i < 5000; ++i) noise.push_back(static_cast<char>((i * 7919 + 13) % 251));
+  test::writeFile(dir / "noise.stl", noise);
+  REQUIRE_THROWS_AS(importAs(dir / "noise.stl", 1), InputError);
+  test::writeFile(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  REQUIRE_THROWS_WITH(importAs(dir / "points.obj", 1), Contains("points.obj") && Contains("no faces"));
+}

@@ -1,0 +1,85 @@
+// Shapes: body frame, resolution checks, and the same shape from any file format or unit.
+#include "geometry/block_generators.h"
+#include "geometry/input_error.h"
+#include "geometry/mesh_export.h"
+#include "levelset/shape_builder.h"
+#include "tests/fixtures/analytic_meshes.h"
+#include "tests/fixtures/temp_dir.h"
+
+#include <catch2/catch.hpp>
+
+#include <numeric>
+
+using namespace tessera;
+using Catch::Matchers::Contains;
+
+namespace {
+
+ShapeResolution resolution(double voxel, double spacing) {
+  ShapeResolution r;
+  r.voxelSize = voxel;
+  r.nodeSpacing = spacing;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("a shape is expressed in its body frame") {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const TriangleMesh mesh = test::transformed(makeBox(8e-3, 4e-3, 2e-3), R, Eigen::Vector3d(0.1, 0.2, 0.3));
+  PrepLog log;
+  const Shape s = buildShape("box", mesh, {}, resolution(0.2e-3, 0.6e-3), "box", log);
+  REQUIRE(log.warnings.empty());
+  REQUIRE((s.mass.centroid - Eigen::Vector3d(0.1, 0.2, 0.3)).norm() < 1e-12);
+  const Eigen::AlignedBox3d box = boundingBox(s.mesh.vertices);
+  REQUIRE((box.sizes() - Eigen::Vector3d(8e-3, 4e-3, 2e-3)).norm() < 1e-12);
+  REQUIRE(box.center().norm() < 1e-12);
+  REQUIRE(s.sdf.sample(Eigen::Vector3d::Zero()).phi == Approx(-1e-3).margin(1e-8));
+  const double areaSum = std::accumulate(s.nodes.areas.begin(), s.nodes.areas.end(), 0.0);
+  REQUIRE(areaSum == Approx(s.mass.surfaceArea).epsilon(1e-9));
+}
+
+TEST_CASE("resolution checks: errors for meaningless values, warnings for under-resolved ones") {
+  const TriangleMesh block = makePlanarBlock(10e-3, 3.18e-3, 5 * M_PI / 180);
+  PrepLog log;
+  REQUIRE_THROWS_WITH(buildShape("b", block, {}, resolution(0.0, 0.6e-3), "b.stl", log),
+                      Contains("b.stl") && Contains("voxel size must be positive"));
+  REQUIRE_THROWS_WITH(buildShape("b", block, {}, resolution(0.25e-3, -1.0), "b.stl", log),
+                      Contains("node spacing must be positive"));
+  REQUIRE_THROWS_WITH(buildShape("b", block, {}, resolution(1.5e-3, 0.6e-3), "b.stl", log),
+                      Contains("too coarse") && Contains("3.18 mm"));
+  REQUIRE_THROWS_WITH(buildShape("b", block, {}, resolution(1e-7, 0.6e-3), "b.stl", log), Contains("check --unit"));
+  REQUIRE_THROWS_WITH(buildShape("b/../x", block, {}, resolution(0.25e-3, 0.6e-3), "b.stl", log),
+                      Contains("not valid"));
+
+  PrepLog coarse;
+  buildShape("b", block, {}, resolution(0.5e-3, 0.6e-3), "b.stl", coarse);
+  REQUIRE(coarse.warnings.size() == 1);
+  REQUIRE_THAT(coarse.warnings.front(), Contains("under-resolved"));
+}
+
+TEST_CASE("STL (ASCII, binary) and OBJ, in mm or in m, give the same SI shape") {
+  test::TempDir dir;
+  const TriangleMesh mm = makeBox(8, 4, 2.5);  // dyadic: exact in single precision
+  writeMesh(mm, dir / "a.stl", MeshFileFormat::StlAscii, 1.0);
+  writeMesh(mm, dir / "b.stl", MeshFileFormat::StlBinary, 1.0);
+  writeMesh(mm, dir / "c.obj", MeshFileFormat::Obj, 1.0);
+  writeMesh(mm, dir / "m.obj", MeshFileFormat::Obj, 1e3);  // the same block written in metres
+  const ShapeResolution r = resolution(0.25e-3, 0.6e-3);
+  PrepLog log;
+  const Shape ref = prepareShapeFromFile(dir / "a.stl", "mm", "a", r, log);
+  for (const auto& [file, unit] : std::vector<std::pair<std::string, std::string>>{
+           {"b.stl", "mm"}, {"c.obj", "mm"}, {"m.obj", "m"}}) {
+    INFO(file);
+    const Shape s = prepareShapeFromFile(dir / file, unit, "x", r, log);
+    const bool exact = unit == "mm";  // 0.008 m etc. are not exact in single precision
+    const double tol = exact ? 1e-12 : 1e-6;
+    REQUIRE(s.mass.volume == Approx(ref.mass.volume).epsilon(tol));
+    REQUIRE((s.mass.principalMoments - ref.mass.principalMoments).norm() <= tol * ref.mass.principalMoments.norm());
+    REQUIRE(s.nodes.size() == ref.nodes.size());
+    REQUIRE(s.sdf.dims == ref.sdf.dims);
+    for (std::size_t i = 0; i < s.sdf.values.size(); ++i)
+      REQUIRE(s.sdf.values[i] == Approx(ref.sdf.values[i]).margin(exact ? 0.0 : 1e-9));
+    if (exact) REQUIRE(s.nodes.positions == ref.nodes.positions);
+  }
+}
