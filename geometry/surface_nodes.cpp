@@ -5,37 +5,38 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <queue>
 
 namespace tessera {
 
 namespace {
 
-// Stop farthest-point sampling once every quadrature point is this close to a node, in units of
+// Stop farthest-point sampling once every candidate point is this close to a node, in units of
 // the spacing. Measured: it gives a mean nearest-node distance close to the spacing
 // (docs/geometry.md, "Surface nodes").
 constexpr double kCoverageRadius = 0.9;
+// Candidate points for farthest-point sampling: sub-triangles of edge <= spacing / 4.
+constexpr double kCandidatesPerSpacing = 4.0;
 
 struct QuadraturePoint {
   Eigen::Vector3d position;
-  Eigen::Vector3d normal;  // unit normal of its triangle
   double area;
 };
 
-// Splits triangle t into k^2 congruent sub-triangles (k = ceil(longest edge / h)) and returns
-// their centroids with area A / k^2 each; the areas sum exactly to A.
-void appendQuadrature(const TriangleMesh& mesh, int t, double h, std::vector<QuadraturePoint>& out) {
+// Calls visit(point) for the k^2 congruent sub-triangles of triangle t (k = ceil(longest edge /
+// h)): their centroids, each with area A / k^2, so the areas sum exactly to A.
+template <class Visit>
+void forEachQuadraturePoint(const TriangleMesh& mesh, int t, double h, Visit&& visit) {
   const Eigen::Vector3d a = triangleCorner(mesh, t, 0), b = triangleCorner(mesh, t, 1), c = triangleCorner(mesh, t, 2);
   const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
   const int k = std::max(1, static_cast<int>(std::ceil(longest / h)));
-  const Eigen::Vector3d areaVector = (b - a).cross(c - a);
-  const Eigen::Vector3d normal = areaVector.normalized();
-  const double subArea = 0.5 * areaVector.norm() / (static_cast<double>(k) * k);
+  const double subArea = triangleArea(mesh, t) / (static_cast<double>(k) * k);
   const Eigen::Vector3d du = (b - a) / k, dv = (c - a) / k;
   for (int i = 0; i < k; ++i)
     for (int j = 0; i + j < k; ++j) {
-      out.push_back({a + (i + 1.0 / 3.0) * du + (j + 1.0 / 3.0) * dv, normal, subArea});      // upward
-      if (i + j < k - 1) out.push_back({a + (i + 2.0 / 3.0) * du + (j + 2.0 / 3.0) * dv, normal, subArea});  // downward
+      visit(QuadraturePoint{a + (i + 1.0 / 3.0) * du + (j + 1.0 / 3.0) * dv, subArea});  // upward
+      if (i + j < k - 1) visit(QuadraturePoint{a + (i + 2.0 / 3.0) * du + (j + 2.0 / 3.0) * dv, subArea});  // downward
     }
 }
 
@@ -65,43 +66,42 @@ std::vector<Eigen::Vector3d> pointsAlongChain(const TriangleMesh& mesh, const Fe
   return points;
 }
 
-// Farthest-point sampling of one patch, seeded with its edge and corner nodes. Appends the
-// patch's nodes with their Voronoi areas and normals to `out`.
-void samplePatch(int patch, const std::vector<SeedNode>& seeds, const std::vector<QuadraturePoint>& quad,
-                 double spacing, SurfaceNodes& out) {
-  const int n = static_cast<int>(quad.size());
-  if (n == 0) return;
+struct PatchNodes {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<NodeKind> kinds;
+};
 
-  // distance[i]: from quadrature point i to its nearest node, capped at `cap`; nearest[i]: that
-  // node. The cap keeps every update local; while distances sit at the cap, the picks pack the
-  // patch greedily in index order, then farthest-point sampling proper refines the packing.
+// Farthest-point sampling of one patch over its candidate points, seeded with its edge and
+// corner nodes: repeatedly add the candidate farthest from all nodes, until every candidate is
+// within kCoverageRadius x spacing of a node.
+PatchNodes farthestPointSample(const std::vector<SeedNode>& seeds, const std::vector<Eigen::Vector3d>& candidates,
+                               double spacing) {
+  const int n = static_cast<int>(candidates.size());
+  // distance[i]: from candidate i to its nearest node, capped at `cap`. The cap keeps every
+  // update local; while distances sit at the cap, the picks pack the patch greedily in index
+  // order, then farthest-point sampling proper refines the packing.
   const double cap = 2.0 * spacing;
   std::vector<double> distance(n, cap);
-  std::vector<int> nearest(n, -1);
-  PointGrid quadGrid(cap);
-  for (int i = 0; i < n; ++i) quadGrid.insert(i, quad[i].position);
+  PointGrid grid(cap);
+  for (int i = 0; i < n; ++i) grid.insert(i, candidates[i]);
 
-  std::vector<Eigen::Vector3d> nodes;
-  std::vector<NodeKind> kinds;
-  // Max-heap of (distance, -index): the farthest point first, the lowest index among ties.
+  PatchNodes nodes;
+  // Max-heap of (distance, -index): the farthest candidate first, the lowest index among ties.
   std::priority_queue<std::pair<double, int>> heap;
   const auto addNode = [&](const Eigen::Vector3d& x, NodeKind kind, double radius) {
-    const int node = static_cast<int>(nodes.size());
-    nodes.push_back(x);
-    kinds.push_back(kind);
-    quadGrid.forEachNear(x, radius, [&](int j) {
-      const double dj = (quad[j].position - x).norm();
+    nodes.positions.push_back(x);
+    nodes.kinds.push_back(kind);
+    grid.forEachNear(x, radius, [&](int j) {
+      const double dj = (candidates[j] - x).norm();
       if (dj < distance[j]) {
         distance[j] = dj;
-        nearest[j] = node;
         heap.push({dj, -j});
       }
     });
   };
-
   for (const SeedNode& seed : seeds) addNode(seed.position, seed.kind, cap);
   for (int i = 0; i < n; ++i)
-    if (nearest[i] < 0) heap.push({cap, -i});
+    if (distance[i] == cap) heap.push({cap, -i});
   const double coverage = kCoverageRadius * spacing;
   while (!heap.empty()) {
     const auto [d, negIndex] = heap.top();
@@ -109,25 +109,57 @@ void samplePatch(int patch, const std::vector<SeedNode>& seeds, const std::vecto
     const int c = -negIndex;
     if (d != distance[c]) continue;  // stale entry
     if (d < coverage) break;
-    addNode(quad[c].position, NodeKind::Face, d);
+    addNode(candidates[c], NodeKind::Face, d);
+  }
+  return nodes;
+}
+
+// Nearest node of one patch to a stream of nearby points. Points arrive in runs within the same
+// grid cell, so the candidate nodes of a cell's neighbourhood are gathered once per run.
+class NearestNode {
+public:
+  NearestNode(const std::vector<Eigen::Vector3d>& nodes, double reach)
+      : nodes_(nodes), reach_(reach), grid_(reach) {
+    for (int i = 0; i < static_cast<int>(nodes.size()); ++i) grid_.insert(i, nodes[i]);
   }
 
-  // Discrete Voronoi areas and area-weighted normals.
-  std::vector<double> area(nodes.size(), 0.0);
-  std::vector<Eigen::Vector3d> normal(nodes.size(), Eigen::Vector3d::Zero());
-  for (int i = 0; i < n; ++i) {
-    area[nearest[i]] += quad[i].area;
-    normal[nearest[i]] += quad[i].area * quad[i].normal;
+  int operator()(const Eigen::Vector3d& x) {
+    const Eigen::Array3i cell = (x.array() / reach_).floor().cast<int>();
+    if (!haveCell_ || (cell != cell_).any()) {
+      haveCell_ = true;
+      cell_ = cell;
+      near_.clear();
+      grid_.forEachNear((cell.cast<double>() + 0.5) * reach_, reach_, [&](int i) { near_.push_back(i); });
+    }
+    int best = -1;
+    double bestDistance = std::numeric_limits<double>::infinity();
+    for (int i : near_) {
+      const double d = (nodes_[i] - x).squaredNorm();
+      if (d < bestDistance || (d == bestDistance && i < best)) {
+        bestDistance = d;
+        best = i;
+      }
+    }
+    if (best >= 0 && bestDistance <= reach_ * reach_) return best;
+    // Beyond the guaranteed reach (cannot happen after coverage): search every node.
+    for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
+      const double d = (nodes_[i] - x).squaredNorm();
+      if (d < bestDistance) {
+        bestDistance = d;
+        best = i;
+      }
+    }
+    return best;
   }
-  for (std::size_t k = 0; k < nodes.size(); ++k) {
-    if (area[k] <= 0.0) continue;  // a seed that owns no quadrature point carries no load
-    out.positions.push_back(nodes[k]);
-    out.normals.push_back(normal[k].normalized());
-    out.areas.push_back(area[k]);
-    out.patches.push_back(patch);
-    out.kinds.push_back(kinds[k]);
-  }
-}
+
+private:
+  const std::vector<Eigen::Vector3d>& nodes_;
+  double reach_;
+  PointGrid grid_;
+  bool haveCell_ = false;
+  Eigen::Array3i cell_;
+  std::vector<int> near_;
+};
 
 }  // namespace
 
@@ -152,14 +184,48 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
     for (const Eigen::Vector3d& x : pointsAlongChain(mesh, chain, spacing))
       for (int p : chain.patches) seeds[p].push_back({x, NodeKind::Edge});
 
-  // Quadrature points of each patch.
-  std::vector<std::vector<QuadraturePoint>> quad(features.patchCount);
-  const double h = spacing / std::max(1, options.quadraturePerSpacing);
+  // Nodes of each patch by farthest-point sampling over candidate points.
+  std::vector<std::vector<Eigen::Vector3d>> candidates(features.patchCount);
   for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
-    appendQuadrature(mesh, t, h, quad[features.trianglePatch[t]]);
+    forEachQuadraturePoint(mesh, t, spacing / kCandidatesPerSpacing,
+                           [&](const QuadraturePoint& q) { candidates[features.trianglePatch[t]].push_back(q.position); });
+  std::vector<PatchNodes> patchNodes(features.patchCount);
+  for (int p = 0; p < features.patchCount; ++p) patchNodes[p] = farthestPointSample(seeds[p], candidates[p], spacing);
+
+  // Area weights: a fine quadrature of each triangle, every point given to the nearest node of
+  // its patch. Every candidate is within coverage of a node and every fine point within one
+  // candidate cell of a candidate, so the nearest node lies within `reach`.
+  const double reach = (kCoverageRadius + 1.0 / kCandidatesPerSpacing) * spacing;
+  const double h = spacing / std::max(1, options.quadraturePerSpacing);
+  std::vector<std::vector<double>> area(features.patchCount);
+  std::vector<std::vector<Eigen::Vector3d>> normal(features.patchCount);
+  std::vector<NearestNode> nearest;
+  nearest.reserve(features.patchCount);
+  for (int p = 0; p < features.patchCount; ++p) {
+    nearest.emplace_back(patchNodes[p].positions, reach);
+    area[p].assign(patchNodes[p].positions.size(), 0.0);
+    normal[p].assign(patchNodes[p].positions.size(), Eigen::Vector3d::Zero());
+  }
+  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
+    const int p = features.trianglePatch[t];
+    const Eigen::Vector3d unitNormal = triangleAreaVector(mesh, t).normalized();
+    forEachQuadraturePoint(mesh, t, h, [&](const QuadraturePoint& q) {
+      const int node = nearest[p](q.position);
+      area[p][node] += q.area;
+      normal[p][node] += q.area * unitNormal;
+    });
+  }
 
   SurfaceNodes out;
-  for (int p = 0; p < features.patchCount; ++p) samplePatch(p, seeds[p], quad[p], spacing, out);
+  for (int p = 0; p < features.patchCount; ++p)
+    for (std::size_t k = 0; k < patchNodes[p].positions.size(); ++k) {
+      if (area[p][k] <= 0.0) continue;  // a seed that owns no quadrature point carries no load
+      out.positions.push_back(patchNodes[p].positions[k]);
+      out.normals.push_back(normal[p][k].normalized());
+      out.areas.push_back(area[p][k]);
+      out.patches.push_back(p);
+      out.kinds.push_back(patchNodes[p].kinds[k]);
+    }
   return out;
 }
 

@@ -33,11 +33,12 @@ struct SurfaceNodes {
 /// Samples nodes on a validated, outward-oriented mesh:
 ///  - a node at every corner;
 ///  - nodes along every sharp-edge chain, evenly at most `spacing` apart;
-///  - face nodes by farthest-point sampling of each patch, seeded with its edge and corner nodes,
-///    stopped when every surface point is within 0.9 x spacing of a node (this leaves
-///    neighbouring nodes about `spacing` apart);
-///  - area weights: the patch is cut into small quadrature triangles (edge length <= spacing /
-///    quadraturePerSpacing), each given wholly to its nearest node of the same patch (a discrete
+///  - face nodes by farthest-point sampling of each patch over candidate points (centroids of
+///    sub-triangles of edge <= spacing / 4), seeded with the patch's edge and corner nodes and
+///    stopped when every candidate is within 0.9 x spacing of a node (this leaves neighbouring
+///    nodes about `spacing` apart);
+///  - area weights: each triangle is cut into small quadrature triangles (edge <= spacing /
+///    quadraturePerSpacing), each given wholly to the nearest node of the same patch (a discrete
 ///    Voronoi partition), so the weights sum to the area exactly up to rounding.
 /// Throws InputError when spacing <= 0.
 SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& features,
