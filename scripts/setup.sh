@@ -11,10 +11,11 @@ jobs=${JOBS:-$(nproc)}
 
 # Exactly the packages the build, tests and benchmarks use.
 packages=(
-  build-essential cmake pkg-config
-  libcgal-dev libgmp-dev libmpfr-dev           # mesh validation (CGAL)
+  build-essential cmake
+  libcgal-dev                                   # mesh validation, exact distances (CGAL)
   libeigen3-dev                                 # linear algebra
-  libopenvdb-dev libtbb-dev libboost-iostreams-dev libblosc-dev  # level sets (OpenVDB needs Boost.Iostreams for its CMake module)
+  libopenvdb-dev libtbb-dev                     # level sets
+  libboost-iostreams-dev                        # needed by OpenVDB's CMake module
   libassimp-dev                                 # mesh import
   libhdf5-dev                                   # asset bundle
   libcli11-dev nlohmann-json3-dev               # command line, JSON output
