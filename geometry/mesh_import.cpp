@@ -22,9 +22,13 @@ ImportedMesh importMesh(const std::string& path, const MeshImportOptions& option
   Assimp::Importer importer;
   // Points and lines are not a surface: ask assimp to drop them.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  // Only positions matter; without per-facet normals and texture coordinates, corners that STL
+  // and OBJ repeat verbatim are joined on reading.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TEXCOORDS | aiComponent_COLORS |
+                                                          aiComponent_TANGENTS_AND_BITANGENTS);
   const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType |
-                aiProcess_ValidateDataStructure);
+      path, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
+                aiProcess_SortByPType | aiProcess_ValidateDataStructure);
   if (scene == nullptr) {
     std::string why = importer.GetErrorString();
     while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();

@@ -13,12 +13,13 @@ struct MeshImportOptions {
 
 struct ImportedMesh {
   TriangleMesh mesh;            ///< in metres, welded
-  std::size_t fileVertices = 0; ///< vertex count as read, before welding
+  std::size_t fileVertices = 0; ///< distinct vertices as read (exact duplicates joined), before welding
   WeldReport weld;
 };
 
 /// Reads STL (ASCII or binary), OBJ and the other formats assimp knows, triangulates polygons,
-/// bakes node transforms, scales to metres and welds duplicate vertices.
+/// joins identical vertices, bakes node transforms, scales to metres and welds vertices closer
+/// than the tolerance (STL facets repeat their corners, sometimes with rounding differences).
 /// Throws InputError naming the file for: missing or unreadable file, empty file, a file assimp
 /// cannot parse, no triangles, non-finite coordinates.
 ImportedMesh importMesh(const std::string& path, const MeshImportOptions& options);

@@ -110,6 +110,8 @@ void addPrepCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--name", args->name, "Shape name in the bundle [default: the mesh file name without extension]");
   cmd->add_flag("--replace", args->replace, "Replace a shape of the same name already in the bundle");
+  cmd->footer("Example: tessera prep block.stl --unit mm --voxel 0.25 --spacing 0.6 -o out/slab\n"
+              "Refuses open, non-manifold, self-intersecting or flat meshes with the reason; re-orients inside-out ones.");
   cmd->callback([args] { runPrep(*args); });
 }
 

@@ -41,9 +41,9 @@ TEST_CASE("ASCII STL, binary STL and OBJ import to the same welded mesh") {
     for (int t = 0; t < static_cast<int>(source.triangles.size()); ++t)
       for (int k = 0; k < 3; ++k) REQUIRE(triangleCorner(m->mesh, t, k) == triangleCorner(source, t, k));
   }
-  // STL stores three vertices per facet: 20 facets -> 60 vertices welded to 12.
-  REQUIRE(ascii.fileVertices == 60);
-  REQUIRE(ascii.weld.mergedVertices == 48);
+  // STL repeats the corners of every facet; identical ones are joined on reading.
+  REQUIRE(ascii.fileVertices == 12);
+  REQUIRE(ascii.weld.mergedVertices == 0);
 }
 
 TEST_CASE("the unit scales the mesh to metres") {
@@ -59,6 +59,21 @@ TEST_CASE("the unit scales the mesh to metres") {
   REQUIRE(fromMm.volume == Approx(fromM.volume).epsilon(1e-6));
   REQUIRE(fromMm.volume == Approx(318e-9).epsilon(1e-3));
   REQUIRE(fromMm.principalMoments.x() == Approx(fromM.principalMoments.x()).epsilon(1e-6));
+}
+
+TEST_CASE("vertices that differ by rounding are welded on import") {
+  test::TempDir dir;
+  // Two facets of a tetrahedron write a shared corner as 1 and as 1 + 1e-9.
+  test::writeFile(dir / "t.stl",
+                  "solid t\n"
+                  "facet normal 0 0 -1\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\nendloop\nendfacet\n"
+                  "facet normal 0 -1 0\nouter loop\nvertex 0 0 0\nvertex 1.000000001 0 0\nvertex 0 0 1\nendloop\nendfacet\n"
+                  "facet normal -1 0 0\nouter loop\nvertex 0 0 0\nvertex 0 0 1\nvertex 0 1 0\nendloop\nendfacet\n"
+                  "facet normal 1 1 1\nouter loop\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\nendloop\nendfacet\n"
+                  "endsolid t\n");
+  const ImportedMesh m = importAs(dir / "t.stl", 1.0);
+  REQUIRE(m.mesh.vertices.size() == 4);
+  REQUIRE(m.mesh.triangles.size() == 4);
 }
 
 TEST_CASE("welding merges vertices within the tolerance and drops collapsed triangles") {
