@@ -3,49 +3,99 @@
 #include "geometry/input_error.h"
 
 #include <cmath>
+#include <functional>
+#include <string>
 
 namespace tessera {
 
 namespace {
 
-// A hexahedron from its 8 corners, numbered as the bits (x, y, z) of the index: corner
-// i has x = bit 0, y = bit 1, z = bit 2 (0 = low side). Faces are split into two triangles,
-// counter-clockwise seen from outside.
-TriangleMesh hexahedron(const std::array<Eigen::Vector3d, 8>& corner) {
+// A block whose horizontal cross-section at each of the given levels is the rectangle
+// |x| <= halfX(z), |y| <= halfY(z), joined by flat quads between consecutive levels.
+// Level k's corners are 4k + c with c's bit 0 = x side, bit 1 = y side (0 = negative).
+TriangleMesh stackedRectangles(int levels, double h, const std::function<double(double)>& halfX,
+                               const std::function<double(double)>& halfY) {
   TriangleMesh mesh;
-  mesh.vertices.assign(corner.begin(), corner.end());
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6},   // z-, z+
-                           {0, 1, 5, 4}, {2, 6, 7, 3},   // y-, y+
-                           {0, 4, 6, 2}, {1, 3, 7, 5}};  // x-, x+
-  for (const auto& q : quads) {
-    mesh.triangles.push_back({q[0], q[1], q[2]});
-    mesh.triangles.push_back({q[0], q[2], q[3]});
+  for (int k = 0; k <= levels; ++k) {
+    const double z = -0.5 * h + h * k / levels;
+    for (int c = 0; c < 4; ++c)
+      mesh.vertices.emplace_back((c & 1 ? 1 : -1) * halfX(z), (c & 2 ? 1 : -1) * halfY(z), z);
+  }
+  const auto quad = [&](int a, int b, int c, int d) {
+    mesh.triangles.push_back({a, b, c});
+    mesh.triangles.push_back({a, c, d});
+  };
+  const int top = 4 * levels;
+  quad(0, 2, 3, 1);                            // bottom, facing -z
+  quad(top, top + 1, top + 3, top + 2);        // top, facing +z
+  for (int k = 0; k < levels; ++k) {
+    const int lo = 4 * k, hi = 4 * (k + 1);
+    quad(lo + 0, lo + 1, hi + 1, hi + 0);      // y-
+    quad(lo + 2, hi + 2, hi + 3, lo + 3);      // y+
+    quad(lo + 0, hi + 0, hi + 2, lo + 2);      // x-
+    quad(lo + 1, lo + 3, hi + 3, hi + 1);      // x+
   }
   return mesh;
+}
+
+void require(bool condition, const std::string& message) {
+  if (!condition) throw InputError(message);
 }
 
 }  // namespace
 
 TriangleMesh makeBox(double a, double b, double h) {
-  if (!(a > 0 && b > 0 && h > 0)) throw InputError("box sides must be positive");
-  std::array<Eigen::Vector3d, 8> corner;
-  for (int i = 0; i < 8; ++i)
-    corner[i] = Eigen::Vector3d((i & 1 ? 0.5 : -0.5) * a, (i & 2 ? 0.5 : -0.5) * b, (i & 4 ? 0.5 : -0.5) * h);
-  return hexahedron(corner);
+  require(a > 0 && b > 0 && h > 0, "box: sides must be positive");
+  return stackedRectangles(1, h, [&](double) { return 0.5 * a; }, [&](double) { return 0.5 * b; });
 }
 
 TriangleMesh makePlanarBlock(double a, double h, double theta) {
-  if (!(a > 0 && h > 0)) throw InputError("planar block: side and thickness must be positive");
+  require(a > 0 && h > 0, "planar block: side and thickness must be positive");
   const double slope = std::tan(theta);
-  if (!(std::abs(theta) < M_PI / 2) || h * std::abs(slope) >= a)
-    throw InputError("planar block: the inclined faces meet inside the block (need thickness x tan(angle) < side)");
-  std::array<Eigen::Vector3d, 8> corner;
-  for (int i = 0; i < 8; ++i) {
-    const double z = (i & 4 ? 0.5 : -0.5) * h;
-    const double halfX = 0.5 * a + z * slope, halfY = 0.5 * a - z * slope;
-    corner[i] = Eigen::Vector3d((i & 1 ? 1 : -1) * halfX, (i & 2 ? 1 : -1) * halfY, z);
+  require(std::abs(theta) < M_PI / 2 && h * std::abs(slope) < a,
+          "planar block: the inclined faces meet inside the block (need thickness x tan(angle) < side)");
+  return stackedRectangles(1, h, [&](double z) { return 0.5 * a + z * slope; },
+                           [&](double z) { return 0.5 * a - z * slope; });
+}
+
+TriangleMesh makeWaveBlock(double a, double h, double theta, double amplitude, int waves, int levels) {
+  require(a > 0 && h > 0, "wave block: side and thickness must be positive");
+  require(waves >= 1, "wave block: --waves must be at least 1");
+  require(levels >= 2 * waves + 1, "wave block: --levels must be at least 2 x waves + 1 to resolve the waves");
+  require(std::abs(theta) < M_PI / 2, "wave block: the angle must be below 90 degrees");
+  const double slope = std::tan(theta);
+  const auto f = [&](double z) { return z * slope + amplitude * std::sin(2 * M_PI * waves * z / h); };
+  for (int k = 0; k <= levels; ++k)
+    require(std::abs(f(-0.5 * h + h * k / levels)) < 0.5 * a,
+            "wave block: angle and amplitude make the faces cross (need |z tan(angle) + A sin(...)| < side / 2)");
+  return stackedRectangles(levels, h, [&](double z) { return 0.5 * a + f(z); }, [&](double z) { return 0.5 * a - f(z); });
+}
+
+TriangleMesh makeHexBlock(double r, double h, double theta) {
+  require(r > 0 && h > 0, "hex block: inradius and thickness must be positive");
+  const double slope = std::tan(theta);
+  require(std::abs(theta) < M_PI / 2 && h * std::abs(slope) < r,
+          "hex block: the inclined faces meet inside the block (need thickness x tan(angle) < inradius)");
+  // Corner k joins faces k and k+1: solve n_k . p = d_k, n_{k+1} . p = d_{k+1} in the plane.
+  const auto corner = [&](int k, double z) {
+    const double a0 = M_PI / 3 * k, a1 = M_PI / 3 * (k + 1);
+    const double d0 = r + (k % 2 == 0 ? 1 : -1) * z * slope, d1 = r + ((k + 1) % 2 == 0 ? 1 : -1) * z * slope;
+    const double det = std::cos(a0) * std::sin(a1) - std::sin(a0) * std::cos(a1);
+    return Eigen::Vector3d((d0 * std::sin(a1) - d1 * std::sin(a0)) / det, (std::cos(a0) * d1 - std::cos(a1) * d0) / det, z);
+  };
+  TriangleMesh mesh;
+  for (double z : {-0.5 * h, 0.5 * h})
+    for (int k = 0; k < 6; ++k) mesh.vertices.push_back(corner(k, z));
+  for (int k = 1; k < 5; ++k) {
+    mesh.triangles.push_back({0, k + 1, k});      // bottom, facing -z
+    mesh.triangles.push_back({6, 6 + k, 6 + k + 1});  // top, facing +z
   }
-  return hexahedron(corner);
+  for (int k = 0; k < 6; ++k) {  // face k + 1 lies between corners k and k + 1
+    const int a = k, b = (k + 1) % 6;
+    mesh.triangles.push_back({a, b, 6 + b});
+    mesh.triangles.push_back({a, 6 + b, 6 + a});
+  }
+  return mesh;
 }
 
 }  // namespace tessera

@@ -3,15 +3,34 @@
 
 namespace tessera {
 
-/// Axis-aligned box of sides a (x), b (y), h (z), metres, centred at the origin.
+/// Parametric block families (docs/tiling.md). All lengths in metres, angles in radians; every
+/// block is centred at the origin with z up, closed and outward-oriented. Invalid parameters
+/// throw InputError naming the constraint.
+
+/// Axis-aligned box of sides a (x), b (y), h (z).
 TriangleMesh makeBox(double a, double b, double h);
 
 /// The planar-faced TIS block (DESIGN §4): square mid-section of side a in the plane z = 0,
-/// thickness h, the faces normal to x inclined outward by +theta (the block widens in x upwards)
-/// and the faces normal to y by -theta (it narrows in y upwards), so that the same block turned
-/// 90 degrees about z interlocks with it. Face planes: x = ±(a/2 + z tan(theta)),
-/// y = ±(a/2 - z tan(theta)), z = ±h/2. Volume a^2 h - h^3 tan^2(theta) / 3.
-/// Lengths in metres, theta in radians; requires h tan(theta) < a.
+/// thickness h; the faces normal to x lean outward by theta (the block widens in x upwards), the
+/// faces normal to y lean inward (it narrows in y upwards), so the same block turned 90 degrees
+/// about z interlocks with it. Faces: x = ±(a/2 + z tan(theta)), y = ±(a/2 - z tan(theta)),
+/// z = ±h/2. Volume a^2 h - h^3 tan^2(theta) / 3. Requires h tan(theta) < a.
 TriangleMesh makePlanarBlock(double a, double h, double theta);
+
+/// The wave-faced TIS block: the planar block with corrugated lateral faces,
+///   x = ±(a/2 + f(z)), y = ±(a/2 - f(z)),  f(z) = z tan(theta) + A sin(2 pi n z / h),
+/// so a 90-degree-turned copy still matches it face to face (its y-faces become x-faces with the
+/// same f). Curved in z, straight along the face; the corrugation locks the blocks vertically even
+/// at theta = 0. `levels` planes across the thickness (>= 2n + 1) resolve the curve; between them
+/// the faces are flat. Exact polyhedron volume: sum over slabs of the prismatoid formula;
+/// smooth-surface volume a^2 h - 4 integral f^2 dz. Requires |f| < a/2.
+TriangleMesh makeWaveBlock(double a, double h, double theta, double amplitude, int waves, int levels);
+
+/// The hexagonal TIS block: a hexagonal prism of mid-height inradius r whose six lateral faces
+/// lean alternately outward and inward by theta: face k (outward normal at 60k degrees) is the plane
+/// n_k . x = r + (-1)^k z tan(theta). Copies in the same orientation tile the plane (centres 2r
+/// apart along the face normals) and interlock: face k of one block is face k+3 of its neighbour.
+/// Requires h tan(theta) < r.
+TriangleMesh makeHexBlock(double r, double h, double theta);
 
 }  // namespace tessera

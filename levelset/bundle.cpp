@@ -126,6 +126,8 @@ void writeBodies(hid_t file, const Bundle& bundle) {
   h5::writeDataset(g.get(), "position", position, {n, 3});
   h5::writeDataset(g.get(), "orientation", orientation, {n, 4});
   h5::writeDataset(g.get(), "fixed", fixed, {n});
+  h5::writeAttribute(g.get(), "span_length", bundle.spanLength);
+  h5::writeAttribute(g.get(), "span_interfaces", static_cast<std::int64_t>(bundle.spanInterfaces));
 }
 
 // ---- reading ----
@@ -205,6 +207,8 @@ Shape readShape(hid_t shapes, const std::string& name) {
 
 void readBodies(hid_t file, Bundle& bundle) {
   Handle g = h5::openGroup(file, "bodies");
+  bundle.spanLength = h5::readDoubleAttribute(g.get(), "span_length");
+  bundle.spanInterfaces = static_cast<int>(h5::readIntAttribute(g.get(), "span_interfaces"));
   const auto names = h5::readStrings(g.get(), "names");
   const auto shape = readRows<std::int32_t>(g.get(), "shape", 0, "bodies");
   const auto position = readRows<double>(g.get(), "position", 3, "bodies");

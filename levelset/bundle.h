@@ -1,4 +1,5 @@
 #pragma once
+#include "geometry/tessellation.h"
 #include "levelset/shape.h"
 
 #include <Eigen/Geometry>
@@ -26,6 +27,10 @@ struct Bundle {
   std::string generator;        ///< tool and version that wrote it
   std::vector<Shape> shapes;
   std::vector<Body> bodies;
+  /// The interlocking span of the slab, when the tessellation defines one (k_n = E M / L,
+  /// Feldfogel et al.): L, the free span (m), and M, the interfaces across it; 0 when unknown.
+  double spanLength = 0.0;
+  int spanInterfaces = 0;
 
   /// Index of the shape with this name, or -1.
   int findShape(const std::string& name) const;

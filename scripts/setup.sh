@@ -20,6 +20,7 @@ packages=(
   libhdf5-dev                                   # asset bundle
   libcli11-dev nlohmann-json3-dev               # command line, JSON output
   catch2                                        # tests
+  python3-vtk9 python3-matplotlib               # tests read exports with VTK; PNG rendering
   libbenchmark-dev                              # benchmarks (bench/)
 )
 

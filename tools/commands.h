@@ -7,5 +7,8 @@ namespace tessera::tools {
 /// Callbacks throw InputError for bad input; main() prints it and exits with status 2.
 void addPrepCommand(CLI::App& app);
 void addInspectCommand(CLI::App& app);
+void addBlockCommand(CLI::App& app);
+void addTileCommand(CLI::App& app);
+void addExportCommand(CLI::App& app);
 
 }  // namespace tessera::tools

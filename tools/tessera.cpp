@@ -13,6 +13,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   tessera::tools::addPrepCommand(app);
   tessera::tools::addInspectCommand(app);
+  tessera::tools::addBlockCommand(app);
+  tessera::tools::addTileCommand(app);
+  tessera::tools::addExportCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,24 @@
+#pragma once
+#include "levelset/bundle.h"
+
+#include <string>
+
+namespace tessera {
+
+/// What exportAssembly wrote.
+struct ExportSummary {
+  std::size_t triangles = 0;  ///< cells of blocks.vtu
+  std::size_t nodes = 0;      ///< points of nodes.vtu
+};
+
+/// Writes a bundle's assembly for ParaView into `directory`:
+///  - blocks.vtu: every body's mesh placed by its pose (triangles; cell data body_id, shape_id, fixed);
+///  - nodes.vtu: every body's surface nodes in world coordinates (vertex cells; point data
+///    body_id, area, normal, kind);
+///  - assembly.pvd: a collection of the two (open this one);
+///  - layout.json: the placements as a layout file whose shapes refer to the bundle, so
+///    `tessera tile --layout layout.json` rebuilds the same assembly.
+/// Lengths in metres. Each file is written to a temporary name and renamed.
+ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath, const std::string& directory);
+
+}  // namespace tessera

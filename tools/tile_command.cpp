@@ -1,0 +1,184 @@
+// tessera tile: blocks + a tessellation (built-in square grid or a layout file) -> a slab bundle.
+#include "geometry/input_error.h"
+#include "geometry/length_unit.h"
+#include "levelset/assembly.h"
+#include "levelset/tiler.h"
+#include "tools/commands.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+
+namespace tessera::tools {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TileArguments {
+  std::string block;
+  std::string layout;
+  std::string unit;
+  std::string grid = "7x7";
+  std::optional<double> pitch;
+  std::string fix = "perimeter";
+  bool noAlternate = false;
+  double gap = 0;
+  std::optional<double> voxel;
+  std::optional<double> spacing;
+  std::optional<double> overlapTolerance;
+  std::string output;
+};
+
+std::pair<int, int> parseGrid(const std::string& text) {
+  int columns = 0, rows = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &columns, &x, &rows, &extra) != 3 || (x != 'x' && x != 'X') ||
+      columns < 1 || rows < 1)
+    throw InputError("--grid '" + text + "': give columns x rows, e.g. --grid 7x7");
+  return {columns, rows};
+}
+
+std::string mm(double metres) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g mm", metres * 1e3);
+  return buffer;
+}
+
+void runTile(const TileArguments& a) {
+  const auto start = std::chrono::steady_clock::now();
+  if (a.block.empty() == a.layout.empty())
+    throw InputError("give either --block MESH (with --grid and --pitch) or --layout FILE");
+
+  std::vector<LayoutShape> shapes;
+  std::vector<Placement> placements;
+  std::string unitName;
+  double spanLength = 0;
+  int spanInterfaces = 0;
+  if (!a.block.empty()) {
+    if (a.unit.empty()) throw InputError(a.block + ": state the mesh's length unit with --unit (mm, cm, m, in)");
+    if (!a.pitch) throw InputError("--pitch is required with --block: the centre-to-centre distance, in --unit");
+    unitName = a.unit;
+    const double m = parseLengthUnit(unitName).metres;
+    SquareGridOptions grid;
+    std::tie(grid.columns, grid.rows) = parseGrid(a.grid);
+    grid.pitch = *a.pitch * m;
+    grid.gap = a.gap * m;
+    grid.alternate = !a.noAlternate;
+    if (a.fix != "perimeter" && a.fix != "none") throw InputError("--fix '" + a.fix + "': use perimeter or none");
+    grid.fixPerimeter = a.fix == "perimeter";
+    const std::string key = fs::path(a.block).stem().string();
+    LayoutShape shape;
+    shape.key = key.empty() || key.front() == '.' ? "block" : key;
+    for (char& c : shape.key)
+      if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
+    shape.mesh = a.block;
+    shapes.push_back(shape);
+    placements = squareGrid(grid, shape.key);
+    const InterlockingSpan span = squareGridSpan(grid);
+    spanLength = span.length;
+    spanInterfaces = span.interfaces;
+  } else {
+    Layout layout = readLayout(a.layout);
+    unitName = layout.unit;
+    if (!a.unit.empty() && a.unit != layout.unit)
+      throw InputError(a.layout + ": the layout states unit '" + layout.unit + "'; drop --unit or make them agree");
+    shapes = layout.shapes;
+    placements = layout.bodies;
+    spanLength = layout.spanLength;
+    spanInterfaces = layout.spanInterfaces;
+  }
+  const LengthUnit unit = parseLengthUnit(unitName);
+  ShapeResolution resolution;
+  if (a.voxel) resolution.voxelSize = *a.voxel * unit.metres;
+  if (a.spacing) resolution.nodeSpacing = *a.spacing * unit.metres;
+  if (!(resolution.voxelSize > 0)) throw InputError("--voxel must be positive");
+  if (!(resolution.nodeSpacing > 0)) throw InputError("--spacing must be positive");
+
+  PrepLog log;
+  Bundle bundle = tileAssembly(shapes, placements, unitName, resolution, log);
+  bundle.spanLength = spanLength;
+  bundle.spanInterfaces = spanInterfaces;
+  for (const auto& note : log.notes) std::cerr << "tile: note: " << note << "\n";
+  for (const auto& warning : log.warnings) std::cerr << "tile: warning: " << warning << "\n";
+
+  // Check the assembly before anything is written.
+  double finestVoxel = 1e300;
+  for (const Shape& s : bundle.shapes) finestVoxel = std::min(finestVoxel, s.sdf.voxelSize);
+  const double tolerance = a.overlapTolerance ? *a.overlapTolerance * unit.metres : 0.1 * finestVoxel;
+  const double touch = a.gap * unit.metres + 0.5 * finestVoxel;
+  const AssemblyCheck check = checkAssembly(bundle, tolerance, touch);
+  if (!check.overlaps.empty()) {
+    const BodyPair& worst = check.overlaps.front();
+    throw InputError("bodies '" + bundle.bodies[worst.a].name + "' and '" + bundle.bodies[worst.b].name +
+                     "' overlap by " + mm(-worst.separation) + " (tolerance " + mm(tolerance) + "; " +
+                     std::to_string(check.overlaps.size()) +
+                     " overlapping pair(s) in all); check --pitch or the layout positions, or add --gap");
+  }
+  for (int i : check.isolated)
+    std::cerr << "tile: warning: body '" << bundle.bodies[i].name << "' touches no other body (nothing within "
+              << mm(touch) << ")\n";
+
+  const std::vector<VerticalLock> locks = verticalLocks(bundle, 0.5 * finestVoxel);
+  int locked = 0;
+  for (const VerticalLock& l : locks) {
+    const double threshold = 0.01 * 0.5 * finestVoxel;
+    if (l.upDepth > threshold && l.downDepth > threshold) ++locked;
+    else
+      std::cerr << "tile: note: free body '" << bundle.bodies[l.body].name << "' is not held "
+                << (l.upDepth > threshold ? "downward" : l.downDepth > threshold ? "upward" : "up or down")
+                << " by its neighbours\n";
+  }
+
+  const bool created = !fs::exists(a.output);
+  try {
+    writeBundle(a.output, bundle);
+  } catch (...) {
+    if (created) fs::remove_all(a.output);
+    throw;
+  }
+
+  int fixedCount = 0;
+  for (const Body& b : bundle.bodies) fixedCount += b.fixed;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("slab: %zu bodies (%d fixed, %zu free), %zu distinct shape(s)\n", bundle.bodies.size(), fixedCount,
+              bundle.bodies.size() - fixedCount, bundle.shapes.size());
+  std::printf("  contacts      %zu touching pairs, deepest initial overlap %s\n", check.contacts.size(),
+              mm(std::max(0.0, -std::min_element(check.contacts.begin(), check.contacts.end(),
+                                                  [](const BodyPair& x, const BodyPair& y) { return x.separation < y.separation; })
+                                       ->separation))
+                  .c_str());
+  std::printf("  interlocking  %d of %zu free bodies held both up and down by their neighbours\n", locked, locks.size());
+  if (bundle.spanInterfaces > 0)
+    std::printf("  span          L = %s free span, M = %d interfaces across it (k_n = E M / L)\n",
+                mm(bundle.spanLength).c_str(), bundle.spanInterfaces);
+  std::printf("written to %s in %.2f s\n", a.output.c_str(), seconds);
+}
+
+}  // namespace
+
+void addTileCommand(CLI::App& app) {
+  auto args = std::make_shared<TileArguments>();
+  CLI::App* cmd = app.add_subcommand("tile", "Lay blocks out in a tessellation and write the slab's bundle (shapes + bodies).");
+  cmd->add_option("--block", args->block, "Block mesh (STL/OBJ) for the built-in square tessellation");
+  cmd->add_option("--layout", args->layout, "Layout file (JSON, docs/tiling.md) of arbitrary placements, instead of --block");
+  cmd->add_option("--unit", args->unit, "Length unit of the mesh and of every length given: m, cm, mm, um, in, ft");
+  cmd->add_option("--grid", args->grid, "Square tessellation: columns x rows")->capture_default_str();
+  cmd->add_option("--pitch", args->pitch, "Centre-to-centre distance of neighbouring blocks, in --unit");
+  cmd->add_option("--fix", args->fix, "Fixed blocks of the square tessellation: perimeter (outer ring) or none")
+      ->capture_default_str();
+  cmd->add_flag("--no-alternate", args->noAlternate, "Do not turn every other block by 90 degrees (checkerboard)");
+  cmd->add_option("--gap", args->gap, "Clearance added between neighbouring blocks, in --unit")->capture_default_str();
+  cmd->add_option("--voxel", args->voxel, "Signed-distance voxel size, in --unit [default: 0.25 mm]");
+  cmd->add_option("--spacing", args->spacing, "Surface node spacing, in --unit [default: 0.6 mm]");
+  cmd->add_option("--overlap-tolerance", args->overlapTolerance,
+                  "Initial overlap accepted between bodies, in --unit [default: 0.1 voxel]");
+  cmd->add_option("-o,--output", args->output, "Bundle directory to write (bundle.h5 + one .vdb per shape)")->required();
+  cmd->footer("Example (the paper's slab): tessera tile --block planar.obj --unit mm --grid 7x7 --pitch 10 --fix perimeter -o slab");
+  cmd->callback([args] { runTile(*args); });
+}
+
+}  // namespace tessera::tools
