@@ -108,7 +108,7 @@ TEST_CASE("overlapping blocks are found with their depth, isolated ones reported
   REQUIRE(-check.overlaps.front().separation < 1.35e-3);
 
   Bundle spread = squareSlab(kPlanar);
-  spread.bodies[0].position += Eigen::Vector3d(-5e-3, 0, 0);  // corner block moved away
+  spread.bodies[0].position += Eigen::Vector3d(-5e-3, -5e-3, 0);  // corner block moved away
   const AssemblyCheck apart = checkAssembly(spread, 25e-6, 1e-4);
   REQUIRE(apart.isolated == std::vector<int>{0});
 }
