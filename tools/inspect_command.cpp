@@ -150,7 +150,8 @@ void runInspect(const InspectArguments& a) {
                                 {"generator", bundle.generator},
                                 {"length_unit", "m"},
                                 {"shapes", shapes},
-                                {"bodies", describeBodies(bundle)}}
+                                {"bodies", describeBodies(bundle)},
+                                {"span", {{"length_m", bundle.spanLength}, {"interfaces", bundle.spanInterfaces}}}}
                      .dump(2)
               << "\n";
     return;
@@ -158,6 +159,15 @@ void runInspect(const InspectArguments& a) {
   std::printf("bundle %s (format %d, written by %s): %zu shape(s), %zu bodies\n", a.bundle.c_str(), kBundleFormatVersion,
               bundle.generator.c_str(), bundle.shapes.size(), bundle.bodies.size());
   for (const auto& j : shapes) printShapeText(j, unit.metres, unit.name);
+  if (!bundle.bodies.empty()) {
+    int fixed = 0;
+    for (const Body& b : bundle.bodies) fixed += b.fixed;
+    std::printf("bodies: %zu (%d fixed, %zu free); --json lists each with its pose\n", bundle.bodies.size(), fixed,
+                bundle.bodies.size() - fixed);
+  }
+  if (bundle.spanInterfaces > 0)
+    std::printf("span: L = %.6g %s free span, M = %d interfaces across it\n", bundle.spanLength / unit.metres,
+                unit.name.c_str(), bundle.spanInterfaces);
 }
 
 }  // namespace

@@ -1,0 +1,118 @@
+// `tessera block`, `tessera tile` and `tessera export` as a user runs them.
+#include "geometry/mass_properties.h"
+#include "geometry/mesh_import.h"
+#include "levelset/bundle.h"
+#include "tests/fixtures/temp_dir.h"
+#include "tests/tools/cli_runner.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+
+using namespace tessera;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kBlock = TESSERA_ASSETS "/blocks/planar_a10_h3.18_5deg.obj";
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+}  // namespace
+
+TEST_CASE("block writes valid meshes of every family in the stated unit") {
+  test::TempDir dir;
+  const test::CliResult planar =
+      test::runTessera("block planar --size 10 --thickness 3.18 --angle 5 --unit mm -o " + quoted(dir / "p.obj"));
+  REQUIRE(planar.status == 0);
+  MeshImportOptions mm;
+  mm.metresPerUnit = 1e-3;
+  const double volume = computeMassProperties(importMesh(dir / "p.obj", mm).mesh).volume;
+  REQUIRE(volume == Approx(1e-4 * 3.18e-3 - std::pow(3.18e-3, 3) * std::pow(std::tan(5 * M_PI / 180), 2) / 3).epsilon(1e-6));
+  for (const std::string family : {"box", "wave", "hex"}) {
+    const test::CliResult r = test::runTessera("block " + family + " --unit cm --size 1 --thickness 0.318 --amplitude 0.02 -o " +
+                                               quoted(dir / (family + ".stl")));
+    INFO(family << ": " << r.err);
+    REQUIRE(r.status == 0);
+    REQUIRE(test::runTessera("prep " + quoted(dir / (family + ".stl")) + " --unit cm -o " + quoted(dir / "b")).status == 0);
+  }
+  REQUIRE(readBundle(dir / "b").shapes.size() == 3);
+
+  const test::CliResult bad = test::runTessera("block planar --size 1 --thickness 5 --angle 80 --unit mm -o " + quoted(dir / "x.obj"));
+  REQUIRE(bad.status == 2);
+  REQUIRE_THAT(bad.err, Contains("inclined faces meet"));
+  REQUIRE_FALSE(fs::exists(dir / "x.obj"));
+}
+
+TEST_CASE("tile builds the paper's slab in one command, and inspect lists its bodies") {
+  test::TempDir dir;
+  const std::string out = dir / "slab";
+  const test::CliResult r = test::runTessera("tile --block " + quoted(kBlock) +
+                                             " --unit mm --grid 7x7 --pitch 10 --fix perimeter -o " + quoted(out));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.out, Contains("49 bodies (24 fixed, 25 free), 1 distinct shape(s)"));
+  REQUIRE_THAT(r.out, Contains("25 of 25 free bodies held both up and down"));
+  REQUIRE_THAT(r.out, Contains("L = 50 mm free span, M = 6 interfaces"));
+
+  const test::CliResult inspect = test::runTessera("inspect " + quoted(out) + " --json");
+  REQUIRE(inspect.status == 0);
+  const auto j = nlohmann::json::parse(inspect.out);
+  REQUIRE(j["shapes"].size() == 1);
+  REQUIRE(j["bodies"].size() == 49);
+  REQUIRE(j["span"]["interfaces"] == 6);
+  const auto& centre = j["bodies"][24];
+  REQUIRE(centre["name"] == "r3c3");
+  REQUIRE(centre["shape"] == "planar_a10_h3.18_5deg");
+  REQUIRE(centre["fixed"] == false);
+  REQUIRE(std::abs(centre["position_m"][0].get<double>()) < 1e-15);
+  REQUIRE(centre["orientation_wxyz"].size() == 4);
+}
+
+TEST_CASE("tile refuses overlapping blocks and bad layouts, writing nothing") {
+  test::TempDir dir;
+  const std::string out = dir / "slab";
+  const test::CliResult tight =
+      test::runTessera("tile --block " + quoted(kBlock) + " --unit mm --grid 3x3 --pitch 9 -o " + quoted(out));
+  REQUIRE(tight.status == 2);
+  REQUIRE_THAT(tight.err, Contains("bodies 'r") && Contains("overlap by 0.99") && Contains("check --pitch"));
+  REQUIRE_FALSE(fs::exists(out));
+
+  test::writeFile(dir / "dup.json", R"({"format": "tessera-layout", "version": 1, "unit": "mm",
+      "shapes": {"b": {"mesh": ")" + kBlock + R"("}},
+      "bodies": [{"name": "a", "shape": "b", "position": [0, 0, 0]}, {"name": "a", "shape": "b", "position": [10, 0, 0]}]})");
+  const test::CliResult dup = test::runTessera("tile --layout " + quoted(dir / "dup.json") + " -o " + quoted(out));
+  REQUIRE(dup.status == 2);
+  REQUIRE_THAT(dup.err, Contains("dup.json") && Contains("duplicate name"));
+  REQUIRE_FALSE(fs::exists(out));
+
+  test::writeFile(dir / "nofile.json", R"({"format": "tessera-layout", "version": 1, "unit": "mm",
+      "shapes": {"b": {"mesh": "no-such-block.stl"}}, "bodies": [{"name": "a", "shape": "b", "position": [0, 0, 0]}]})");
+  const test::CliResult missing = test::runTessera("tile --layout " + quoted(dir / "nofile.json") + " -o " + quoted(out));
+  REQUIRE(missing.status == 2);
+  REQUIRE_THAT(missing.err, Contains("no-such-block.stl") && Contains("no such file"));
+  REQUIRE_FALSE(fs::exists(out));
+
+  test::writeFile(dir / "same.json", R"({"format": "tessera-layout", "version": 1, "unit": "mm",
+      "shapes": {"b": {"mesh": ")" + kBlock + R"("}},
+      "bodies": [{"name": "a", "shape": "b", "position": [0, 0, 0]}, {"name": "c", "shape": "b", "position": [0, 0, 1]}]})");
+  const test::CliResult same = test::runTessera("tile --layout " + quoted(dir / "same.json") + " -o " + quoted(out));
+  REQUIRE(same.status == 2);
+  REQUIRE_THAT(same.err, Contains("bodies 'a' and 'c' overlap by"));
+  REQUIRE_FALSE(fs::exists(out));
+}
+
+TEST_CASE("export writes the assembly for ParaView and a layout that rebuilds it") {
+  test::TempDir dir;
+  REQUIRE(test::runTessera("tile --layout " + quoted(TESSERA_ASSETS "/layouts/hex_slab.json") + " -o " + quoted(dir / "hex"))
+              .status == 0);
+  const test::CliResult r = test::runTessera("export " + quoted(dir / "hex") + " -o " + quoted(dir / "view"));
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.out, Contains("exported 19 bodies: 380 triangles"));
+  for (const char* file : {"assembly.pvd", "blocks.vtu", "nodes.vtu", "layout.json"}) REQUIRE(fs::exists(fs::path(dir / "view") / file));
+  REQUIRE(test::runTessera("tile --layout " + quoted(dir / "view/layout.json") + " -o " + quoted(dir / "again")).status == 0);
+  const Bundle a = readBundle(dir / "hex"), b = readBundle(dir / "again");
+  REQUIRE(b.bodies.size() == 19);
+  REQUIRE(b.spanInterfaces == 4);
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) REQUIRE((a.bodies[i].position - b.bodies[i].position).norm() < 1e-12);
+}
