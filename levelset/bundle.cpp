@@ -277,12 +277,12 @@ Bundle readBundle(const std::string& path) {
 
 void writeBundle(const std::string& directory, const Bundle& bundle) {
   const fs::path dir(directory);
-  fs::create_directories(dir);
-  for (const Shape& s : bundle.shapes) writeVdb(s.sdf, (dir / (s.name + ".vdb")).string(), s.name);
-
+  const bool created = !fs::exists(dir);
   const fs::path target = dir / kBundleFileName;
   const fs::path temporary = dir / (".tmp-" + std::to_string(::getpid()) + "-" + kBundleFileName);
   try {
+    fs::create_directories(dir);
+    for (const Shape& s : bundle.shapes) writeVdb(s.sdf, (dir / (s.name + ".vdb")).string(), s.name);
     {
       Handle f = h5::createFile(temporary.string());
       h5::writeAttribute(f.get(), "format", std::string(kBundleFormatName));
@@ -298,6 +298,7 @@ void writeBundle(const std::string& directory, const Bundle& bundle) {
   } catch (...) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
+    if (created) fs::remove_all(dir, ignored);
     throw;
   }
 }

@@ -41,7 +41,8 @@ struct Bundle {
 Bundle readBundle(const std::string& path);
 
 /// Writes the bundle into `directory` (created if needed): each <shape>.vdb, then bundle.h5,
-/// each to a temporary name renamed on success, so a failure leaves the previous bundle intact.
+/// each to a temporary name renamed on success, so a failure leaves the previous bundle intact
+/// (and removes the directory again if this call created it).
 void writeBundle(const std::string& directory, const Bundle& bundle);
 
 /// The generator string of this build ("tessera 0.1.0").

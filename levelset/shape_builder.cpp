@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 namespace tessera {
 
@@ -28,6 +29,14 @@ bool isValidShapeName(const std::string& name) {
   for (char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
   return true;
+}
+
+std::string shapeNameFromPath(const std::string& path) {
+  std::string name = std::filesystem::path(path).stem().string();
+  for (char& c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
+  while (!name.empty() && name.front() == '.') name.erase(name.begin());
+  return name.empty() ? "shape" : name.substr(0, 64);
 }
 
 void checkResolution(const Eigen::Vector3d& extents, double surfaceArea, const ShapeResolution& resolution,

@@ -35,4 +35,8 @@ Shape prepareShapeFromFile(const std::string& path, const std::string& unit, con
 /// A valid shape name: 1-64 characters from [A-Za-z0-9_.-], not starting with '.'.
 bool isValidShapeName(const std::string& name);
 
+/// The default shape name of a mesh file: its name without extension, made valid
+/// ("my block (v2).stl" -> "my_block__v2_").
+std::string shapeNameFromPath(const std::string& path);
+
 }  // namespace tessera

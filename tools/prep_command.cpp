@@ -30,14 +30,6 @@ struct PrepArguments {
   bool replace = false;
 };
 
-std::string defaultShapeName(const std::string& mesh) {
-  std::string name = fs::path(mesh).stem().string();
-  for (char& c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
-  while (!name.empty() && name.front() == '.') name.erase(name.begin());
-  return name.empty() ? "shape" : name.substr(0, 64);
-}
-
 void runPrep(const PrepArguments& a) {
   const auto start = std::chrono::steady_clock::now();
   const LengthUnit unit = parseLengthUnit(a.unit);
@@ -52,7 +44,7 @@ void runPrep(const PrepArguments& a) {
     throw InputError(a.mesh + ": --spacing must be positive (got " + std::to_string(*a.spacing) + " " + unit.name + ")");
   if (!(a.featureAngle > 0 && a.featureAngle < 180)) throw InputError("--feature-angle must be between 0 and 180 degrees");
 
-  const std::string name = a.name.empty() ? defaultShapeName(a.mesh) : a.name;
+  const std::string name = a.name.empty() ? shapeNameFromPath(a.mesh) : a.name;
   Bundle bundle;
   const fs::path bundleFile = fs::path(a.output) / kBundleFileName;
   const bool existed = fs::exists(bundleFile);
@@ -72,13 +64,7 @@ void runPrep(const PrepArguments& a) {
   if (existing >= 0) bundle.shapes[existing] = std::move(shape);
   else bundle.shapes.push_back(std::move(shape));
   bundle.generator = generatorVersion();
-  const bool createdDirectory = !fs::exists(a.output);
-  try {
-    writeBundle(a.output, bundle);
-  } catch (...) {
-    if (createdDirectory) fs::remove_all(a.output);
-    throw;
-  }
+  writeBundle(a.output, bundle);
 
   const Shape& s = bundle.shapes[existing >= 0 ? existing : bundle.shapes.size() - 1];
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -8,13 +8,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <optional>
-
 namespace tessera::tools {
 
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -70,11 +67,8 @@ void runTile(const TileArguments& a) {
     grid.alternate = !a.noAlternate;
     if (a.fix != "perimeter" && a.fix != "none") throw InputError("--fix '" + a.fix + "': use perimeter or none");
     grid.fixPerimeter = a.fix == "perimeter";
-    const std::string key = fs::path(a.block).stem().string();
     LayoutShape shape;
-    shape.key = key.empty() || key.front() == '.' ? "block" : key;
-    for (char& c : shape.key)
-      if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
+    shape.key = shapeNameFromPath(a.block);
     shape.mesh = a.block;
     shapes.push_back(shape);
     placements = squareGrid(grid, shape.key);
@@ -133,13 +127,7 @@ void runTile(const TileArguments& a) {
                 << " by its neighbours\n";
   }
 
-  const bool created = !fs::exists(a.output);
-  try {
-    writeBundle(a.output, bundle);
-  } catch (...) {
-    if (created) fs::remove_all(a.output);
-    throw;
-  }
+  writeBundle(a.output, bundle);
 
   int fixedCount = 0;
   for (const Body& b : bundle.bodies) fixedCount += b.fixed;

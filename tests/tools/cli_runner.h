@@ -9,7 +9,13 @@ struct CliResult {
   std::string out, err;
 };
 
-/// `arguments` are appended to the executable path as they are (quote them yourself).
+/// `arguments` are appended to the executable path as they are (quote them with quoted()).
 CliResult runTessera(const std::string& arguments);
+
+/// A shell-quoted argument.
+inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+/// The bundled default block (10 x 10 x 3.18 mm, faces at 5 deg), in mm.
+inline const std::string kDefaultBlock = TESSERA_ASSETS "/blocks/planar_a10_h3.18_5deg.obj";
 
 }  // namespace tessera::test

@@ -14,14 +14,12 @@
 #include <filesystem>
 
 using namespace tessera;
+using tessera::test::kDefaultBlock;
+using tessera::test::quoted;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
 namespace {
-
-const std::string kBlock = TESSERA_ASSETS "/blocks/planar_a10_h3.18_5deg.obj";
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 // The run failed with status 2, one line on stderr naming `file` and `problem`, and no output.
 void requireRefused(const test::CliResult& r, const std::string& file, const std::string& problem, const fs::path& out) {
@@ -47,7 +45,7 @@ TEST_CASE("help describes every flag with its unit") {
 TEST_CASE("prep writes a bundle that inspect describes") {
   test::TempDir dir;
   const std::string out = dir / "slab";
-  const test::CliResult r = test::runTessera("prep " + quoted(kBlock) + " --unit mm --voxel 0.25 --spacing 0.6 -o " + quoted(out));
+  const test::CliResult r = test::runTessera("prep " + quoted(kDefaultBlock) + " --unit mm --voxel 0.25 --spacing 0.6 -o " + quoted(out));
   INFO(r.err);
   REQUIRE(r.status == 0);
   REQUIRE_THAT(r.out, Contains("written to"));
@@ -83,7 +81,7 @@ TEST_CASE("prep adds shapes to an existing bundle, and refuses a duplicate name 
   test::TempDir dir;
   const std::string out = dir / "b";
   writeMesh(makeBox(8, 6, 4), dir / "box.stl", MeshFileFormat::StlBinary, 1.0);
-  REQUIRE(test::runTessera("prep " + quoted(kBlock) + " --unit mm -o " + quoted(out)).status == 0);
+  REQUIRE(test::runTessera("prep " + quoted(kDefaultBlock) + " --unit mm -o " + quoted(out)).status == 0);
   REQUIRE(test::runTessera("prep " + quoted(dir / "box.stl") + " --unit mm -o " + quoted(out)).status == 0);
   REQUIRE(readBundle(out).shapes.size() == 2);
 

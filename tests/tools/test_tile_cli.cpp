@@ -12,13 +12,10 @@
 #include <filesystem>
 
 using namespace tessera;
+using tessera::test::kDefaultBlock;
+using tessera::test::quoted;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
-
-namespace {
-const std::string kBlock = TESSERA_ASSETS "/blocks/planar_a10_h3.18_5deg.obj";
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-}  // namespace
 
 TEST_CASE("block writes valid meshes of every family in the stated unit") {
   test::TempDir dir;
@@ -47,7 +44,7 @@ TEST_CASE("block writes valid meshes of every family in the stated unit") {
 TEST_CASE("tile builds the paper's slab in one command, and inspect lists its bodies") {
   test::TempDir dir;
   const std::string out = dir / "slab";
-  const test::CliResult r = test::runTessera("tile --block " + quoted(kBlock) +
+  const test::CliResult r = test::runTessera("tile --block " + quoted(kDefaultBlock) +
                                              " --unit mm --grid 7x7 --pitch 10 --fix perimeter -o " + quoted(out));
   INFO(r.err);
   REQUIRE(r.status == 0);
@@ -73,13 +70,13 @@ TEST_CASE("tile refuses overlapping blocks and bad layouts, writing nothing") {
   test::TempDir dir;
   const std::string out = dir / "slab";
   const test::CliResult tight =
-      test::runTessera("tile --block " + quoted(kBlock) + " --unit mm --grid 3x3 --pitch 9 -o " + quoted(out));
+      test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 3x3 --pitch 9 -o " + quoted(out));
   REQUIRE(tight.status == 2);
   REQUIRE_THAT(tight.err, Contains("bodies 'r") && Contains("overlap by 0.99") && Contains("check --pitch"));
   REQUIRE_FALSE(fs::exists(out));
 
   test::writeFile(dir / "dup.json", R"({"format": "tessera-layout", "version": 1, "unit": "mm",
-      "shapes": {"b": {"mesh": ")" + kBlock + R"("}},
+      "shapes": {"b": {"mesh": ")" + kDefaultBlock + R"("}},
       "bodies": [{"name": "a", "shape": "b", "position": [0, 0, 0]}, {"name": "a", "shape": "b", "position": [10, 0, 0]}]})");
   const test::CliResult dup = test::runTessera("tile --layout " + quoted(dir / "dup.json") + " -o " + quoted(out));
   REQUIRE(dup.status == 2);
@@ -94,7 +91,7 @@ TEST_CASE("tile refuses overlapping blocks and bad layouts, writing nothing") {
   REQUIRE_FALSE(fs::exists(out));
 
   test::writeFile(dir / "same.json", R"({"format": "tessera-layout", "version": 1, "unit": "mm",
-      "shapes": {"b": {"mesh": ")" + kBlock + R"("}},
+      "shapes": {"b": {"mesh": ")" + kDefaultBlock + R"("}},
       "bodies": [{"name": "a", "shape": "b", "position": [0, 0, 0]}, {"name": "c", "shape": "b", "position": [0, 0, 1]}]})");
   const test::CliResult same = test::runTessera("tile --layout " + quoted(dir / "same.json") + " -o " + quoted(out));
   REQUIRE(same.status == 2);
