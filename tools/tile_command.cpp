@@ -134,11 +134,9 @@ void runTile(const TileArguments& a) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("slab: %zu bodies (%d fixed, %zu free), %zu distinct shape(s)\n", bundle.bodies.size(), fixedCount,
               bundle.bodies.size() - fixedCount, bundle.shapes.size());
-  std::printf("  contacts      %zu touching pairs, deepest initial overlap %s\n", check.contacts.size(),
-              mm(std::max(0.0, -std::min_element(check.contacts.begin(), check.contacts.end(),
-                                                  [](const BodyPair& x, const BodyPair& y) { return x.separation < y.separation; })
-                                       ->separation))
-                  .c_str());
+  double deepest = 0.0;
+  for (const BodyPair& c : check.contacts) deepest = std::max(deepest, -c.separation);
+  std::printf("  contacts      %zu touching pairs, deepest initial overlap %s\n", check.contacts.size(), mm(deepest).c_str());
   std::printf("  interlocking  %d of %zu free bodies held both up and down by their neighbours\n", locked, locks.size());
   if (bundle.spanInterfaces > 0)
     std::printf("  span          L = %s free span, M = %d interfaces across it (k_n = E M / L)\n",

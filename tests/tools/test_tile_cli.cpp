@@ -113,3 +113,13 @@ TEST_CASE("export writes the assembly for ParaView and a layout that rebuilds it
   REQUIRE(b.spanInterfaces == 4);
   for (std::size_t i = 0; i < a.bodies.size(); ++i) REQUIRE((a.bodies[i].position - b.bodies[i].position).norm() < 1e-12);
 }
+
+TEST_CASE("a body that touches nothing is reported, not refused") {
+  test::TempDir dir;
+  test::writeFile(dir / "solo.json", R"({"format": "tessera-layout", "version": 1, "unit": "mm",
+      "shapes": {"b": {"mesh": ")" + kDefaultBlock + R"("}}, "bodies": [{"name": "solo", "shape": "b", "position": [0, 0, 0]}]})");
+  const test::CliResult r = test::runTessera("tile --layout " + quoted(dir / "solo.json") + " -o " + quoted(dir / "s"));
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.err, Contains("body 'solo' touches no other body") && Contains("not held up or down"));
+  REQUIRE_THAT(r.out, Contains("0 of 1 free bodies held"));
+}
