@@ -6,13 +6,13 @@ namespace tessera {
 
 struct SpacingStats {
   double min = 0.0, mean = 0.0, max = 0.0;  ///< nearest-neighbour distance, m
-  std::size_t distinctPoints = 0;
 };
 
-/// Distance from each distinct point to its nearest other distinct point. Points closer than
-/// `mergeTolerance` (m) count as one (a sharp-edge node has one copy per adjacent face).
-std::vector<double> nearestNeighbourDistances(const std::vector<Eigen::Vector3d>& points, double mergeTolerance);
+/// For each point, the distance to the nearest other point of the same group (for surface nodes:
+/// of the same patch, so that rows of nodes on the two sides of an edge do not count as
+/// neighbours). A point alone in its group gets no entry.
+std::vector<double> nearestNeighbourDistances(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& group);
 
-SpacingStats spacingStats(const std::vector<Eigen::Vector3d>& points, double mergeTolerance);
+SpacingStats spacingStats(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& group);
 
 }  // namespace tessera

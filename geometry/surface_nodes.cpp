@@ -198,13 +198,14 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
   const double reach = (kCoverageRadius + 1.0 / kCandidatesPerSpacing) * spacing;
   const double h = spacing / std::max(1, options.quadraturePerSpacing);
   std::vector<std::vector<double>> area(features.patchCount);
-  std::vector<std::vector<Eigen::Vector3d>> normal(features.patchCount);
+  std::vector<std::vector<Eigen::Vector3d>> normal(features.patchCount), centroid(features.patchCount);
   std::vector<NearestNode> nearest;
   nearest.reserve(features.patchCount);
   for (int p = 0; p < features.patchCount; ++p) {
     nearest.emplace_back(patchNodes[p].positions, reach);
     area[p].assign(patchNodes[p].positions.size(), 0.0);
     normal[p].assign(patchNodes[p].positions.size(), Eigen::Vector3d::Zero());
+    centroid[p].assign(patchNodes[p].positions.size(), Eigen::Vector3d::Zero());
   }
   for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
     const int p = features.trianglePatch[t];
@@ -213,6 +214,7 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
       const int node = nearest[p](q.position);
       area[p][node] += q.area;
       normal[p][node] += q.area * unitNormal;
+      centroid[p][node] += q.area * q.position;
     });
   }
 
@@ -220,7 +222,8 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
   for (int p = 0; p < features.patchCount; ++p)
     for (std::size_t k = 0; k < patchNodes[p].positions.size(); ++k) {
       if (area[p][k] <= 0.0) continue;  // a seed that owns no quadrature point carries no load
-      out.positions.push_back(patchNodes[p].positions[k]);
+      // The node is the quadrature point of its cell: at the cell's centroid (see the header).
+      out.positions.push_back(centroid[p][k] / area[p][k]);
       out.normals.push_back(normal[p][k].normalized());
       out.areas.push_back(area[p][k]);
       out.patches.push_back(p);

@@ -16,10 +16,11 @@ struct SurfaceNodeOptions {
 };
 
 /// Surface nodes of a solid with area weights, as arrays (one entry per node).
-/// Every node belongs to one patch (a face region between sharp edges) and carries that patch's
-/// outward normal and a share of its area. A node on a sharp edge or corner appears once per
-/// patch meeting there, at the same position, so each patch's weights sum to the patch area and
-/// the normal of every node is a face normal (never an average across an edge).
+/// Every node is the quadrature point of one cell of one patch (a face region between sharp
+/// edges): it carries the cell's area, the patch's outward normal and sits at the cell's centroid.
+/// Cells are seeded on every corner and along every sharp edge, once per patch meeting there, so
+/// each patch's weights sum to the patch area, every node's normal is a face normal (never an
+/// average across an edge), and edges are lined with nodes a quarter spacing inside each face.
 struct SurfaceNodes {
   std::vector<Eigen::Vector3d> positions;  ///< m
   std::vector<Eigen::Vector3d> normals;    ///< unit, outward
@@ -37,9 +38,12 @@ struct SurfaceNodes {
 ///    sub-triangles of edge <= spacing / 4), seeded with the patch's edge and corner nodes and
 ///    stopped when every candidate is within 0.9 x spacing of a node (this leaves neighbouring
 ///    nodes about `spacing` apart);
-///  - area weights: each triangle is cut into small quadrature triangles (edge <= spacing /
-///    quadraturePerSpacing), each given wholly to the nearest node of the same patch (a discrete
-///    Voronoi partition), so the weights sum to the area exactly up to rounding.
+///  - cells: each triangle is cut into small quadrature triangles (edge <= spacing /
+///    quadraturePerSpacing), each given wholly to the nearest seed of the same patch (a discrete
+///    Voronoi partition); a node's area is its cell's area (the weights sum to the area exactly up
+///    to rounding) and its position the cell's centroid. Centroids make each node a midpoint rule
+///    for its cell (exact for tractions linear over the cell), and keep nodes off the edges,
+///    where the distance to a body whose face ends at the same edge would read zero.
 /// Throws InputError when spacing <= 0.
 SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& features,
                                 const SurfaceNodeOptions& options);

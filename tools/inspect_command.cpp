@@ -33,7 +33,7 @@ nlohmann::json toJson(const Eigen::Matrix3d& m) {
 }
 
 nlohmann::json describeShape(const Shape& s) {
-  const SpacingStats spacing = spacingStats(s.nodes.positions, 1e-3 * s.resolution.nodeSpacing);
+  const SpacingStats spacing = spacingStats(s.nodes.positions, s.nodes.patches);
   const double areaSum = std::accumulate(s.nodes.areas.begin(), s.nodes.areas.end(), 0.0);
   return {
       {"name", s.name},
@@ -48,7 +48,6 @@ nlohmann::json describeShape(const Shape& s) {
       {"mesh", {{"vertices", s.mesh.vertices.size()}, {"triangles", s.mesh.triangles.size()}}},
       {"nodes",
        {{"count", s.nodes.size()},
-        {"distinct_positions", spacing.distinctPoints},
         {"area_sum_m2", areaSum},
         {"requested_spacing_m", s.resolution.nodeSpacing},
         {"nearest_spacing_m", {{"min", spacing.min}, {"mean", spacing.mean}, {"max", spacing.max}}}}},
@@ -90,9 +89,9 @@ void printShapeText(const nlohmann::json& j, double unit, const std::string& uni
   std::printf("  centroid            %s %s (source mesh frame)\n", vec(j["centroid_m"], unit).c_str(), unitName.c_str());
   std::printf("  principal inertia   %s %s^5 (per unit density; x density = mass moment)\n",
               vec(j["principal_moments_per_density_m5"], std::pow(unit, 5)).c_str(), unitName.c_str());
-  std::printf("  nodes               %zu (%zu distinct positions), area sum %.9g %s^2\n", n["count"].get<std::size_t>(),
-              n["distinct_positions"].get<std::size_t>(), n["area_sum_m2"].get<double>() / (unit * unit), unitName.c_str());
-  std::printf("  nearest-node gap    min %.4g / mean %.4g / max %.4g %s (requested %.4g)\n",
+  std::printf("  nodes               %zu, area sum %.9g %s^2\n", n["count"].get<std::size_t>(),
+              n["area_sum_m2"].get<double>() / (unit * unit), unitName.c_str());
+  std::printf("  nearest-node gap    min %.4g / mean %.4g / max %.4g %s within a face (requested %.4g)\n",
               len(n["nearest_spacing_m"]["min"]), len(n["nearest_spacing_m"]["mean"]), len(n["nearest_spacing_m"]["max"]),
               unitName.c_str(), len(n["requested_spacing_m"]));
   std::printf("  grid                %d x %d x %d, voxel %.4g %s, band %d voxels, file %s\n", g["dims"][0].get<int>(),

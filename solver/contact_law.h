@@ -1,0 +1,51 @@
+#pragma once
+#include "solver/contact_parameters.h"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+
+namespace tessera {
+
+/// One node in contact, as the contact law sees it.
+struct NodeContactInput {
+  Eigen::Vector3d normal;            ///< unit, world: out of the other body, towards the node's body
+  double depth;                      ///< m, penetration d > 0
+  double area;                       ///< m^2, the node's effective area (see docs/physics.md)
+  Eigen::Vector3d relativeVelocity;  ///< m/s, node's body minus the other body, at the node
+};
+
+/// Force (N, world) on the node's body from one node contact, and the update of its tangential
+/// spring (m, the elastic tangential displacement, carried from step to step). Adds the contact's
+/// elastic energy (J) to `energy`. Equations (docs/physics.md, "Contact law"):
+///   f_n = k_n a d - eta_n a v_n, clipped at 0             (traction-based normal force)
+///   u  <- u projected on the tangent plane, length kept   (history follows the contact frame)
+///   u  <- u + v_t dt;  f_t = -k_t a u;  |f_t| <= mu f_n    (elastic spring capped by Coulomb; on
+///                                                          sliding the spring is reset to the cap)
+/// With a per-node stiffness k (perNodeStiffness > 0) the products k_n a and k_t a become k and
+/// (k_t/k_n) k.
+inline Eigen::Vector3d contactForce(const ContactParameters& p, double kn, double kt, const NodeContactInput& c,
+                                    Eigen::Vector3d& spring, double dt, double& energy) {
+  const Eigen::Vector3d& n = c.normal;
+  const double normalStiffness = p.perNodeStiffness > 0 ? p.perNodeStiffness : kn * c.area;
+  const double tangentStiffness = p.perNodeStiffness > 0 ? p.tangentialRatio * p.perNodeStiffness : kt * c.area;
+  const double vn = c.relativeVelocity.dot(n);
+  const double elastic = normalStiffness * c.depth;
+  const double fn = std::max(0.0, elastic - p.normalViscosity * c.area * vn);
+
+  Eigen::Vector3d u = spring - n * n.dot(spring);
+  const double length = spring.norm(), projected = u.norm();
+  if (projected > 0) u *= length / projected;
+  u += (c.relativeVelocity - vn * n) * dt;
+  Eigen::Vector3d ft = -tangentStiffness * u;
+  const double cap = p.friction * fn, ftNorm = ft.norm();
+  if (ftNorm > cap) {
+    ft *= cap / ftNorm;
+    u = tangentStiffness > 0 ? Eigen::Vector3d(-ft / tangentStiffness) : Eigen::Vector3d::Zero();
+  }
+  spring = u;
+  energy += 0.5 * elastic * c.depth + 0.5 * tangentStiffness * u.squaredNorm();
+  return fn * n + ft;
+}
+
+}  // namespace tessera

@@ -1,0 +1,85 @@
+#pragma once
+#include "geometry/convex_planes.h"
+#include "levelset/dense_sdf.h"
+#include "solver/contact_parameters.h"
+#include "solver/node_bins.h"
+#include "solver/obstacles.h"
+#include "solver/rigid_bodies.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace tessera {
+
+/// What the solver keeps of a shape: its nodes binned, and its level set: the face planes of a
+/// convex polyhedron (exact, analytic) when the shape is one, else the signed-distance grid.
+struct ShapeModel {
+  NodeBins nodes;
+  DenseSdf sdf;
+  std::vector<FacePlane> planes;  ///< body frame; empty: use the grid
+  double radius = 0.0;            ///< m, largest |node| (bounding sphere about the centroid)
+
+  /// The level set at a body-frame point: phi (m) and its unit gradient. `inside` is false when
+  /// the point is certainly outside (phi >= 0), and then nothing else is computed.
+  bool penetration(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& normal) const {
+    if (!planes.empty()) {
+      // phi = max_f (n_f . x - d_f): exact inside a convex polyhedron.
+      int best = 0;
+      phi = planes[0].normal.dot(x) - planes[0].offset;
+      for (int f = 1; f < static_cast<int>(planes.size()); ++f) {
+        const double v = planes[f].normal.dot(x) - planes[f].offset;
+        if (v > phi) {
+          phi = v;
+          best = f;
+        }
+      }
+      if (phi >= 0) return false;
+      normal = planes[best].normal;
+      return true;
+    }
+    if (!sdf.contains(x)) return false;
+    const SdfSample s = sdf.sample(x);
+    phi = s.phi;
+    const double g = s.gradient.norm();
+    if (phi >= 0 || !(g > 0)) return false;
+    normal = s.gradient / g;
+    return true;
+  }
+};
+
+/// A node in contact and its tangential spring: key = side << 31 | rank (side 0: a node of body
+/// a in b's level set; side 1: a node of b in a's), sorted by key.
+struct NodeContact {
+  std::uint32_t key;
+  Eigen::Vector3d spring;  ///< m
+};
+
+/// One candidate pair and its contact state. `b` >= 0 is a body; `b` < 0 an obstacle: sphere
+/// -1 - k, or plane -1 - spheres - k. Forces from the last evaluation; torques about each body's
+/// centroid; for an obstacle, forceB is the reaction on it.
+struct PairContacts {
+  int a = -1, b = -1;
+  std::vector<NodeContact> contacts, previous;
+  Eigen::Vector3d forceA{0, 0, 0}, torqueA{0, 0, 0}, forceB{0, 0, 0}, torqueB{0, 0, 0};
+  double elasticEnergy = 0.0;  ///< J
+  double maxDepth = 0.0;       ///< m, deepest node penetration
+};
+
+/// The scene as a pair evaluation needs it (read-only during evaluation).
+struct ContactScene {
+  const RigidBodies* bodies;
+  const std::vector<ShapeModel>* shapes;
+  const std::vector<SphereObstacle>* spheres;
+  const std::vector<PlaneObstacle>* planes;
+  ContactParameters parameters;
+  double kn = 0.0, kt = 0.0;  ///< N/m^3
+  double dt = 0.0;            ///< s
+};
+
+/// Evaluates one pair: for two bodies, the nodes of each in the other's level set, each node with
+/// half its area (so the pair does not depend on which body is a, and a flat face-on-face contact
+/// carries exactly k_n d); for an obstacle, the body's nodes with their full area. Keeps the
+/// springs of nodes still in contact, drops the others. Thread-safe for distinct pairs.
+void evaluatePair(const ContactScene& scene, PairContacts& pair);
+
+}  // namespace tessera

@@ -1,0 +1,46 @@
+#pragma once
+#include "levelset/bundle.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+/// The state of every body, as arrays (hot data). Angular momentum is kept in the body frame
+/// (the principal frame), where the inertia tensor is diagonal.
+struct RigidBodies {
+  std::vector<Eigen::Vector3d> position;         ///< m, world position of the centroid
+  std::vector<Eigen::Quaterniond> orientation;   ///< unit, body -> world
+  std::vector<Eigen::Vector3d> velocity;         ///< m/s
+  std::vector<Eigen::Vector3d> angularMomentum;  ///< kg m^2/s, body frame
+  std::vector<double> mass;                      ///< kg
+  std::vector<Eigen::Vector3d> inertia;          ///< kg m^2, principal moments (body axes)
+  std::vector<char> fixed;                       ///< never integrated
+  std::vector<int> shape;                        ///< index into the bundle's shapes
+  std::vector<std::string> name;
+
+  std::size_t size() const { return position.size(); }
+  /// omega in the world frame, rad/s.
+  Eigen::Vector3d angularVelocity(std::size_t i) const {
+    return orientation[i] * angularMomentum[i].cwiseQuotient(inertia[i]);
+  }
+  double kineticEnergy(std::size_t i) const {
+    return 0.5 * mass[i] * velocity[i].squaredNorm() +
+           0.5 * angularMomentum[i].cwiseAbs2().cwiseQuotient(inertia[i]).sum();
+  }
+};
+
+/// Bodies of a bundle at rest: mass = density x volume, inertia = density x principal moments.
+RigidBodies makeRigidBodies(const Bundle& bundle, double density);
+
+/// The torque-free rotation of a rigid body over dt, by the symmetric splitting of the free-rotor
+/// Hamiltonian into rotations about the principal axes (Dullweber, Leimkuhler & McLachlan,
+/// J. Chem. Phys. 107, 1997): H1(dt/2) H2(dt/2) H3(dt) H2(dt/2) H1(dt/2), where Hk turns the body
+/// about its axis k by the angle t Pi_k / I_k and the body-frame momentum Pi the other way.
+/// Symplectic and time-reversible; |Pi| and the world angular momentum q Pi are conserved exactly.
+void rotateFreely(Eigen::Quaterniond& orientation, Eigen::Vector3d& angularMomentum, const Eigen::Vector3d& inertia,
+                  double dt);
+
+}  // namespace tessera

@@ -1,0 +1,299 @@
+#include "solver/world.h"
+
+#include "solver/broad_phase.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace tessera {
+
+struct World::ThreadArena {
+  tbb::task_arena arena;
+  explicit ThreadArena(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+};
+
+namespace {
+
+ShapeModel makeShapeModel(const Shape& shape, bool exactConvex) {
+  ShapeModel m;
+  m.nodes = makeNodeBins(shape.nodes);
+  m.sdf = shape.sdf;
+  if (exactConvex)
+    if (auto planes = convexPolyhedronPlanes(shape.mesh)) m.planes = std::move(*planes);
+  for (const auto& x : shape.nodes.positions) m.radius = std::max(m.radius, x.norm());
+  return m;
+}
+
+// The fastest mode of a free body in its stiffest expected contact: one face (patch) pressed
+// face-on-face, sticking. Per principal axis e_k, over the nodes of the stiffest patch
+// (docs/physics.md, "Time step"):
+//   K_k = k_n sum a (n.e_k)^2 + k_t sum a (1 - (n.e_k)^2)                   translation, omega^2 = K_k / m
+//   G_k = k_n sum a ((e_k x r).n)^2 + k_t sum a (|e_k x r|^2 - ((e_k x r).n)^2)   rotation, omega^2 = G_k / I_k
+// (k_t counts only with friction; without it no tangential force acts.)
+double fastestMode(const Shape& shape, double mass, const Eigen::Vector3d& inertia, const ContactParameters& p) {
+  const double kn = p.normalStiffness(), kt = p.friction > 0 ? p.tangentialStiffness() : 0.0;
+  int patches = 0;
+  for (int q : shape.nodes.patches) patches = std::max(patches, q + 1);
+  double omega2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d e = Eigen::Vector3d::Unit(k);
+    std::vector<double> translation(patches, 0.0), rotation(patches, 0.0);
+    for (std::size_t i = 0; i < shape.nodes.size(); ++i) {
+      const Eigen::Vector3d& n = shape.nodes.normals[i];
+      const double a = p.perNodeStiffness > 0 ? p.perNodeStiffness / kn : shape.nodes.areas[i];
+      const double cn = n.dot(e);
+      const Eigen::Vector3d lever = e.cross(shape.nodes.positions[i]);
+      const double cr = lever.dot(n);
+      translation[shape.nodes.patches[i]] += a * (kn * cn * cn + kt * (1 - cn * cn));
+      rotation[shape.nodes.patches[i]] += a * (kn * cr * cr + kt * (lever.squaredNorm() - cr * cr));
+    }
+    for (int q = 0; q < patches; ++q) omega2 = std::max({omega2, translation[q] / mass, rotation[q] / inertia[k]});
+  }
+  return std::sqrt(omega2);
+}
+
+std::string format(const char* pattern, double a, double b = 0, double c = 0) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
+  return buffer;
+}
+
+}  // namespace
+
+World::World(const Bundle& bundle, const ContactParameters& parameters, const SolverSettings& settings)
+    : parameters_(parameters), settings_(settings), arena_(std::make_unique<ThreadArena>(settings.threads)) {
+  if (!(parameters.normalStiffness() > 0)) throw std::invalid_argument("contact stiffness E M / L must be positive");
+  if (!(settings.density > 0)) throw std::invalid_argument("density must be positive");
+  if (settings.localDamping < 0 || settings.localDamping >= 1)
+    throw std::invalid_argument("local damping must lie in [0, 1)");
+  for (const Shape& s : bundle.shapes) shapes_.push_back(makeShapeModel(s, settings.exactConvexLevelSets));
+  bodies_ = makeRigidBodies(bundle, settings.density);
+
+  double omega = 0.0, finestVoxel = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const Shape& shape = bundle.shapes[bodies_.shape[i]];
+    finestVoxel = std::min(finestVoxel, shape.sdf.voxelSize);
+    if (!bodies_.fixed[i]) omega = std::max(omega, fastestMode(shape, bodies_.mass[i], bodies_.inertia[i], parameters));
+  }
+  automaticDt_ = omega > 0 ? settings.timeStepFactor * 2.0 / omega : 1e-6;
+  dt_ = settings.timeStep > 0 ? settings.timeStep : automaticDt_;
+  penetrationLimit_ = settings.maxPenetration > 0 ? settings.maxPenetration : 0.25 * finestVoxel;
+
+  const std::size_t n = bodies_.size();
+  force_.assign(n, Eigen::Vector3d::Zero());
+  torque_.assign(n, Eigen::Vector3d::Zero());
+  contactForce_.assign(n, Eigen::Vector3d::Zero());
+  contactTorque_.assign(n, Eigen::Vector3d::Zero());
+  startPosition_ = bodies_.position;
+}
+
+World::~World() = default;
+
+int World::addSphere(const SphereObstacle& sphere) {
+  spheres_.push_back(sphere);
+  sphereReaction_.push_back(Eigen::Vector3d::Zero());
+  pairsValid_ = forcesValid_ = false;
+  return static_cast<int>(spheres_.size()) - 1;
+}
+
+int World::addPlane(const PlaneObstacle& plane) {
+  planes_.push_back(plane);
+  planes_.back().normal.normalize();
+  pairsValid_ = forcesValid_ = false;
+  return static_cast<int>(planes_.size()) - 1;
+}
+
+// Candidate pairs from enlarged boxes, rebuilt only when a body (or sphere) has moved or turned by
+// more than half the margin since the last build. Contact states carry over by pair key.
+void World::updatePairs() {
+  const double margin = settings_.broadPhaseMargin;
+  if (pairsValid_) {
+    bool moved = false;
+    for (std::size_t i = 0; i < bodies_.size() && !moved; ++i) {
+      if (bodies_.fixed[i]) continue;
+      const double turn = bodies_.orientation[i].angularDistance(builtOrientation_[i]) * shapes_[bodies_.shape[i]].radius;
+      moved = (bodies_.position[i] - builtPosition_[i]).norm() + turn > 0.5 * margin;
+    }
+    for (std::size_t k = 0; k < spheres_.size() && !moved; ++k)
+      moved = (spheres_[k].center - builtSphereCentre_[k]).norm() > 0.5 * margin;
+    if (!moved) return;
+  }
+
+  std::vector<Eigen::AlignedBox3d> boxes;
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    boxes.push_back(worldBox(shapes_[bodies_.shape[i]].nodes.box, bodies_.orientation[i], bodies_.position[i], margin));
+  std::vector<std::pair<int, int>> wanted = sweepPairs(boxes, bodies_.fixed);
+  const int sphereCount = static_cast<int>(spheres_.size());
+  for (int k = 0; k < sphereCount; ++k) {
+    const Eigen::AlignedBox3d box(spheres_[k].center.array() - spheres_[k].radius - margin,
+                                  spheres_[k].center.array() + spheres_[k].radius + margin);
+    for (int i = 0; i < static_cast<int>(bodies_.size()); ++i)
+      if (boxes[i].intersects(box)) wanted.emplace_back(i, -1 - k);
+  }
+  for (int k = 0; k < static_cast<int>(planes_.size()); ++k)
+    for (int i = 0; i < static_cast<int>(bodies_.size()); ++i)
+      if (!bodies_.fixed[i]) wanted.emplace_back(i, -1 - sphereCount - k);
+  std::sort(wanted.begin(), wanted.end());
+
+  // Keep the state of pairs that stay candidates (both lists sorted by (a, b)).
+  std::vector<PairContacts> next;
+  next.reserve(wanted.size());
+  std::sort(pairs_.begin(), pairs_.end(), [](const PairContacts& x, const PairContacts& y) {
+    return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
+  });
+  std::size_t old = 0;
+  for (const auto& [a, b] : wanted) {
+    while (old < pairs_.size() && std::make_pair(pairs_[old].a, pairs_[old].b) < std::make_pair(a, b)) ++old;
+    if (old < pairs_.size() && pairs_[old].a == a && pairs_[old].b == b) {
+      next.push_back(std::move(pairs_[old]));
+    } else {
+      PairContacts pair;
+      pair.a = a;
+      pair.b = b;
+      next.push_back(std::move(pair));
+    }
+  }
+  pairs_ = std::move(next);
+  builtPosition_ = bodies_.position;
+  builtOrientation_ = bodies_.orientation;
+  builtSphereCentre_.clear();
+  for (const auto& s : spheres_) builtSphereCentre_.push_back(s.center);
+  pairsValid_ = true;
+}
+
+void World::evaluateForces() {
+  updatePairs();
+  ContactScene scene{&bodies_, &shapes_, &spheres_, &planes_, parameters_,
+                     parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt_};
+  arena_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs_.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t p = r.begin(); p != r.end(); ++p) evaluatePair(scene, pairs_[p]);
+    });
+  });
+
+  // Reduce per body in pair order: the same sums in the same order for any thread count.
+  std::fill(contactForce_.begin(), contactForce_.end(), Eigen::Vector3d::Zero());
+  std::fill(contactTorque_.begin(), contactTorque_.end(), Eigen::Vector3d::Zero());
+  std::fill(sphereReaction_.begin(), sphereReaction_.end(), Eigen::Vector3d::Zero());
+  const int sphereCount = static_cast<int>(spheres_.size());
+  for (const PairContacts& pair : pairs_) {
+    contactForce_[pair.a] += pair.forceA;
+    contactTorque_[pair.a] += pair.torqueA;
+    if (pair.b >= 0) {
+      contactForce_[pair.b] += pair.forceB;
+      contactTorque_[pair.b] += pair.torqueB;
+    } else if (-1 - pair.b < sphereCount) {
+      sphereReaction_[-1 - pair.b] += pair.forceB;
+    }
+  }
+
+  // Gravity and damping (docs/physics.md, "Damping").
+  const double alpha = settings_.localDamping, c = settings_.viscousDamping;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    Eigen::Vector3d f = contactForce_[i] + bodies_.mass[i] * settings_.gravity;
+    Eigen::Vector3d t = contactTorque_[i];
+    if (!bodies_.fixed[i]) {
+      const Eigen::Vector3d v = bodies_.velocity[i], w = bodies_.angularVelocity(i);
+      if (c > 0) {
+        f -= c * bodies_.mass[i] * v;
+        t -= c * (bodies_.orientation[i] * bodies_.angularMomentum[i]);  // c I omega = c L
+      }
+      if (alpha > 0)
+        for (int k = 0; k < 3; ++k) {
+          f[k] -= alpha * std::abs(f[k]) * (v[k] > 0 ? 1.0 : v[k] < 0 ? -1.0 : 0.0);
+          t[k] -= alpha * std::abs(t[k]) * (w[k] > 0 ? 1.0 : w[k] < 0 ? -1.0 : 0.0);
+        }
+    }
+    force_[i] = f;
+    torque_[i] = t;
+  }
+  forcesValid_ = true;
+}
+
+// Velocity Verlet (kick-drift-kick) for translation; the rotation drift is the free-rotor
+// splitting of rotateFreely, with torque kicks in the body frame on either side (docs/physics.md).
+void World::step() {
+  if (!forcesValid_) {
+    evaluateForces();
+    if (steps_ == 0) initialEnergy_ = energy().kinetic + energy().elastic;
+  }
+  const double h = 0.5 * dt_;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.fixed[i]) continue;
+    bodies_.velocity[i] += h * force_[i] / bodies_.mass[i];
+    bodies_.angularMomentum[i] += h * (bodies_.orientation[i].conjugate() * torque_[i]);
+    bodies_.position[i] += dt_ * bodies_.velocity[i];
+    rotateFreely(bodies_.orientation[i], bodies_.angularMomentum[i], bodies_.inertia[i], dt_);
+  }
+  for (std::size_t k = 0; k < spheres_.size(); ++k) {
+    // Work of the prescribed motion on the bodies over this step (reaction from the last evaluation).
+    obstacleWork_ += -sphereReaction_[k].dot(spheres_[k].velocity) * dt_;
+    spheres_[k].center += dt_ * spheres_[k].velocity;
+  }
+  evaluateForces();
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.fixed[i]) continue;
+    bodies_.velocity[i] += h * force_[i] / bodies_.mass[i];
+    bodies_.angularMomentum[i] += h * (bodies_.orientation[i].conjugate() * torque_[i]);
+  }
+  time_ += dt_;
+  ++steps_;
+  checkStability();
+}
+
+EnergyBudget World::energy() const {
+  EnergyBudget e;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.fixed[i]) continue;
+    e.kinetic += bodies_.kineticEnergy(i);
+    e.gravityWork += bodies_.mass[i] * settings_.gravity.dot(bodies_.position[i] - startPosition_[i]);
+  }
+  for (const PairContacts& p : pairs_) e.elastic += p.elasticEnergy;
+  e.obstacleWork = obstacleWork_;
+  e.initial = initialEnergy_;
+  return e;
+}
+
+double World::maxPenetration() const {
+  double d = 0.0;
+  for (const PairContacts& p : pairs_) d = std::max(d, p.maxDepth);
+  return d;
+}
+
+void World::checkStability() {
+  const auto where = [&](std::size_t i) {
+    return format("t = %.6g s (step ", time_) + std::to_string(steps_) + "), body '" + bodies_.name[i] + "'";
+  };
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.fixed[i]) continue;
+    if (!bodies_.position[i].allFinite() || !bodies_.velocity[i].allFinite() || !bodies_.angularMomentum[i].allFinite())
+      throw SolverInstability(where(i) + ": non-finite position or velocity; the time step " + format("%.3g s", dt_) +
+                              " is probably too large (automatic: " + format("%.3g s)", automaticDt_));
+  }
+  for (const PairContacts& p : pairs_)
+    if (p.maxDepth > penetrationLimit_)
+      throw SolverInstability(where(p.a) + ": penetration " + format("%.4g mm", p.maxDepth * 1e3) + " beyond the bound " +
+                              format("%.4g mm", penetrationLimit_ * 1e3) + " (against " +
+                              (p.b >= 0 ? "body '" + bodies_.name[p.b] + "'" : std::string("an obstacle")) +
+                              "); the time step " + format("%.3g s", dt_) + " or the loading rate is too large");
+  const EnergyBudget e = energy();
+  mostSupplied_ = std::max(mostSupplied_, e.initial + std::abs(e.gravityWork) + std::abs(e.obstacleWork));
+  const double supplied = mostSupplied_ + 1e-12;
+  if (e.kinetic > settings_.energyGrowthLimit * supplied) {
+    std::size_t worst = 0;
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+      if (!bodies_.fixed[i] && bodies_.kineticEnergy(i) > bodies_.kineticEnergy(worst)) worst = i;
+    throw SolverInstability(where(worst) + ": kinetic energy " + format("%.4g J", e.kinetic) + " exceeds " +
+                            format("%.3g x the energy supplied (%.4g J)", settings_.energyGrowthLimit, supplied) +
+                            "; the time step " + format("%.3g s", dt_) + " is probably too large (automatic: " +
+                            format("%.3g s)", automaticDt_));
+  }
+}
+
+}  // namespace tessera

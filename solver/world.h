@@ -1,0 +1,106 @@
+#pragma once
+#include "levelset/bundle.h"
+#include "solver/contact_parameters.h"
+#include "solver/obstacles.h"
+#include "solver/pair_contacts.h"
+#include "solver/rigid_bodies.h"
+#include "solver/solver_settings.h"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+/// The run cannot go on: a non-finite state, a penetration beyond the bound, or kinetic energy
+/// growing beyond the energy supplied. what() names the time, the body and the quantity.
+class SolverInstability : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Energy bookkeeping, J.
+struct EnergyBudget {
+  double kinetic = 0.0;
+  double elastic = 0.0;        ///< stored in the contact springs (normal and tangential)
+  double gravityWork = 0.0;    ///< work done by gravity since the start
+  double obstacleWork = 0.0;   ///< work done by the prescribed obstacles (the indenter) since the start
+  double initial = 0.0;        ///< kinetic + elastic at the start
+  /// What is left once what went in and what is stored are counted: 0 for a conservative run,
+  /// negative by what damping and friction dissipated.
+  double balance() const { return kinetic + elastic - gravityWork - obstacleWork - initial; }
+};
+
+/// An LS-DEM world: rigid bodies from a bundle, analytic obstacles, node-vs-level-set contacts,
+/// velocity-Verlet time integration with a symplectic free-rotation splitting.
+class World {
+public:
+  World(const Bundle& bundle, const ContactParameters& parameters, const SolverSettings& settings);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  int addSphere(const SphereObstacle& sphere);  ///< returns its index
+  int addPlane(const PlaneObstacle& plane);
+  SphereObstacle& sphere(int k) { return spheres_[k]; }
+
+  /// Body state; change velocities or poses freely between steps.
+  RigidBodies& bodies() { return bodies_; }
+  const RigidBodies& bodies() const { return bodies_; }
+
+  double time() const { return time_; }
+  long stepCount() const { return steps_; }
+  double timeStep() const { return dt_; }
+  /// timeStepFactor x 2 / omega_max, omega_max the fastest mode of any free body in its stiffest
+  /// expected contact: its stiffest face pressed face-on-face (translation along and rotation about
+  /// each principal axis).
+  double automaticTimeStep() const { return automaticDt_; }
+
+  /// Advances one step. Throws SolverInstability instead of producing garbage.
+  void step();
+
+  /// Contact force and torque (about the centroid) on each body from the last evaluation, N and N m.
+  const std::vector<Eigen::Vector3d>& contactForces() const { return contactForce_; }
+  const std::vector<Eigen::Vector3d>& contactTorques() const { return contactTorque_; }
+  /// Force of the bodies on sphere k (the indenter's reaction), N.
+  Eigen::Vector3d sphereReaction(int k) const { return sphereReaction_[k]; }
+  const std::vector<PairContacts>& pairs() const { return pairs_; }
+  EnergyBudget energy() const;
+  double maxPenetration() const;  ///< m, deepest node in the last evaluation
+
+private:
+  void evaluateForces();
+  void updatePairs();
+  void checkStability();
+
+  std::vector<ShapeModel> shapes_;
+  RigidBodies bodies_;
+  std::vector<SphereObstacle> spheres_;
+  std::vector<PlaneObstacle> planes_;
+  ContactParameters parameters_;
+  SolverSettings settings_;
+  struct ThreadArena;
+  std::unique_ptr<ThreadArena> arena_;  // the threads the contact loop runs on
+
+  std::vector<PairContacts> pairs_;
+  std::vector<Eigen::Vector3d> builtPosition_;       // poses at the last broad-phase build
+  std::vector<Eigen::Quaterniond> builtOrientation_;
+  std::vector<Eigen::Vector3d> builtSphereCentre_;
+  bool pairsValid_ = false;
+
+  std::vector<Eigen::Vector3d> force_, torque_;      // total, world; torque about the centroid
+  std::vector<Eigen::Vector3d> contactForce_, contactTorque_;
+  std::vector<Eigen::Vector3d> sphereReaction_;
+  bool forcesValid_ = false;
+
+  std::vector<Eigen::Vector3d> startPosition_;
+  double initialEnergy_ = 0.0;
+  double obstacleWork_ = 0.0;
+  double mostSupplied_ = 0.0;  // the largest energy put in so far (J), for the blow-up check
+  double penetrationLimit_ = 0.0;
+  double dt_ = 0.0, automaticDt_ = 0.0, time_ = 0.0;
+  long steps_ = 0;
+};
+
+}  // namespace tessera

@@ -1,0 +1,237 @@
+// Solver physics with known answers: static equilibrium, friction threshold, Newton's third law,
+// energy conservation, free rotation, instability detection, broad phase.
+#include "geometry/block_generators.h"
+#include "solver/broad_phase.h"
+#include "solver/world.h"
+#include "tests/fixtures/scenes.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+using namespace tessera;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const double kA = 10e-3, kH = 3.18e-3;
+
+// Settles the free body with local damping; returns the world.
+void settle(World& world, int steps) {
+  for (int s = 0; s < steps; ++s) world.step();
+}
+
+}  // namespace
+
+TEST_CASE("static equilibrium: a block resting on a fixed block carries m g at penetration m g / (k_n A)") {
+  // A soft material (E = 4.2 MPa) makes the penetration large against float32 grid round-off.
+  ContactParameters p;
+  p.youngsModulus = 4.2e6;
+  SolverSettings s;
+  s.localDamping = 0.7;
+  for (bool freeFirst : {false, true}) {
+    INFO("free body first: " << freeFirst);
+    const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3, freeFirst);
+    World world(bundle, p, s);
+    const int top = freeFirst ? 0 : 1;
+    const double z0 = world.bodies().position[top].z();
+    settle(world, 3000);
+    const double mg = world.bodies().mass[top] * 9.81;
+    REQUIRE(world.contactForces()[top].z() == Approx(mg).epsilon(1e-3));
+    REQUIRE(std::abs(world.contactForces()[top].x()) < 1e-6 * mg);
+    const double penetration = z0 - world.bodies().position[top].z();
+    REQUIRE(penetration == Approx(mg / (p.normalStiffness() * kA * kA)).epsilon(0.02));
+    REQUIRE(world.bodies().velocity[top].norm() < 1e-6);
+  }
+}
+
+TEST_CASE("static equilibrium of the TIS block on a TIS block (inclined sides)") {
+  ContactParameters p;
+  p.youngsModulus = 4.2e6;
+  SolverSettings s;
+  s.localDamping = 0.7;
+  const double theta = 5 * M_PI / 180;
+  // The top face of the lower block and the bottom face of the upper are (a + h tan) x (a - h tan).
+  const TriangleMesh block = makePlanarBlock(kA, kH, theta);
+  TriangleMesh flipped = block;  // upper block turned upside down: its bottom face matches the lower's top
+  for (auto& v : flipped.vertices) v = Eigen::Vector3d(v.x(), -v.y(), -v.z());
+  const Bundle bundle = test::stackedBlocks(block, flipped, 0.25e-3, 0.6e-3);
+  World world(bundle, p, s);
+  const double z0 = world.bodies().position[1].z();
+  settle(world, 3000);
+  const double mg = world.bodies().mass[1] * 9.81;
+  const double area = (kA + kH * std::tan(theta)) * (kA - kH * std::tan(theta));
+  REQUIRE(world.contactForces()[1].z() == Approx(mg).epsilon(1e-3));
+  REQUIRE(z0 - world.bodies().position[1].z() == Approx(mg / (p.normalStiffness() * area)).epsilon(0.02));
+}
+
+TEST_CASE("friction threshold: a block on a tilted block sticks below atan(mu) and slides above") {
+  ContactParameters p;
+  p.youngsModulus = 4.2e6;
+  for (double mu : {0.23, 0.5}) {
+    p.friction = mu;
+    const double critical = std::atan(mu);
+    for (double offset : {-0.5, 0.5}) {
+      const double theta = critical + offset * M_PI / 180;
+      INFO("mu " << mu << ", tilt " << theta * 180 / M_PI << " deg");
+      // Tilting the blocks by theta is tilting gravity by -theta.
+      SolverSettings s;
+      s.localDamping = 0.3;
+      s.gravity = 9.81 * Eigen::Vector3d(std::sin(theta), 0, -std::cos(theta));
+      const Bundle bundle = test::stackedBlocks(makeBox(2 * kA, 2 * kA, kH), makeBox(kA, kA, kH), 0.25e-3, 1.0e-3);
+      World world(bundle, p, s);
+      const double x0 = world.bodies().position[1].x();
+      while (world.time() < 0.1) world.step();
+      const double slip = world.bodies().position[1].x() - x0;
+      if (offset < 0) {
+        REQUIRE(std::abs(slip) < 1e-6);  // elastic tangential deflection only (~1e-8 m)
+      } else {
+        // Sliding: a = g (sin - mu cos), reduced by local damping; well beyond elastic creep.
+        REQUIRE(slip > 1e-5);
+      }
+    }
+  }
+}
+
+TEST_CASE("Newton's third law: forces and torques of every contacting pair cancel") {
+  ContactParameters p;
+  SolverSettings s;
+  Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
+  World world(slab, p, s);
+  SphereObstacle indenter;
+  indenter.radius = 2.5e-3;
+  indenter.center = Eigen::Vector3d(0.3e-3, -0.2e-3, 1.59e-3 + 2.5e-3 - 0.02e-3);
+  world.addSphere(indenter);
+  world.bodies().angularMomentum[4] = Eigen::Vector3d(1e-9, -2e-9, 0.5e-9);  // a little asymmetry
+  for (int i = 0; i < 50; ++i) world.step();
+  int checked = 0;
+  for (const PairContacts& pair : world.pairs()) {
+    if (pair.b < 0 || pair.contacts.empty()) continue;
+    ++checked;
+    const double scale = pair.forceA.norm();
+    REQUIRE(scale > 0);
+    REQUIRE((pair.forceA + pair.forceB).norm() <= 1e-9 * scale);
+    const Eigen::Vector3d pa = world.bodies().position[pair.a], pb = world.bodies().position[pair.b];
+    const Eigen::Vector3d torqueAboutOrigin = pair.torqueA + pa.cross(pair.forceA) + pair.torqueB + pb.cross(pair.forceB);
+    REQUIRE(torqueAboutOrigin.norm() <= 1e-9 * scale * (pa.norm() + pb.norm()));
+  }
+  REQUIRE(checked >= 2);  // the centre block pushed down wedges against (at least) its x-neighbours
+}
+
+TEST_CASE("energy: without damping or friction a bouncing block conserves energy to 1 %") {
+  ContactParameters p;
+  p.friction = 0.0;
+  SolverSettings s;  // automatic time step, no damping
+  Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
+  bundle.bodies[1].position.z() += 20e-6;  // dropped from 20 um
+  World world(bundle, p, s);
+  const double drop = world.bodies().mass[1] * 9.81 * 20e-6;
+  // Measured in flight, after each contact: within a contact, Verlet's full-step kinetic energy
+  // differs from its conserved (shadow) energy by O((omega dt)^2) and returns to it.
+  int bounces = 0;
+  bool inContact = false;
+  double worst = 0.0;
+  while (bounces < 10) {
+    world.step();
+    const bool touching = world.maxPenetration() > 0;
+    if (inContact && !touching) {
+      ++bounces;
+      worst = std::max(worst, std::abs(world.energy().balance()));
+    }
+    inContact = touching;
+    REQUIRE(world.time() < 1.0);
+  }
+  INFO("worst energy error " << worst / drop << " of the drop energy");
+  REQUIRE(worst < 0.01 * drop);
+}
+
+TEST_CASE("free rotation near the intermediate axis: the block flips, energy and momentum are kept to 1e-4") {
+  // Box 1 x 2 x 3 mm: principal moments I_x > I_y > I_z; y is the intermediate axis.
+  Bundle bundle = test::stackedBlocks(makeBox(1e-3, 1e-3, 1e-3), makeBox(1e-3, 2e-3, 3e-3), 0.1e-3, 0.3e-3);
+  bundle.bodies[1].position.z() += 1.0;  // far from the base: no contact
+  SolverSettings s;
+  s.gravity.setZero();
+  const double omega = 100.0;
+  s.timeStep = 0.01 / omega;
+  World world(bundle, ContactParameters{}, s);
+  RigidBodies& b = world.bodies();
+  const Eigen::Vector3d w(1e-3 * omega, omega, 1e-3 * omega);  // nearly about y
+  b.angularMomentum[1] = b.inertia[1].cwiseProduct(w);
+  const double energy0 = b.kineticEnergy(1);
+  const Eigen::Vector3d momentum0 = b.orientation[1] * b.angularMomentum[1];
+  bool flipped = false;
+  double energyError = 0, momentumError = 0;
+  for (int step = 0; step < 100000; ++step) {
+    world.step();
+    flipped = flipped || b.angularMomentum[1].y() < 0;
+    energyError = std::max(energyError, std::abs(b.kineticEnergy(1) / energy0 - 1));
+    momentumError = std::max(momentumError, (b.orientation[1] * b.angularMomentum[1] - momentum0).norm() / momentum0.norm());
+  }
+  INFO("energy error " << energyError << ", momentum error " << momentumError);
+  REQUIRE(flipped);
+  REQUIRE(energyError < 1e-4);
+  REQUIRE(momentumError < 1e-4);
+}
+
+TEST_CASE("instability is caught: 5x the automatic time step stops the run with a diagnostic") {
+  // A cube clamped on all six faces by fixed cubes (overlapping by 1 um, sticking: mu = 100): its
+  // rocking mode is sqrt(5) times faster than in the single-face contact the step is chosen for,
+  // so 5x the automatic step puts it past Verlet's limit omega dt = 2.
+  ContactParameters p;
+  p.friction = 100;
+  SolverSettings s;
+  const double a = 4e-3;
+  Bundle bundle = test::stackedBlocks(makeBox(a, a, a), makeBox(a, a, a), 0.25e-3, 0.6e-3, true);
+  bundle.bodies.resize(1);
+  bundle.bodies[0].position.setZero();
+  for (int axis = 0; axis < 3; ++axis)
+    for (double side : {-1.0, 1.0}) {
+      Body wall;
+      wall.name = "wall" + std::to_string(bundle.bodies.size());
+      wall.shape = 0;
+      wall.fixed = true;
+      wall.position[axis] = side * (a - 1e-6);
+      bundle.bodies.push_back(wall);
+    }
+  const double automatic = World(bundle, p, s).automaticTimeStep();
+  const auto knock = [](World& w) {  // a small initial velocity and spin
+    w.bodies().velocity[0] = Eigen::Vector3d(1e-4, 2e-4, 0);
+    w.bodies().angularMomentum[0] = 1e-3 * w.bodies().inertia[0];
+  };
+  s.timeStep = 5 * automatic;
+  World world(bundle, p, s);
+  knock(world);
+  bool stopped = false;
+  try {
+    for (int step = 0; step < 20000; ++step) world.step();
+  } catch (const SolverInstability& e) {
+    stopped = true;
+    REQUIRE_THAT(e.what(), Contains("body 'top'") && Contains("time step") && Contains("t = ") &&
+                               Contains("kinetic energy"));
+  }
+  REQUIRE(stopped);
+  // At the automatic step the same clamp runs quietly.
+  s.timeStep = 0;
+  World calm(bundle, p, s);
+  knock(calm);
+  const double energy0 = calm.energy().kinetic + calm.energy().elastic;
+  for (int step = 0; step < 20000; ++step) calm.step();
+  REQUIRE(calm.energy().kinetic + calm.energy().elastic < 1.01 * energy0);
+}
+
+TEST_CASE("sort-and-sweep broad phase finds exactly the pairs of the brute-force reference") {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Eigen::AlignedBox3d> boxes;
+  std::vector<char> fixed;
+  for (int i = 0; i < 300; ++i) {
+    const Eigen::Vector3d c(u(random), u(random), 0.1 * u(random)), half(0.03 * u(random), 0.03 * u(random), 0.02);
+    boxes.emplace_back(c - half, c + half);
+    fixed.push_back(u(random) < 0.3);
+  }
+  const auto sweep = sweepPairs(boxes, fixed);
+  REQUIRE(sweep == bruteForcePairs(boxes, fixed));
+  REQUIRE(sweep.size() > 100);
+  for (const auto& [a, b] : sweep) REQUIRE_FALSE((fixed[a] && fixed[b]));
+}
