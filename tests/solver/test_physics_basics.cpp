@@ -215,9 +215,9 @@ TEST_CASE("instability is caught: 5x the automatic time step stops the run with 
   s.timeStep = 0;
   World calm(bundle, p, s);
   knock(calm);
-  const double energy0 = calm.energy().kinetic + calm.energy().elastic;
   for (int step = 0; step < 20000; ++step) calm.step();
-  REQUIRE(calm.energy().kinetic + calm.energy().elastic < 1.01 * energy0);
+  REQUIRE(calm.energy().initial > 0);
+  REQUIRE(std::abs(calm.energy().balance()) < 0.05 * calm.energy().initial);  // friction may only dissipate
 }
 
 TEST_CASE("sort-and-sweep broad phase finds exactly the pairs of the brute-force reference") {
