@@ -68,7 +68,7 @@ void requireSharpEdgesCarryNodes(const Sampled& s, double spacing) {
       const Eigen::Vector3d x = (1 - w) * a + w * b;
       double best = 1e300;
       for (const auto& n : featureNodes) best = std::min(best, (n - x).norm());
-      REQUIRE(best <= 0.6 * spacing);
+      REQUIRE(best <= 0.65 * spacing);
     }
   }
   REQUIRE(sharp > 0);
