@@ -74,6 +74,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = Eigen::Vector3d::Zero();
   pair.elasticEnergy = 0.0;
   pair.maxDepth = 0.0;
+  pair.evaluations = 0;
   Accumulator acc{scene, pair, History{pair.previous}};
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
@@ -92,6 +93,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
       // Only nodes inside the other body's box can be inside the other body.
       const Eigen::AlignedBox3d region = regionInFrame(so.nodes.box, qO, pO, qM, bodies.position[m]);
       sm.nodes.forEachNodeIn(region, [&](int rank) {
+        ++pair.evaluations;
         const Eigen::Vector3d xO = toO * sm.nodes.position[rank] + shift;
         double phi;
         Eigen::Vector3d normalO;
@@ -117,6 +119,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
     const Eigen::Vector3d centre = qM.conjugate() * (sphere.center - pM);
     const Eigen::AlignedBox3d region(centre.array() - sphere.radius, centre.array() + sphere.radius);
     sm.nodes.forEachNodeIn(region, [&](int rank) {
+      ++pair.evaluations;
       const Eigen::Vector3d x = RM * sm.nodes.position[rank] + pM;
       const double phi = sphere.phi(x);
       if (phi >= 0) return;
@@ -126,6 +129,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   } else {
     const PlaneObstacle& plane = (*scene.planes)[obstacle - sphereCount];
     sm.nodes.forEachNodeIn(sm.nodes.box, [&](int rank) {
+      ++pair.evaluations;
       const Eigen::Vector3d x = RM * sm.nodes.position[rank] + pM;
       const double phi = plane.phi(x);
       if (phi >= 0) return;

@@ -63,6 +63,7 @@ struct PairContacts {
   Eigen::Vector3d forceA{0, 0, 0}, torqueA{0, 0, 0}, forceB{0, 0, 0}, torqueB{0, 0, 0};
   double elasticEnergy = 0.0;  ///< J
   double maxDepth = 0.0;       ///< m, deepest node penetration
+  long evaluations = 0;        ///< node-vs-level-set evaluations in the last evaluation (for benchmarks)
 };
 
 /// The scene as a pair evaluation needs it (read-only during evaluation).
