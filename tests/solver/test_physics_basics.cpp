@@ -46,6 +46,23 @@ TEST_CASE("static equilibrium: a block resting on a fixed block carries m g at p
   }
 }
 
+TEST_CASE("static equilibrium on an analytic plane: the node areas carry m g at m g / (k_n A)") {
+  ContactParameters p;
+  p.youngsModulus = 4.2e6;
+  SolverSettings s;
+  s.localDamping = 0.7;
+  Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
+  bundle.bodies.erase(bundle.bodies.begin());  // the free block alone
+  bundle.bodies[0].position = Eigen::Vector3d(0, 0, kH / 2);
+  World world(bundle, p, s);
+  PlaneObstacle floor;  // z = 0, solid below
+  world.addPlane(floor);
+  for (int i = 0; i < 3000; ++i) world.step();
+  const double mg = world.bodies().mass[0] * 9.81;
+  REQUIRE(world.contactForces()[0].z() == Approx(mg).epsilon(1e-3));
+  REQUIRE(kH / 2 - world.bodies().position[0].z() == Approx(mg / (p.normalStiffness() * kA * kA)).epsilon(0.02));
+}
+
 TEST_CASE("static equilibrium of the TIS block on a TIS block (inclined sides)") {
   ContactParameters p;
   p.youngsModulus = 4.2e6;
