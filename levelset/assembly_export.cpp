@@ -63,12 +63,8 @@ void writeVtu(std::ostream& out, const std::vector<double>& points, const std::v
 
 }  // namespace
 
-ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath, const std::string& directory) {
-  const fs::path dir(directory);
-  fs::create_directories(dir);
-  ExportSummary summary;
-
-  // Blocks: each body's mesh, placed.
+std::size_t writeBlocksVtu(const Bundle& bundle, const std::vector<Eigen::Vector3d>& position,
+                           const std::vector<Eigen::Quaterniond>& orientation, const std::string& path) {
   std::vector<double> points;
   std::vector<std::int64_t> triangles;
   std::vector<std::int32_t> bodyOfCell, shapeOfCell;
@@ -78,7 +74,7 @@ ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath
     const Shape& shape = bundle.shapes[body.shape];
     const auto base = static_cast<std::int64_t>(points.size() / 3);
     for (const auto& v : shape.mesh.vertices) {
-      const Eigen::Vector3d x = body.orientation * v + body.position;
+      const Eigen::Vector3d x = orientation[b] * v + position[b];
       points.insert(points.end(), {x.x(), x.y(), x.z()});
     }
     for (const auto& t : shape.mesh.triangles) {
@@ -88,8 +84,7 @@ ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath
       fixedOfCell.push_back(body.fixed ? 1 : 0);
     }
   }
-  summary.triangles = bodyOfCell.size();
-  writeAtomically(dir / "blocks.vtu", [&](std::ostream& out) {
+  writeAtomically(path, [&](std::ostream& out) {
     writeVtu(out, points, triangles, kVtkTriangle, 3, [](std::ostream&) {},
              [&](std::ostream& o) {
                dataArray(o, "Int32", "body_id", 1, bodyOfCell);
@@ -97,6 +92,30 @@ ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath
                dataArray(o, "UInt8", "fixed", 1, fixedOfCell);
              });
   });
+  return bodyOfCell.size();
+}
+
+void writePvd(const std::string& path, const std::vector<std::string>& files, const std::vector<double>& times) {
+  writeAtomically(path, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n<Collection>\n";
+    for (std::size_t i = 0; i < files.size(); ++i)
+      out << "<DataSet timestep=\"" << times[i] << "\" part=\"0\" file=\"" << files[i] << "\"/>\n";
+    out << "</Collection>\n</VTKFile>\n";
+  });
+}
+
+ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath, const std::string& directory) {
+  const fs::path dir(directory);
+  fs::create_directories(dir);
+  ExportSummary summary;
+
+  std::vector<Eigen::Vector3d> position;
+  std::vector<Eigen::Quaterniond> orientation;
+  for (const Body& body : bundle.bodies) {
+    position.push_back(body.position);
+    orientation.push_back(body.orientation);
+  }
+  summary.triangles = writeBlocksVtu(bundle, position, orientation, (dir / "blocks.vtu").string());
 
   // Surface nodes, in world coordinates.
   std::vector<double> nodePoints, normals, areas;

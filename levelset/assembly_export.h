@@ -21,4 +21,12 @@ struct ExportSummary {
 /// Lengths in metres. Each file is written to a temporary name and renamed.
 ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath, const std::string& directory);
 
+/// Writes blocks.vtu-style triangles of every body at the given poses (body centroid position
+/// and orientation per body, as in Bundle::bodies) to `path`; returns the triangle count.
+std::size_t writeBlocksVtu(const Bundle& bundle, const std::vector<Eigen::Vector3d>& position,
+                           const std::vector<Eigen::Quaterniond>& orientation, const std::string& path);
+
+/// Writes a ParaView collection (.pvd) of `files` (relative to the .pvd) at the given times.
+void writePvd(const std::string& path, const std::vector<std::string>& files, const std::vector<double>& times);
+
 }  // namespace tessera

@@ -19,6 +19,7 @@ packages=(
   libassimp-dev                                 # mesh import
   libhdf5-dev                                   # asset bundle
   libcli11-dev nlohmann-json3-dev               # command line, JSON output
+  libtomlplusplus-dev                           # scene files (TOML)
   catch2                                        # tests
   python3-vtk9 python3-matplotlib               # tests read exports with VTK; PNG rendering
   libbenchmark-dev                              # benchmarks (bench/)

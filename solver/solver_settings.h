@@ -16,7 +16,7 @@ struct SolverSettings {
   double viscousDamping = 0.0;                  ///< c, 1/s: global viscous damping F -= c m v, tau -= c I omega
   int threads = 0;                              ///< 0 = all cores
   double broadPhaseMargin = 0.5e-3;             ///< m: bounding boxes are enlarged by this; rebuilt when bodies move half of it
-  double maxPenetration = 0.0;                  ///< m; 0 = a quarter of the finest voxel. Deeper stops the run
+  double maxPenetration = 0.0;                  ///< m; 0 = a quarter of the thinnest block. Deeper stops the run
   double energyGrowthLimit = 10.0;              ///< stop when kinetic energy exceeds this x the energy supplied
   /// Convex polyhedral shapes (the planar and hex TIS blocks) use their face planes as an exact,
   /// analytic level set instead of the grid; false forces the grid everywhere.

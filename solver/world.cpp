@@ -75,15 +75,15 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   for (const Shape& s : bundle.shapes) shapes_.push_back(makeShapeModel(s, settings.exactConvexLevelSets));
   bodies_ = makeRigidBodies(bundle, settings.density);
 
-  double omega = 0.0, finestVoxel = std::numeric_limits<double>::infinity();
+  double omega = 0.0, thinnest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const Shape& shape = bundle.shapes[bodies_.shape[i]];
-    finestVoxel = std::min(finestVoxel, shape.sdf.voxelSize);
+    thinnest = std::min(thinnest, boundingBox(shape.mesh.vertices).sizes().minCoeff());
     if (!bodies_.fixed[i]) omega = std::max(omega, fastestMode(shape, bodies_.mass[i], bodies_.inertia[i], parameters));
   }
   automaticDt_ = omega > 0 ? settings.timeStepFactor * 2.0 / omega : 1e-6;
   dt_ = settings.timeStep > 0 ? settings.timeStep : automaticDt_;
-  penetrationLimit_ = settings.maxPenetration > 0 ? settings.maxPenetration : 0.25 * finestVoxel;
+  penetrationLimit_ = settings.maxPenetration > 0 ? settings.maxPenetration : 0.25 * thinnest;
 
   const std::size_t n = bodies_.size();
   force_.assign(n, Eigen::Vector3d::Zero());
@@ -91,6 +91,16 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   contactForce_.assign(n, Eigen::Vector3d::Zero());
   contactTorque_.assign(n, Eigen::Vector3d::Zero());
   startPosition_ = bodies_.position;
+  retired_.assign(n, 0);
+}
+
+void World::retireBody(int i) {
+  if (retired_[i]) return;
+  retired_[i] = 1;
+  bodies_.fixed[i] = 1;
+  bodies_.velocity[i].setZero();
+  bodies_.angularMomentum[i].setZero();
+  pairsValid_ = forcesValid_ = false;
 }
 
 World::~World() = default;
@@ -127,7 +137,8 @@ void World::updatePairs() {
 
   std::vector<Eigen::AlignedBox3d> boxes;
   for (std::size_t i = 0; i < bodies_.size(); ++i)
-    boxes.push_back(worldBox(shapes_[bodies_.shape[i]].nodes.box, bodies_.orientation[i], bodies_.position[i], margin));
+    boxes.push_back(retired_[i] ? Eigen::AlignedBox3d()  // empty: intersects nothing
+                                : worldBox(shapes_[bodies_.shape[i]].nodes.box, bodies_.orientation[i], bodies_.position[i], margin));
   std::vector<std::pair<int, int>> wanted = sweepPairs(boxes, bodies_.fixed);
   const int sphereCount = static_cast<int>(spheres_.size());
   for (int k = 0; k < sphereCount; ++k) {
@@ -138,7 +149,7 @@ void World::updatePairs() {
   }
   for (int k = 0; k < static_cast<int>(planes_.size()); ++k)
     for (int i = 0; i < static_cast<int>(bodies_.size()); ++i)
-      if (!bodies_.fixed[i]) wanted.emplace_back(i, -1 - sphereCount - k);
+      if (!bodies_.fixed[i] && !retired_[i]) wanted.emplace_back(i, -1 - sphereCount - k);
   std::sort(wanted.begin(), wanted.end());
 
   // Keep the state of pairs that stay candidates (both lists sorted by (a, b)).

@@ -60,6 +60,11 @@ public:
   /// Advances one step. Throws SolverInstability instead of producing garbage.
   void step();
 
+  /// Takes a body out of the computation (a block that has fallen clear): it is frozen where it
+  /// is, no longer integrated and no longer in any pair.
+  void retireBody(int i);
+  bool isRetired(int i) const { return retired_[i] != 0; }
+
   /// Contact force and torque (about the centroid) on each body from the last evaluation, N and N m.
   const std::vector<Eigen::Vector3d>& contactForces() const { return contactForce_; }
   const std::vector<Eigen::Vector3d>& contactTorques() const { return contactTorque_; }
@@ -75,6 +80,7 @@ private:
   void checkStability();
 
   std::vector<ShapeModel> shapes_;
+  std::vector<char> retired_;
   RigidBodies bodies_;
   std::vector<SphereObstacle> spheres_;
   std::vector<PlaneObstacle> planes_;

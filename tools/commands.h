@@ -10,5 +10,6 @@ void addInspectCommand(CLI::App& app);
 void addBlockCommand(CLI::App& app);
 void addTileCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
+void addRunCommand(CLI::App& app);
 
 }  // namespace tessera::tools

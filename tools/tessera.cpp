@@ -16,8 +16,11 @@ int main(int argc, char** argv) {
   tessera::tools::addBlockCommand(app);
   tessera::tools::addTileCommand(app);
   tessera::tools::addExportCommand(app);
+  tessera::tools::addRunCommand(app);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {  // a command's own exit status (its message is already printed)
+    return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const tessera::InputError& e) {

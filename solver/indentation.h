@@ -1,0 +1,73 @@
+#pragma once
+#include "levelset/bundle.h"
+#include "solver/scene.h"
+#include "solver/world.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+/// One point of the load-deflection record.
+struct CurveSample {
+  double time = 0;          ///< s since the start of loading
+  double delta = 0;         ///< m, indenter travel since first contact
+  double load = 0;          ///< N, P: the bodies' push on the indenter (upward)
+  double kinetic = 0;       ///< J
+  double externalWork = 0;  ///< J, work done by the indenter
+  double elastic = 0;       ///< J, stored in the contacts
+  long contacts = 0;        ///< node contacts
+  double targetDrop = 0;    ///< m, downward displacement of the loaded block since settling
+};
+
+/// Body poses at one moment (for the ParaView time series).
+struct Snapshot {
+  double delta = 0;  ///< m
+  double load = 0;   ///< N
+  std::vector<Eigen::Vector3d> position;
+  std::vector<Eigen::Quaterniond> orientation;
+};
+
+struct FallenBody {
+  std::string name;
+  double delta;  ///< m, when it was found fallen (and retired)
+};
+
+/// What a run produced.
+struct IndentationRecord {
+  double settleTime = 0;   ///< s of simulated time spent settling
+  long settleSteps = 0;
+  bool settled = false;    ///< false: settle_max_time ran out first
+  int target = -1;
+  std::string targetName;
+  std::vector<CurveSample> curve;
+  std::vector<Snapshot> snapshots;
+  std::vector<FallenBody> fallen;
+  std::string stopReason;  ///< "delta_max", "failure", "interrupted"
+  long steps = 0;          ///< all steps, settling included
+  double timeStep = 0;     ///< s
+  double wallSeconds = 0;
+};
+
+/// Progress while running (called every output.progressSeconds of wall time).
+struct Progress {
+  double delta, load, kinetic, externalWork;
+  long contacts, steps;
+  double stepsPerSecond, etaSeconds;
+};
+
+/// The indentation test (DESIGN §5): settle under gravity until the kinetic energy is below
+/// protocol.settleKinetic (or settleMaxTime passes); put the spherical indenter just above the top
+/// of the target block; push it down at constant speed, sampling the curve; retire bodies that
+/// have fallen `fallenDistance` below their settled position; stop at deltaMax, or (stopOnFailure)
+/// once the loaded block has fallen and the load is below 1 % of its peak, or when `interrupted`
+/// returns true. SolverInstability propagates (the caller keeps what was recorded so far through
+/// `record`).
+void runIndentation(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
+                    const std::function<void(const Progress&)>& progress, const std::function<bool()>& interrupted);
+
+/// The free body nearest the bodies' centre in x and y (the default target).
+int centralFreeBody(const World& world);
+
+}  // namespace tessera

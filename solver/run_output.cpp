@@ -1,0 +1,172 @@
+#include "solver/run_output.h"
+
+#include "levelset/assembly_export.h"
+#include "levelset/hdf5_file.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temporaryFor(const fs::path& target) { return target.parent_path() / (".tmp-" + target.filename().string()); }
+
+template <class Write>
+void atomically(const fs::path& target, Write&& write) {
+  const fs::path temporary = temporaryFor(target);
+  try {
+    write(temporary);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+  fs::rename(temporary, target);
+}
+
+void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bundle, const ContactParameters& contact,
+                    const IndentationRecord& record) {
+  h5::Handle f = h5::createFile(path.string());
+  h5::writeAttribute(f.get(), "format", std::string("tessera-results"));
+  h5::writeAttribute(f.get(), "format_version", std::int64_t{1});
+  h5::writeAttribute(f.get(), "generator", generatorVersion());
+  h5::writeAttribute(f.get(), "scene_file", scene.path);
+  h5::writeAttribute(f.get(), "bundle", scene.bundle);
+  h5::writeAttribute(f.get(), "bundle_generator", bundle.generator);
+  h5::writeAttribute(f.get(), "youngs_modulus", contact.youngsModulus);
+  h5::writeAttribute(f.get(), "normal_stiffness", contact.normalStiffness());
+  h5::writeAttribute(f.get(), "friction", contact.friction);
+  h5::writeAttribute(f.get(), "time_step", record.timeStep);
+  h5::writeAttribute(f.get(), "stop_reason", record.stopReason);
+
+  h5::Handle curve = h5::createGroup(f.get(), "curve");
+  const hsize_t n = record.curve.size();
+  const auto column = [&](const char* name, auto get) {
+    std::vector<double> v;
+    for (const CurveSample& s : record.curve) v.push_back(get(s));
+    h5::writeDataset(curve.get(), name, v, {n});
+  };
+  column("time", [](const CurveSample& s) { return s.time; });
+  column("delta", [](const CurveSample& s) { return s.delta; });
+  column("load", [](const CurveSample& s) { return s.load; });
+  column("kinetic_energy", [](const CurveSample& s) { return s.kinetic; });
+  column("external_work", [](const CurveSample& s) { return s.externalWork; });
+  column("elastic_energy", [](const CurveSample& s) { return s.elastic; });
+  column("contacts", [](const CurveSample& s) { return static_cast<double>(s.contacts); });
+  column("target_drop", [](const CurveSample& s) { return s.targetDrop; });
+
+  h5::Handle snaps = h5::createGroup(f.get(), "snapshots");
+  std::vector<std::string> names;
+  for (const Body& b : bundle.bodies) names.push_back(b.name);
+  h5::writeStrings(snaps.get(), "body_names", names);
+  std::vector<double> delta, load;
+  for (const Snapshot& s : record.snapshots) {
+    delta.push_back(s.delta);
+    load.push_back(s.load);
+  }
+  h5::writeDataset(snaps.get(), "delta", delta, {delta.size()});
+  h5::writeDataset(snaps.get(), "load", load, {load.size()});
+  std::vector<double> position, orientation;
+  for (const Snapshot& s : record.snapshots)
+    for (std::size_t i = 0; i < s.position.size(); ++i) {
+      position.insert(position.end(), {s.position[i].x(), s.position[i].y(), s.position[i].z()});
+      orientation.insert(orientation.end(), {s.orientation[i].w(), s.orientation[i].x(), s.orientation[i].y(), s.orientation[i].z()});
+    }
+  const hsize_t frames = record.snapshots.size(), bodies = bundle.bodies.size();
+  h5::writeDataset(snaps.get(), "position", position, {frames, bodies, 3});
+  h5::writeDataset(snaps.get(), "orientation", orientation, {frames, bodies, 4});
+
+  h5::Handle fallen = h5::createGroup(f.get(), "fallen");
+  std::vector<std::string> fallenNames;
+  std::vector<double> fallenDelta;
+  for (const FallenBody& b : record.fallen) {
+    fallenNames.push_back(b.name);
+    fallenDelta.push_back(b.delta);
+  }
+  h5::writeStrings(fallen.get(), "names", fallenNames);
+  h5::writeDataset(fallen.get(), "delta", fallenDelta, {fallenDelta.size()});
+}
+
+}  // namespace
+
+void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
+                     const ContactParameters& contact, const IndentationRecord& record,
+                     const ResponseParameters& response) {
+  const fs::path dir(directory);
+  fs::create_directories(dir / "paraview");
+
+  atomically(dir / "results.h5", [&](const fs::path& p) { writeResultsH5(p, scene, bundle, contact, record); });
+
+  atomically(dir / "curve.csv", [&](const fs::path& p) {
+    std::ofstream out(p);
+    out << "delta_mm,load_N,time_s,kinetic_J,external_work_J,contacts\n";
+    char line[160];
+    for (const CurveSample& s : record.curve) {
+      std::snprintf(line, sizeof line, "%.6f,%.6f,%.9g,%.6g,%.6g,%ld\n", s.delta * 1e3, s.load, s.time, s.kinetic,
+                    s.externalWork, s.contacts);
+      out << line;
+    }
+    if (!out) throw std::runtime_error(p.string() + ": cannot write");
+  });
+
+  nlohmann::json fallen = nlohmann::json::array();
+  for (const FallenBody& b : record.fallen) fallen.push_back({{"name", b.name}, {"delta_mm", b.delta * 1e3}});
+  const nlohmann::json summary = {
+      {"generator", generatorVersion()},
+      {"scene", scene.path},
+      {"bundle", scene.bundle},
+      {"target", record.targetName},
+      {"stop_reason", record.stopReason},
+      {"response",
+       {{"peak_load_N", response.peakLoad},
+        {"delta_at_peak_mm", response.deltaAtPeak * 1e3},
+        {"stiffness_N_per_mm", response.stiffness * 1e-3},
+        {"stiffness_fit_window_mm", {response.fitFrom * 1e3, response.fitTo * 1e3}},
+        {"loading_energy_mJ", response.energy * 1e3},
+        {"ultimate_deflection_mm", response.ultimateDeflection * 1e3},
+        {"failure_mode", response.failureMode},
+        {"fallen", fallen},
+        {"quasi_static_ratio", response.quasiStaticRatio},
+        {"peak_load_normalised", response.peakLoadNormalised},
+        {"delta_at_peak_normalised", response.deltaAtPeakNormalised}}},
+      {"material",
+       {{"youngs_modulus_GPa", contact.youngsModulus * 1e-9},
+        {"friction", contact.friction},
+        {"normal_stiffness_N_per_m3", contact.normalStiffness()},
+        {"span_length_mm", contact.spanLength * 1e3},
+        {"span_interfaces", contact.spanInterfaces}}},
+      {"run",
+       {{"time_step_s", record.timeStep},
+        {"steps", record.steps},
+        {"settle_time_s", record.settleTime},
+        {"settle_steps", record.settleSteps},
+        {"settled", record.settled},
+        {"wall_seconds", record.wallSeconds},
+        {"samples", record.curve.size()},
+        {"snapshots", record.snapshots.size()}}},
+  };
+  atomically(dir / "summary.json", [&](const fs::path& p) {
+    std::ofstream out(p);
+    out << summary.dump(2) << "\n";
+    if (!out) throw std::runtime_error(p.string() + ": cannot write");
+  });
+
+  std::vector<std::string> files;
+  std::vector<double> times;
+  for (std::size_t k = 0; k < record.snapshots.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "blocks_%04zu.vtu", k);
+    writeBlocksVtu(bundle, record.snapshots[k].position, record.snapshots[k].orientation, (dir / "paraview" / name).string());
+    files.push_back(name);
+    times.push_back(record.snapshots[k].delta * 1e3);  // "time" axis in ParaView: delta in mm
+  }
+  writePvd((dir / "paraview" / "slab.pvd").string(), files, times);
+}
+
+}  // namespace tessera

@@ -1,0 +1,177 @@
+// The scene-file parser: fills the plain settings structs, refuses anything it does not know.
+#include "solver/scene.h"
+
+#include "geometry/input_error.h"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// One table of the scene: each key read once, with its range; leftovers are unknown keys.
+class Table {
+public:
+  Table(const std::string& file, const std::string& name, const toml::table* table)
+      : file_(file), name_(name), table_(table) {}
+
+  void number(const std::string& key, double& value, double lo, double hi, const std::string& unit) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    const std::optional<double> v = node->value<double>();
+    if (!v || !std::isfinite(*v)) fail(key, "must be a number" + suffix(unit));
+    if (*v < lo || *v > hi) {
+      std::ostringstream range;
+      range << "must be in [" << lo << ", " << hi << "]" << suffix(unit) << ", got " << *v;
+      fail(key, range.str());
+    }
+    value = *v;
+  }
+
+  void integer(const std::string& key, int& value, int lo, int hi) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    const std::optional<std::int64_t> v = node->value<std::int64_t>();
+    if (!v || !node->is_integer() || *v < lo || *v > hi)
+      fail(key, "must be a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    value = static_cast<int>(*v);
+  }
+
+  void boolean(const std::string& key, bool& value) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    if (!node->is_boolean()) fail(key, "must be true or false");
+    value = *node->value<bool>();
+  }
+
+  void text(const std::string& key, std::string& value) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    if (!node->is_string()) fail(key, "must be a string");
+    value = *node->value<std::string>();
+  }
+
+  void vector3(const std::string& key, Eigen::Vector3d& value, const std::string& unit) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    const toml::array* a = node->as_array();
+    if (!a || a->size() != 3) fail(key, "must be an array of 3 numbers" + suffix(unit));
+    for (int k = 0; k < 3; ++k) {
+      const std::optional<double> v = (*a)[k].value<double>();
+      if (!v || !std::isfinite(*v)) fail(key, "must be an array of 3 numbers" + suffix(unit));
+      value[k] = *v;
+    }
+  }
+
+  /// Every key of the table must have been read.
+  void finish() const {
+    if (!table_) return;
+    for (const auto& [key, node] : *table_)
+      if (!read_.count(std::string(key.str())))
+        throw InputError(file_ + ": unknown key '" + where(std::string(key.str())) +
+                         "'; see docs/scene.md for the keys of [" + name_ + "]");
+  }
+
+private:
+  const toml::node* find(const std::string& key) {
+    read_[key] = true;
+    return table_ ? table_->get(key) : nullptr;
+  }
+  std::string where(const std::string& key) const { return name_.empty() ? key : name_ + "." + key; }
+  static std::string suffix(const std::string& unit) { return unit.empty() ? "" : " (" + unit + ")"; }
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw InputError(file_ + ": " + where(key) + " " + problem);
+  }
+
+  std::string file_, name_;
+  const toml::table* table_;
+  std::map<std::string, bool> read_;
+};
+
+}  // namespace
+
+Scene readScene(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path + ": no such scene file; see assets/scenes/default.toml for an example");
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << e.source().begin;
+    throw InputError(path + ": not valid TOML (" + std::string(e.description()) + " at " + where.str() + ")");
+  }
+  Scene scene;
+  scene.path = path;
+  const std::set<std::string> sections{"material", "span", "indenter", "protocol", "damping", "solver", "output"};
+  for (const auto& [key, node] : root)
+    if (!node.is_table() && std::string(key.str()) != "bundle")
+      throw InputError(path + ": unknown key '" + std::string(key.str()) + "'; top-level keys: bundle and the tables [" +
+                       "material], [span], [indenter], [protocol], [damping], [solver], [output]");
+    else if (node.is_table() && !sections.count(std::string(key.str())))
+      throw InputError(path + ": unknown table [" + std::string(key.str()) + "]; see docs/scene.md");
+
+  Table top(path, "", &root);
+  top.text("bundle", scene.bundle);
+  if (scene.bundle.empty()) throw InputError(path + ": bundle = \"...\" is missing: the slab to load (a bundle directory)");
+  if (fs::path(scene.bundle).is_relative()) scene.bundle = (fs::path(path).parent_path() / scene.bundle).string();
+
+  Table material(path, "material", root["material"].as_table());
+  material.number("youngs_modulus", scene.contact.youngsModulus, 1e3, 1e13, "Pa");
+  material.number("density", scene.solver.density, 1e-3, 1e5, "kg/m^3");
+  material.number("friction", scene.contact.friction, 0, 1e3, "Coulomb coefficient");
+  material.number("tangential_ratio", scene.contact.tangentialRatio, 0, 100, "k_t / k_n");
+  material.number("normal_viscosity", scene.contact.normalViscosity, 0, 1e12, "Pa s / m");
+  material.finish();
+
+  scene.contact.spanLength = 0;  // from the bundle unless given
+  scene.contact.spanInterfaces = 0;
+  Table span(path, "span", root["span"].as_table());
+  span.number("length", scene.contact.spanLength, 1e-6, 1e3, "m");
+  span.integer("interfaces", scene.contact.spanInterfaces, 1, 100000);
+  span.finish();
+
+  Table indenter(path, "indenter", root["indenter"].as_table());
+  indenter.number("radius", scene.indenter.radius, 1e-6, 10, "m");
+  indenter.number("speed", scene.indenter.speed, 1e-9, 100, "m/s");
+  indenter.text("target", scene.indenter.target);
+  indenter.number("clearance", scene.indenter.clearance, 0, 1, "m");
+  indenter.finish();
+
+  Table protocol(path, "protocol", root["protocol"].as_table());
+  protocol.number("settle_kinetic", scene.protocol.settleKinetic, 0, 1e6, "J");
+  protocol.number("settle_max_time", scene.protocol.settleMaxTime, 0, 1e3, "s");
+  protocol.number("delta_max", scene.protocol.deltaMax, 1e-9, 10, "m");
+  protocol.boolean("stop_on_failure", scene.protocol.stopOnFailure);
+  protocol.number("fallen_distance", scene.protocol.fallenDistance, 0, 10, "m");
+  protocol.finish();
+
+  Table damping(path, "damping", root["damping"].as_table());
+  damping.number("local", scene.solver.localDamping, 0, 0.99, "fraction");
+  damping.number("viscous", scene.solver.viscousDamping, 0, 1e9, "1/s");
+  damping.finish();
+
+  Table solver(path, "solver", root["solver"].as_table());
+  solver.number("time_step", scene.solver.timeStep, 0, 1, "s; 0 = automatic");
+  solver.number("time_step_factor", scene.solver.timeStepFactor, 1e-4, 1, "of the stability limit");
+  solver.integer("threads", scene.solver.threads, 0, 1024);
+  solver.vector3("gravity", scene.solver.gravity, "m/s^2");
+  solver.number("max_penetration", scene.solver.maxPenetration, 0, 1, "m; 0 = a quarter voxel");
+  solver.finish();
+
+  Table output(path, "output", root["output"].as_table());
+  output.number("sample_every", scene.output.sampleEvery, 1e-9, 1, "m of travel");
+  output.number("snapshot_every", scene.output.snapshotEvery, 1e-9, 1, "m of travel");
+  output.number("progress_seconds", scene.output.progressSeconds, 0, 1e6, "s");
+  output.finish();
+  return scene;
+}
+
+}  // namespace tessera

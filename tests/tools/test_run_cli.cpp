@@ -1,0 +1,95 @@
+// `tessera run` end to end on a small slab, and bad scenes refused with nothing written.
+#include "levelset/bundle.h"
+#include "levelset/hdf5_file.h"
+#include "tests/fixtures/temp_dir.h"
+#include "tests/tools/cli_runner.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace tessera;
+using tessera::test::kDefaultBlock;
+using tessera::test::quoted;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A 3 x 3 slab (one free block) at coarse nodes, indented fast to 0.3 mm.
+std::string smallRun(const test::TempDir& dir, const std::string& extra = "") {
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 3x3 --pitch 10 --spacing 1.0 -o " +
+                           quoted(dir / "slab"))
+              .status == 0);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[indenter]\nspeed = 0.05\n[protocol]\ndelta_max = 0.3e-3\n"
+                                      "[damping]\nlocal = 0.3\n" + extra);
+  return dir / "scene.toml";
+}
+
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST_CASE("run indents a small slab and writes the curve, the response and the ParaView series") {
+  test::TempDir dir;
+  const std::string scene = smallRun(dir);
+  const test::CliResult r = test::runTessera("run " + quoted(scene) + " --no-plot -o " + quoted(dir / "out"));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.out, Contains("peak load") && Contains("initial stiffness") && Contains("written to"));
+  for (const char* file : {"results.h5", "curve.csv", "summary.json", "paraview/slab.pvd", "paraview/blocks_0000.vtu"})
+    REQUIRE(fs::exists(fs::path(dir / "out") / file));
+  const auto summary = readJson(dir / "out/summary.json");
+  REQUIRE(summary["target"] == "r1c1");
+  REQUIRE(summary["stop_reason"] == "delta_max");
+  REQUIRE(summary["response"]["peak_load_N"].get<double>() > 0);
+  REQUIRE(summary["response"]["stiffness_N_per_mm"].get<double>() > 0);
+  REQUIRE(summary["response"]["failure_mode"] == "no failure by delta_max");
+  REQUIRE(summary["response"]["quasi_static_ratio"].get<double>() < 0.01);
+  REQUIRE(summary["material"]["span_interfaces"] == 2);  // 3 x 3 slab: M = 2, L = 10 mm
+  // The curve rises with delta.
+  std::ifstream csv(dir / "out/curve.csv");
+  std::string header, line;
+  std::getline(csv, header);
+  REQUIRE(header.rfind("delta_mm,load_N", 0) == 0);
+  int rows = 0;
+  double last = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    last = std::stod(line.substr(line.find(',') + 1));
+  }
+  REQUIRE(rows > 20);
+  REQUIRE(last > 0);
+}
+
+TEST_CASE("bad scenes give one clear error and write nothing") {
+  test::TempDir dir;
+  const std::string scene = smallRun(dir);
+  const auto refused = [&](const std::string& text, const std::string& problem) {
+    test::writeFile(dir / "bad.toml", text);
+    const test::CliResult r = test::runTessera("run " + quoted(dir / "bad.toml") + " -o " + quoted(dir / "none"));
+    INFO(r.err);
+    REQUIRE(r.status == 2);
+    REQUIRE_THAT(r.err, Contains("bad.toml") || Contains("bundle"));
+    REQUIRE_THAT(r.err, Contains(problem));
+    REQUIRE_FALSE(fs::exists(dir / "none"));
+  };
+  refused("bundle = \"slab\"\n[material]\nyoungs = 1\n", "unknown key 'material.youngs'");
+  refused("bundle = \"slab\"\n[material]\nyoungs_modulus = -4.2e9\n", "youngs_modulus must be in");
+  refused("bundle = \"slab\"\n[material]\nfriction = -1\n", "friction must be in");
+  refused("bundle = \"missing\"\n", "no such bundle");
+
+  // A bundle of another format version.
+  fs::copy(dir / "slab", dir / "old", fs::copy_options::recursive);
+  {
+    h5::Handle f(H5Fopen((dir / "old/bundle.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+    H5Adelete(f.get(), "format_version");
+    h5::writeAttribute(f.get(), "format_version", std::int64_t{7});
+  }
+  refused("bundle = \"old\"\n", "format version 7 is not supported");
+}

@@ -1,0 +1,131 @@
+// tessera run: the indentation test of a slab, end to end.
+#include "geometry/input_error.h"
+#include "levelset/bundle.h"
+#include "solver/indentation.h"
+#include "solver/response.h"
+#include "solver/run_output.h"
+#include "solver/scene.h"
+#include "solver/world.h"
+#include "tools/commands.h"
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+namespace tessera::tools {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::atomic<bool> stopRequested{false};
+extern "C" void requestStop(int) { stopRequested = true; }
+
+struct RunArguments {
+  std::string scene;
+  std::string output;
+  std::string bundle;  // overrides the scene's
+  int threads = -1;
+  bool noPlot = false;
+};
+
+// Runs Debian's Python on the plotting script; a missing matplotlib only costs the picture.
+void plotCurve(const fs::path& out) {
+  const fs::path script = fs::path(TESSERA_SOURCE_DIR) / "tools" / "plot" / "plot_curve.py";
+  const std::string command = "/usr/bin/python3 '" + script.string() + "' '" + out.string() + "' >/dev/null 2>&1";
+  if (!fs::exists(script) || std::system(command.c_str()) != 0)
+    std::cerr << "run: note: curve.png not drawn (needs /usr/bin/python3 with matplotlib: scripts/setup.sh installs it)\n";
+}
+
+int runTest(const RunArguments& a) {
+  Scene scene = readScene(a.scene);
+  if (!a.bundle.empty()) scene.bundle = a.bundle;
+  if (a.threads >= 0) scene.solver.threads = a.threads;
+  const Bundle bundle = readBundle(scene.bundle);
+  if (bundle.bodies.empty())
+    throw InputError(scene.bundle + ": the bundle holds no bodies; build a slab with tessera tile");
+
+  ContactParameters contact = scene.contact;
+  if (contact.spanLength == 0) contact.spanLength = bundle.spanLength;
+  if (contact.spanInterfaces == 0) contact.spanInterfaces = bundle.spanInterfaces;
+  if (!(contact.spanLength > 0) || contact.spanInterfaces < 1)
+    throw InputError(scene.path + ": the span (M, L) for k_n = E M / L is unknown: the bundle does not define one; "
+                     "set [span] length and interfaces");
+
+  World world(bundle, contact, scene.solver);
+  std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, dt = %.3g s (automatic %.3g s)\n",
+               bundle.bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
+               world.timeStep(), world.automaticTimeStep());
+
+  std::signal(SIGINT, requestStop);
+  std::signal(SIGTERM, requestStop);
+  IndentationRecord record;
+  std::string failure;
+  try {
+    runIndentation(world, bundle, scene, record,
+                   [](const Progress& p) {
+                     std::fprintf(stderr,
+                                  "run: delta %7.3f mm  P %9.3f N  KE/W %.2e  contacts %7ld  step %9ld  %6.0f steps/s  ETA %.0f s\n",
+                                  p.delta * 1e3, p.load, p.externalWork > 0 ? p.kinetic / p.externalWork : 0.0, p.contacts,
+                                  p.steps, p.stepsPerSecond, p.etaSeconds);
+                   },
+                   [] { return stopRequested.load(); });
+  } catch (const SolverInstability& e) {
+    failure = e.what();
+    record.stopReason = "instability";
+  }
+  if (!record.settled && record.stopReason != "interrupted")
+    std::fprintf(stderr, "run: warning: the slab had not settled after %.3g s (kinetic energy above %.3g J)\n",
+                 record.settleTime, scene.protocol.settleKinetic);
+
+  double thickness = 0;
+  if (record.target >= 0) {
+    Eigen::AlignedBox3d box;
+    for (const auto& v : bundle.shapes[bundle.bodies[record.target].shape].mesh.vertices) box.extend(v);
+    thickness = box.sizes().z();
+  }
+  const ResponseParameters r = analyseResponse(record, contact.youngsModulus, contact.spanLength, thickness);
+  writeRunOutputs(a.output, scene, bundle, contact, record, r);
+  if (!a.noPlot && !record.curve.empty()) plotCurve(a.output);
+
+  std::printf("settled in %.4g s (%ld steps)%s; loaded block '%s'; stopped: %s\n", record.settleTime, record.settleSteps,
+              record.settled ? "" : " (not settled)", record.targetName.c_str(), record.stopReason.c_str());
+  std::printf("  peak load          P_max = %.4g N at delta = %.4g mm\n", r.peakLoad, r.deltaAtPeak * 1e3);
+  std::printf("  initial stiffness  K = %.4g N/mm (fit over delta in [%.3g, %.3g] mm)\n", r.stiffness * 1e-3,
+              r.fitFrom * 1e3, r.fitTo * 1e3);
+  std::printf("  loading energy     W = %.4g mJ\n", r.energy * 1e3);
+  std::printf("  ultimate deflection %.4g mm\n", r.ultimateDeflection * 1e3);
+  std::printf("  failure            %s", r.failureMode.c_str());
+  for (const FallenBody& f : record.fallen) std::printf(" [%s at %.3g mm]", f.name.c_str(), f.delta * 1e3);
+  std::printf("\n  quasi-static check max KE / W before the peak = %.2e\n", r.quasiStaticRatio);
+  std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
+  std::printf("written to %s (results.h5, curve.csv, summary.json, curve.png, paraview/slab.pvd)\n", a.output.c_str());
+  if (!failure.empty()) {
+    std::cerr << "tessera: error: the run became unstable and was stopped: " << failure << "\n";
+    return 3;
+  }
+  return record.stopReason == "interrupted" ? 130 : 0;
+}
+
+}  // namespace
+
+void addRunCommand(CLI::App& app) {
+  auto args = std::make_shared<RunArguments>();
+  CLI::App* cmd = app.add_subcommand("run", "Run the indentation test of a slab: settle, indent, record P(delta), analyse.");
+  cmd->add_option("scene", args->scene, "Scene file (TOML, docs/scene.md), e.g. assets/scenes/default.toml")->required();
+  cmd->add_option("-o,--output", args->output, "Directory for the results (created)")->required();
+  cmd->add_option("--bundle", args->bundle, "Bundle directory, instead of the scene's 'bundle'");
+  cmd->add_option("--threads", args->threads, "Threads for the contact loop [default: the scene's, 0 = all cores]");
+  cmd->add_flag("--no-plot", args->noPlot, "Do not draw curve.png");
+  cmd->footer("Example: tessera run assets/scenes/default.toml --bundle out/default_slab -o out/run\n"
+              "Ctrl-C stops the run and still writes everything recorded so far (exit status 130).");
+  cmd->callback([args] {
+    const int status = runTest(*args);
+    if (status != 0) throw CLI::RuntimeError(status);
+  });
+}
+
+}  // namespace tessera::tools
