@@ -94,6 +94,12 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
   double contactTravel = -1;  // indenter travel at first contact
   double peak = 0;
   double nextSample = 0, nextSnapshot = 0, lastProgress = wall();
+  const auto sample = [&](double delta, double load) {
+    const EnergyBudget e = world.energy();
+    record.curve.push_back({world.time() - loadStart, delta, load, e.kinetic, e.obstacleWork, e.elastic,
+                            nodeContacts(world),
+                            world.isRetired(record.target) ? fallenDistance : targetZ0 - bodies.position[record.target].z()});
+  };
   const double travelMax = scene.protocol.deltaMax + scene.indenter.clearance + scene.indenter.radius;
   for (;;) {
     if (interrupted()) {
@@ -114,11 +120,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
       }
 
     if (contactTravel >= 0 && delta >= nextSample) {
-      const EnergyBudget e = world.energy();
-      const double drop = targetZ0 - (world.isRetired(record.target) ? -std::numeric_limits<double>::infinity()
-                                                                      : bodies.position[record.target].z());
-      record.curve.push_back({world.time() - loadStart, delta, load, e.kinetic, e.obstacleWork, e.elastic,
-                              nodeContacts(world), std::isfinite(drop) ? drop : fallenDistance});
+      sample(delta, load);
       nextSample += scene.output.sampleEvery;
     }
     if (contactTravel >= 0 && delta >= nextSnapshot) {
@@ -146,6 +148,9 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
       break;
     }
   }
+  // The state at the stop closes the curve (the drop to zero of a failure, for one).
+  if (contactTravel >= 0 && (record.curve.empty() || record.curve.back().time < world.time() - loadStart))
+    sample(scene.indenter.speed * (world.time() - loadStart) - contactTravel, world.sphereReaction(sphere).z());
   if (!record.curve.empty() && record.snapshots.back().delta < record.curve.back().delta)
     record.snapshots.push_back(snapshotOf(world, record.curve.back().delta, record.curve.back().load));
   record.steps = world.stepCount();
