@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# CTest: the ParaView time series of `tessera run` loads in VTK's own readers, every frame with
+# all blocks, and curve.png is drawn. Usage: run_paraview_readable.sh TESSERA PYTHON SOURCE_DIR
+set -euo pipefail
+tessera=$1 python=$2 source=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+"$tessera" tile --block "$source/assets/blocks/planar_a10_h3.18_5deg.obj" --unit mm --grid 3x3 --pitch 10 \
+  --spacing 1.0 -o "$work/slab" > /dev/null
+printf 'bundle = "slab"\n[indenter]\nspeed = 0.05\n[protocol]\ndelta_max = 0.3e-3\n[damping]\nlocal = 0.3\n[output]\nsnapshot_every = 0.1e-3\n' > "$work/scene.toml"
+"$tessera" run "$work/scene.toml" -o "$work/out" > /dev/null 2>&1
+"$python" - "$work/out" <<'PY'
+import sys, xml.etree.ElementTree as ET
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+out = sys.argv[1]
+frames = [d.get("file") for d in ET.parse(f"{out}/paraview/slab.pvd").getroot().iter("DataSet")]
+assert len(frames) >= 3, frames
+for name in frames:
+    r = vtkXMLUnstructuredGridReader()
+    r.SetFileName(f"{out}/paraview/{name}")
+    r.Update()
+    grid = r.GetOutput()
+    assert grid.GetNumberOfCells() == 9 * 12, (name, grid.GetNumberOfCells())
+    assert grid.GetCellData().GetArray("body_id") is not None
+print(f"ok: {len(frames)} frames of 9 blocks")
+PY
+test -s "$work/out/curve.png"
