@@ -32,35 +32,9 @@ long nodeContacts(const World& world) {
   return n;
 }
 
-Snapshot snapshotOf(const World& world, double delta, double load) {
-  return Snapshot{delta, load, world.bodies().position, world.bodies().orientation};
-}
-
-}  // namespace
-
-void runIndentation(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
-                    const std::function<void(const Progress&)>& progress, const std::function<bool()>& interrupted) {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  record.timeStep = world.timeStep();
-  const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-
-  // 1. Settle under gravity.
-  while (world.time() < scene.protocol.settleMaxTime) {
-    world.step();
-    if (world.stepCount() % 100 == 0 && world.stepCount() >= 1000 && world.energy().kinetic < scene.protocol.settleKinetic) {
-      record.settled = true;
-      break;
-    }
-    if (interrupted()) {
-      record.stopReason = "interrupted";
-      return;
-    }
-  }
-  record.settleTime = world.time();
-  record.settleSteps = world.stepCount();
-
-  // 2. Target and indenter.
+// After settling: choose the target, place the indenter just above its top.
+void startLoading(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
+                  IndentationState& state) {
   RigidBodies& bodies = world.bodies();
   record.target = -1;
   if (!scene.indenter.target.empty()) {
@@ -72,89 +46,130 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     if (record.target < 0) throw std::invalid_argument("the bundle has no free body to load");
   }
   record.targetName = bodies.name[record.target];
-  const Shape& targetShape = bundle.shapes[bodies.shape[record.target]];
   double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
-  for (const auto& v : targetShape.mesh.vertices) {
+  for (const auto& v : bundle.shapes[bodies.shape[record.target]].mesh.vertices) {
     const double z = (bodies.orientation[record.target] * v + bodies.position[record.target]).z();
     top = std::max(top, z);
     bottom = std::min(bottom, z);
   }
-  const double fallenDistance = scene.protocol.fallenDistance > 0 ? scene.protocol.fallenDistance : top - bottom;
+  state.fallenDistance = scene.protocol.fallenDistance > 0 ? scene.protocol.fallenDistance : top - bottom;
   SphereObstacle indenter;
   indenter.radius = scene.indenter.radius;
   indenter.center = bodies.position[record.target];
   indenter.center.z() = top + scene.indenter.radius + scene.indenter.clearance;
   indenter.velocity = Eigen::Vector3d(0, 0, -scene.indenter.speed);
-  const int sphere = world.addSphere(indenter);
-  const std::vector<Eigen::Vector3d> settledPosition = bodies.position;
-  const double targetZ0 = bodies.position[record.target].z();
+  state.sphere = world.addSphere(indenter);
+  state.settledPosition = bodies.position;
+  state.targetZ0 = bodies.position[record.target].z();
+  state.loadStart = world.time();
+  state.phase = 1;
+}
 
-  // 3. Push at constant speed.
-  const double loadStart = world.time();
-  double contactTravel = -1;  // indenter travel at first contact
-  double peak = 0;
-  double nextSample = 0, nextSnapshot = 0, lastProgress = wall();
-  const auto sample = [&](double delta, double load) {
-    const EnergyBudget e = world.energy();
-    record.curve.push_back({world.time() - loadStart, delta, load, e.kinetic, e.obstacleWork, e.elastic,
-                            nodeContacts(world),
-                            world.isRetired(record.target) ? fallenDistance : targetZ0 - bodies.position[record.target].z()});
+}  // namespace
+
+void runIndentation(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
+                    IndentationState& state, const RunHooks& hooks) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const double wallBefore = record.wallSeconds;
+  const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  record.timeStep = world.timeStep();
+  double lastProgress = wall(), lastCheckpoint = wall();
+  const auto finishSession = [&] {
+    record.steps = world.stepCount();
+    record.wallSeconds = wallBefore + wall();
+    if (hooks.checkpoint) hooks.checkpoint(state);
   };
-  const double travelMax = scene.protocol.deltaMax + scene.indenter.clearance + scene.indenter.radius;
-  for (;;) {
-    if (interrupted()) {
+  const auto checkpointDue = [&] {
+    if (!hooks.checkpoint || world.stepCount() % 100 != 0 || wall() - lastCheckpoint < hooks.checkpointSeconds) return;
+    lastCheckpoint = wall();
+    record.steps = world.stepCount();
+    record.wallSeconds = wallBefore + wall();
+    hooks.checkpoint(state);
+  };
+
+  // 1. Settle under gravity.
+  while (state.phase == 0) {
+    if (hooks.interrupted()) {
       record.stopReason = "interrupted";
+      return finishSession();
+    }
+    if (world.time() >= scene.protocol.settleMaxTime) break;
+    world.step();
+    if (world.stepCount() % 100 == 0 && world.stepCount() >= 1000 && world.energy().kinetic < scene.protocol.settleKinetic) {
+      record.settled = true;
       break;
     }
+    checkpointDue();
+  }
+  if (state.phase == 0) {
+    record.settleTime = world.time();
+    record.settleSteps = world.stepCount();
+    startLoading(world, bundle, scene, record, state);
+  }
+
+  // 2. Push at constant speed.
+  RigidBodies& bodies = world.bodies();
+  const double speed = scene.indenter.speed;
+  const double travelMax = scene.protocol.deltaMax + scene.indenter.clearance + scene.indenter.radius;
+  const auto sample = [&](double delta, double load) {
+    const EnergyBudget e = world.energy();
+    record.curve.push_back({world.time() - state.loadStart, delta, load, e.kinetic, e.obstacleWork, e.elastic,
+                            nodeContacts(world),
+                            world.isRetired(record.target) ? state.fallenDistance
+                                                           : state.targetZ0 - bodies.position[record.target].z()});
+  };
+  while (state.phase == 1) {
+    if (hooks.interrupted()) {
+      record.stopReason = "interrupted";
+      return finishSession();
+    }
     world.step();
-    const double travel = scene.indenter.speed * (world.time() - loadStart);
-    const double load = world.sphereReaction(sphere).z();
-    if (contactTravel < 0 && load > 0) contactTravel = travel;
-    const double delta = contactTravel < 0 ? 0.0 : travel - contactTravel;
+    const double travel = speed * (world.time() - state.loadStart);
+    const double load = world.sphereReaction(state.sphere).z();
+    if (state.contactTravel < 0 && load > 0) state.contactTravel = travel;
+    const double delta = state.contactTravel < 0 ? 0.0 : travel - state.contactTravel;
 
     // Retire bodies that have fallen clear.
     for (std::size_t i = 0; i < bodies.size(); ++i)
-      if (!bodies.fixed[i] && settledPosition[i].z() - bodies.position[i].z() > fallenDistance) {
+      if (!bodies.fixed[i] && state.settledPosition[i].z() - bodies.position[i].z() > state.fallenDistance) {
         record.fallen.push_back({bodies.name[i], delta});
         world.retireBody(static_cast<int>(i));
       }
 
-    if (contactTravel >= 0 && delta >= nextSample) {
+    if (state.contactTravel >= 0 && delta >= state.nextSample) {
       sample(delta, load);
-      nextSample += scene.output.sampleEvery;
+      state.nextSample += scene.output.sampleEvery;
     }
-    if (contactTravel >= 0 && delta >= nextSnapshot) {
-      record.snapshots.push_back(snapshotOf(world, delta, load));
-      nextSnapshot += scene.output.snapshotEvery;
+    if (state.contactTravel >= 0 && delta >= state.nextSnapshot) {
+      record.snapshots.push_back({delta, load, bodies.position, bodies.orientation});
+      state.nextSnapshot += scene.output.snapshotEvery;
     }
-    peak = std::max(peak, load);
+    state.peak = std::max(state.peak, load);
 
-    if (wall() - lastProgress >= scene.output.progressSeconds) {
+    if (hooks.progress && wall() - lastProgress >= scene.output.progressSeconds) {
       lastProgress = wall();
       const double done = std::max(travel / travelMax, 1e-9);
-      progress({delta, load, world.energy().kinetic, world.energy().obstacleWork, nodeContacts(world), world.stepCount(),
-                world.stepCount() / wall(), wall() * (1 - done) / done});
+      hooks.progress({delta, load, world.energy().kinetic, world.energy().obstacleWork, nodeContacts(world),
+                      world.stepCount(), world.stepCount() / (wallBefore + wall()), (wallBefore + wall()) * (1 - done) / done});
     }
-    if (contactTravel >= 0 && delta >= scene.protocol.deltaMax) {
-      record.stopReason = "delta_max";
+    const bool reachedMax = (state.contactTravel >= 0 && delta >= scene.protocol.deltaMax) ||
+                            travel > travelMax + scene.protocol.deltaMax;  // the latter: never touched anything
+    const bool failed = scene.protocol.stopOnFailure && state.peak > 0 && world.isRetired(record.target) &&
+                        load <= 0.01 * state.peak;
+    if (reachedMax || failed) {
+      record.stopReason = failed ? "failure" : "delta_max";
+      // The state at the stop closes the curve (the drop to zero of a failure, for one).
+      if (state.contactTravel >= 0 && (record.curve.empty() || record.curve.back().time < world.time() - state.loadStart))
+        sample(delta, load);
+      if (!record.curve.empty() && (record.snapshots.empty() || record.snapshots.back().delta < record.curve.back().delta))
+        record.snapshots.push_back({delta, load, bodies.position, bodies.orientation});
+      state.phase = 2;
       break;
     }
-    if (travel > travelMax + scene.protocol.deltaMax) {  // never touched anything
-      record.stopReason = "delta_max";
-      break;
-    }
-    if (scene.protocol.stopOnFailure && peak > 0 && world.isRetired(record.target) && load <= 0.01 * peak) {
-      record.stopReason = "failure";
-      break;
-    }
+    checkpointDue();
   }
-  // The state at the stop closes the curve (the drop to zero of a failure, for one).
-  if (contactTravel >= 0 && (record.curve.empty() || record.curve.back().time < world.time() - loadStart))
-    sample(scene.indenter.speed * (world.time() - loadStart) - contactTravel, world.sphereReaction(sphere).z());
-  if (!record.curve.empty() && record.snapshots.back().delta < record.curve.back().delta)
-    record.snapshots.push_back(snapshotOf(world, record.curve.back().delta, record.curve.back().load));
-  record.steps = world.stepCount();
-  record.wallSeconds = wall();
+  finishSession();
 }
 
 }  // namespace tessera

@@ -57,6 +57,27 @@ struct Progress {
   double stepsPerSecond, etaSeconds;
 };
 
+/// Where the protocol is: enough, with the World's state and the record, to resume it exactly.
+struct IndentationState {
+  int phase = 0;             ///< 0 settling, 1 loading, 2 finished
+  int sphere = -1;           ///< the indenter's index in the World
+  double loadStart = 0;      ///< s, when loading began
+  double contactTravel = -1; ///< m, indenter travel at first contact (< 0: not yet)
+  double peak = 0;           ///< N, largest load so far
+  double nextSample = 0, nextSnapshot = 0;  ///< m of delta
+  double fallenDistance = 0; ///< m
+  double targetZ0 = 0;       ///< m, settled height of the loaded block
+  std::vector<Eigen::Vector3d> settledPosition;
+};
+
+/// What the caller hears while the test runs.
+struct RunHooks {
+  std::function<void(const Progress&)> progress;
+  std::function<bool()> interrupted;           ///< true: stop now (the record stays valid)
+  std::function<void(const IndentationState&)> checkpoint;  ///< every checkpointSeconds of wall time and at the stop
+  double checkpointSeconds = 30.0;
+};
+
 /// The indentation test (DESIGN §5): settle under gravity until the kinetic energy is below
 /// protocol.settleKinetic (or settleMaxTime passes); put the spherical indenter just above the top
 /// of the target block; push it down at constant speed, sampling the curve; retire bodies that
@@ -64,8 +85,9 @@ struct Progress {
 /// once the loaded block has fallen and the load is below 1 % of its peak, or when `interrupted`
 /// returns true. SolverInstability propagates (the caller keeps what was recorded so far through
 /// `record`).
+/// Runs (or, from a restored World, record and state, resumes) the test.
 void runIndentation(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
-                    const std::function<void(const Progress&)>& progress, const std::function<bool()>& interrupted);
+                    IndentationState& state, const RunHooks& hooks);
 
 /// The free body nearest the bodies' centre in x and y (the default target).
 int centralFreeBody(const World& world);

@@ -108,7 +108,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
     out << "delta_mm,load_N,time_s,kinetic_J,external_work_J,contacts\n";
     char line[160];
     for (const CurveSample& s : record.curve) {
-      std::snprintf(line, sizeof line, "%.6f,%.6f,%.9g,%.6g,%.6g,%ld\n", s.delta * 1e3, s.load, s.time, s.kinetic,
+      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%ld\n", s.delta * 1e3, s.load, s.time, s.kinetic,
                     s.externalWork, s.contacts);
       out << line;
     }
@@ -162,7 +162,9 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   for (std::size_t k = 0; k < record.snapshots.size(); ++k) {
     char name[32];
     std::snprintf(name, sizeof name, "blocks_%04zu.vtu", k);
-    writeBlocksVtu(bundle, record.snapshots[k].position, record.snapshots[k].orientation, (dir / "paraview" / name).string());
+    // Frames are final once written (a resumed run writes the same ones): write each once.
+    if (!fs::exists(dir / "paraview" / name))
+      writeBlocksVtu(bundle, record.snapshots[k].position, record.snapshots[k].orientation, (dir / "paraview" / name).string());
     files.push_back(name);
     times.push_back(record.snapshots[k].delta * 1e3);  // "time" axis in ParaView: delta in mm
   }

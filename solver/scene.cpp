@@ -170,6 +170,7 @@ Scene readScene(const std::string& path) {
   output.number("sample_every", scene.output.sampleEvery, 1e-9, 1, "m of travel");
   output.number("snapshot_every", scene.output.snapshotEvery, 1e-9, 1, "m of travel");
   output.number("progress_seconds", scene.output.progressSeconds, 0, 1e6, "s");
+  output.number("checkpoint_seconds", scene.output.checkpointSeconds, 0, 1e6, "s");
   output.finish();
   return scene;
 }

@@ -28,6 +28,7 @@ struct OutputSettings {
   double sampleEvery = 10e-6;     ///< m of indenter travel between curve samples
   double snapshotEvery = 0.5e-3;  ///< m of indenter travel between body-pose snapshots
   double progressSeconds = 2.0;   ///< s of wall time between progress lines
+  double checkpointSeconds = 30.0; ///< s of wall time between checkpoints (and result files)
 };
 
 /// Everything a `tessera run` needs besides the bundle itself. Lengths in m, SI throughout.

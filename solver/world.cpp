@@ -94,6 +94,57 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   retired_.assign(n, 0);
 }
 
+WorldState World::state() const {
+  WorldState s;
+  s.bodies = bodies_;
+  s.retired = retired_;
+  s.spheres = spheres_;
+  s.planes = planes_;
+  s.pairs = pairs_;
+  s.builtPosition = builtPosition_;
+  s.builtSphereCentre = builtSphereCentre_;
+  s.builtOrientation = builtOrientation_;
+  s.pairsValid = pairsValid_;
+  s.force = force_;
+  s.torque = torque_;
+  s.contactForce = contactForce_;
+  s.contactTorque = contactTorque_;
+  s.sphereReaction = sphereReaction_;
+  s.forcesValid = forcesValid_;
+  s.startPosition = startPosition_;
+  s.initialEnergy = initialEnergy_;
+  s.obstacleWork = obstacleWork_;
+  s.mostSupplied = mostSupplied_;
+  s.time = time_;
+  s.steps = steps_;
+  return s;
+}
+
+void World::restore(const WorldState& s) {
+  if (s.bodies.size() != bodies_.size()) throw std::invalid_argument("checkpoint holds a different number of bodies");
+  bodies_ = s.bodies;
+  retired_ = s.retired;
+  spheres_ = s.spheres;
+  planes_ = s.planes;
+  pairs_ = s.pairs;
+  builtPosition_ = s.builtPosition;
+  builtSphereCentre_ = s.builtSphereCentre;
+  builtOrientation_ = s.builtOrientation;
+  pairsValid_ = s.pairsValid;
+  force_ = s.force;
+  torque_ = s.torque;
+  contactForce_ = s.contactForce;
+  contactTorque_ = s.contactTorque;
+  sphereReaction_ = s.sphereReaction;
+  forcesValid_ = s.forcesValid;
+  startPosition_ = s.startPosition;
+  initialEnergy_ = s.initialEnergy;
+  obstacleWork_ = s.obstacleWork;
+  mostSupplied_ = s.mostSupplied;
+  time_ = s.time;
+  steps_ = s.steps;
+}
+
 void World::retireBody(int i) {
   if (retired_[i]) return;
   retired_[i] = 1;

@@ -32,6 +32,23 @@ struct EnergyBudget {
   double balance() const { return kinetic + elastic - gravityWork - obstacleWork - initial; }
 };
 
+/// Everything a World changes as it runs: saved in checkpoints, restored to resume bit-identically.
+struct WorldState {
+  RigidBodies bodies;
+  std::vector<char> retired;
+  std::vector<SphereObstacle> spheres;
+  std::vector<PlaneObstacle> planes;
+  std::vector<PairContacts> pairs;  ///< with their springs and last forces
+  std::vector<Eigen::Vector3d> builtPosition, builtSphereCentre;
+  std::vector<Eigen::Quaterniond> builtOrientation;
+  bool pairsValid = false;
+  std::vector<Eigen::Vector3d> force, torque, contactForce, contactTorque, sphereReaction;
+  bool forcesValid = false;
+  std::vector<Eigen::Vector3d> startPosition;
+  double initialEnergy = 0, obstacleWork = 0, mostSupplied = 0, time = 0;
+  long steps = 0;
+};
+
 /// An LS-DEM world: rigid bodies from a bundle, analytic obstacles, node-vs-level-set contacts,
 /// velocity-Verlet time integration with a symplectic free-rotation splitting.
 class World {
@@ -59,6 +76,10 @@ public:
 
   /// Advances one step. Throws SolverInstability instead of producing garbage.
   void step();
+
+  /// The changing state, and its restoration into a World made from the same bundle and settings.
+  WorldState state() const;
+  void restore(const WorldState& state);
 
   /// Takes a body out of the computation (a block that has fallen clear): it is frozen where it
   /// is, no longer integrated and no longer in any pair.

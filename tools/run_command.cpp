@@ -1,6 +1,7 @@
 // tessera run: the indentation test of a slab, end to end.
 #include "geometry/input_error.h"
 #include "levelset/bundle.h"
+#include "solver/checkpoint.h"
 #include "solver/indentation.h"
 #include "solver/response.h"
 #include "solver/run_output.h"
@@ -27,6 +28,7 @@ extern "C" void requestStop(int) { stopRequested = true; }
 struct RunArguments {
   std::string scene;
   std::string output;
+  std::string resume;  // output directory of a stopped run
   std::string bundle;  // overrides the scene's
   int threads = -1;
   bool noPlot = false;
@@ -40,10 +42,56 @@ void plotCurve(const fs::path& out) {
     std::cerr << "run: note: curve.png not drawn (needs /usr/bin/python3 with matplotlib: scripts/setup.sh installs it)\n";
 }
 
+double thicknessOf(const Bundle& bundle, int body) {
+  if (body < 0) return 0.0;
+  Eigen::AlignedBox3d box;
+  for (const auto& v : bundle.shapes[bundle.bodies[body].shape].mesh.vertices) box.extend(v);
+  return box.sizes().z();
+}
+
+void printSummary(const IndentationRecord& record, const ResponseParameters& r, const std::string& out) {
+  std::printf("settled in %.4g s (%ld steps)%s; loaded block '%s'; stopped: %s\n", record.settleTime, record.settleSteps,
+              record.settled ? "" : " (not settled)", record.targetName.c_str(), record.stopReason.c_str());
+  std::printf("  peak load          P_max = %.4g N at delta = %.4g mm\n", r.peakLoad, r.deltaAtPeak * 1e3);
+  std::printf("  initial stiffness  K = %.4g N/mm (fit over delta in [%.3g, %.3g] mm)\n", r.stiffness * 1e-3,
+              r.fitFrom * 1e3, r.fitTo * 1e3);
+  std::printf("  loading energy     W = %.4g mJ\n", r.energy * 1e3);
+  std::printf("  ultimate deflection %.4g mm\n", r.ultimateDeflection * 1e3);
+  std::printf("  failure            %s", r.failureMode.c_str());
+  for (const FallenBody& f : record.fallen) std::printf(" [%s at %.3g mm]", f.name.c_str(), f.delta * 1e3);
+  std::printf("\n  quasi-static check max KE / W before the peak = %.2e\n", r.quasiStaticRatio);
+  std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
+  std::printf("written to %s (results.h5, curve.csv, summary.json, curve.png, paraview/slab.pvd, checkpoint.h5)\n",
+              out.c_str());
+}
+
 int runTest(const RunArguments& a) {
-  Scene scene = readScene(a.scene);
-  if (!a.bundle.empty()) scene.bundle = a.bundle;
-  if (a.threads >= 0) scene.solver.threads = a.threads;
+  const bool resume = !a.resume.empty();
+  if (resume == !a.scene.empty())
+    throw InputError("give either a SCENE file (with -o OUTDIR) or --resume OUTDIR");
+  const std::string out = resume ? a.resume : a.output;
+  if (!resume && out.empty()) throw InputError("-o OUTDIR is required with a scene");
+  const std::string checkpointFile = (fs::path(out) / "checkpoint.h5").string();
+
+  Scene scene;
+  CheckpointSource source;
+  if (resume) {
+    source = readCheckpointSource(checkpointFile);
+    scene = readScene(source.scene);
+    scene.bundle = source.bundle;
+    scene.solver.threads = source.threads;
+    if (a.threads >= 0 && a.threads != source.threads) {
+      std::cerr << "run: note: resuming with " << a.threads << " threads instead of " << source.threads << "\n";
+      scene.solver.threads = a.threads;
+    }
+  } else {
+    scene = readScene(a.scene);
+    if (!a.bundle.empty()) scene.bundle = a.bundle;
+    if (a.threads >= 0) scene.solver.threads = a.threads;
+    if (fs::exists(checkpointFile))
+      throw InputError(out + ": holds a run already; resume it with --resume " + out + " or choose another -o");
+    source = {fs::absolute(scene.path).string(), fs::absolute(scene.bundle).string(), scene.solver.threads};
+  }
   const Bundle bundle = readBundle(scene.bundle);
   if (bundle.bodies.empty())
     throw InputError(scene.bundle + ": the bundle holds no bodies; build a slab with tessera tile");
@@ -56,53 +104,51 @@ int runTest(const RunArguments& a) {
                      "set [span] length and interfaces");
 
   World world(bundle, contact, scene.solver);
+  IndentationRecord record;
+  IndentationState state;
+  if (resume) {
+    WorldState restored = world.state();
+    readCheckpoint(checkpointFile, restored, state, record);
+    world.restore(restored);
+    std::fprintf(stderr, "run: resuming %s at t = %.6g s (step %ld)\n", out.c_str(), world.time(), world.stepCount());
+  }
   std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, dt = %.3g s (automatic %.3g s)\n",
                bundle.bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
                world.timeStep(), world.automaticTimeStep());
 
+  const auto response = [&] {
+    return analyseResponse(record, contact.youngsModulus, contact.spanLength, thicknessOf(bundle, record.target));
+  };
+  RunHooks hooks;
+  hooks.progress = [](const Progress& p) {
+    std::fprintf(stderr, "run: delta %7.3f mm  P %9.3f N  KE/W %.2e  contacts %7ld  step %9ld  %6.0f steps/s  ETA %.0f s\n",
+                 p.delta * 1e3, p.load, p.externalWork > 0 ? p.kinetic / p.externalWork : 0.0, p.contacts, p.steps,
+                 p.stepsPerSecond, p.etaSeconds);
+  };
+  hooks.interrupted = [] { return stopRequested.load(); };
+  hooks.checkpointSeconds = scene.output.checkpointSeconds;
+  hooks.checkpoint = [&](const IndentationState& s) {
+    fs::create_directories(out);
+    writeCheckpoint(checkpointFile, source, world.state(), s, record);
+    writeRunOutputs(out, scene, bundle, contact, record, response());
+  };
+
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
-  IndentationRecord record;
   std::string failure;
   try {
-    runIndentation(world, bundle, scene, record,
-                   [](const Progress& p) {
-                     std::fprintf(stderr,
-                                  "run: delta %7.3f mm  P %9.3f N  KE/W %.2e  contacts %7ld  step %9ld  %6.0f steps/s  ETA %.0f s\n",
-                                  p.delta * 1e3, p.load, p.externalWork > 0 ? p.kinetic / p.externalWork : 0.0, p.contacts,
-                                  p.steps, p.stepsPerSecond, p.etaSeconds);
-                   },
-                   [] { return stopRequested.load(); });
+    runIndentation(world, bundle, scene, record, state, hooks);
   } catch (const SolverInstability& e) {
     failure = e.what();
     record.stopReason = "instability";
+    record.steps = world.stepCount();
+    writeRunOutputs(out, scene, bundle, contact, record, response());  // what was recorded, not the unstable state
   }
   if (!record.settled && record.stopReason != "interrupted")
     std::fprintf(stderr, "run: warning: the slab had not settled after %.3g s (kinetic energy above %.3g J)\n",
                  record.settleTime, scene.protocol.settleKinetic);
-
-  double thickness = 0;
-  if (record.target >= 0) {
-    Eigen::AlignedBox3d box;
-    for (const auto& v : bundle.shapes[bundle.bodies[record.target].shape].mesh.vertices) box.extend(v);
-    thickness = box.sizes().z();
-  }
-  const ResponseParameters r = analyseResponse(record, contact.youngsModulus, contact.spanLength, thickness);
-  writeRunOutputs(a.output, scene, bundle, contact, record, r);
-  if (!a.noPlot && !record.curve.empty()) plotCurve(a.output);
-
-  std::printf("settled in %.4g s (%ld steps)%s; loaded block '%s'; stopped: %s\n", record.settleTime, record.settleSteps,
-              record.settled ? "" : " (not settled)", record.targetName.c_str(), record.stopReason.c_str());
-  std::printf("  peak load          P_max = %.4g N at delta = %.4g mm\n", r.peakLoad, r.deltaAtPeak * 1e3);
-  std::printf("  initial stiffness  K = %.4g N/mm (fit over delta in [%.3g, %.3g] mm)\n", r.stiffness * 1e-3,
-              r.fitFrom * 1e3, r.fitTo * 1e3);
-  std::printf("  loading energy     W = %.4g mJ\n", r.energy * 1e3);
-  std::printf("  ultimate deflection %.4g mm\n", r.ultimateDeflection * 1e3);
-  std::printf("  failure            %s", r.failureMode.c_str());
-  for (const FallenBody& f : record.fallen) std::printf(" [%s at %.3g mm]", f.name.c_str(), f.delta * 1e3);
-  std::printf("\n  quasi-static check max KE / W before the peak = %.2e\n", r.quasiStaticRatio);
-  std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
-  std::printf("written to %s (results.h5, curve.csv, summary.json, curve.png, paraview/slab.pvd)\n", a.output.c_str());
+  if (!a.noPlot && !record.curve.empty()) plotCurve(out);
+  printSummary(record, response(), out);
   if (!failure.empty()) {
     std::cerr << "tessera: error: the run became unstable and was stopped: " << failure << "\n";
     return 3;
@@ -115,13 +161,15 @@ int runTest(const RunArguments& a) {
 void addRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArguments>();
   CLI::App* cmd = app.add_subcommand("run", "Run the indentation test of a slab: settle, indent, record P(delta), analyse.");
-  cmd->add_option("scene", args->scene, "Scene file (TOML, docs/scene.md), e.g. assets/scenes/default.toml")->required();
-  cmd->add_option("-o,--output", args->output, "Directory for the results (created)")->required();
+  cmd->add_option("scene", args->scene, "Scene file (TOML, docs/scene.md), e.g. assets/scenes/default.toml");
+  cmd->add_option("-o,--output", args->output, "Directory for the results (created)");
+  cmd->add_option("--resume", args->resume, "Continue the stopped run in this output directory from its checkpoint.h5");
   cmd->add_option("--bundle", args->bundle, "Bundle directory, instead of the scene's 'bundle'");
   cmd->add_option("--threads", args->threads, "Threads for the contact loop [default: the scene's, 0 = all cores]");
   cmd->add_flag("--no-plot", args->noPlot, "Do not draw curve.png");
   cmd->footer("Example: tessera run assets/scenes/default.toml --bundle out/default_slab -o out/run\n"
-              "Ctrl-C stops the run and still writes everything recorded so far (exit status 130).");
+              "Ctrl-C stops the run and still writes everything recorded so far (exit status 130);\n"
+              "tessera run --resume out/run continues it, exactly as if it had not stopped.");
   cmd->callback([args] {
     const int status = runTest(*args);
     if (status != 0) throw CLI::RuntimeError(status);

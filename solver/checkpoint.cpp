@@ -1,0 +1,323 @@
+#include "solver/checkpoint.h"
+
+#include "geometry/input_error.h"
+#include "levelset/hdf5_file.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+using h5::Handle;
+
+namespace {
+
+constexpr const char* kFormat = "tessera-checkpoint";
+constexpr std::int64_t kVersion = 1;
+
+hsize_t count(std::size_t n) { return static_cast<hsize_t>(n); }
+
+void writeVectors(hid_t g, const std::string& name, const std::vector<Eigen::Vector3d>& v) {
+  std::vector<double> flat;
+  for (const auto& x : v) flat.insert(flat.end(), {x.x(), x.y(), x.z()});
+  h5::writeDataset(g, name, flat, {count(v.size()), 3});
+}
+
+std::vector<Eigen::Vector3d> readVectors(hid_t g, const std::string& name) {
+  const auto flat = h5::readDataset<double>(g, name);
+  std::vector<Eigen::Vector3d> v(flat.size() / 3);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = Eigen::Vector3d(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+  return v;
+}
+
+void writeQuaternions(hid_t g, const std::string& name, const std::vector<Eigen::Quaterniond>& q) {
+  std::vector<double> flat;
+  for (const auto& x : q) flat.insert(flat.end(), {x.w(), x.x(), x.y(), x.z()});
+  h5::writeDataset(g, name, flat, {count(q.size()), 4});
+}
+
+std::vector<Eigen::Quaterniond> readQuaternions(hid_t g, const std::string& name) {
+  const auto flat = h5::readDataset<double>(g, name);
+  std::vector<Eigen::Quaterniond> q(flat.size() / 4);
+  for (std::size_t i = 0; i < q.size(); ++i) q[i] = Eigen::Quaterniond(flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]);
+  return q;
+}
+
+void writeFlags(hid_t g, const std::string& name, const std::vector<char>& f) {
+  h5::writeDataset(g, name, std::vector<std::uint8_t>(f.begin(), f.end()), {count(f.size())});
+}
+
+std::vector<char> readFlags(hid_t g, const std::string& name) {
+  const auto f = h5::readDataset<std::uint8_t>(g, name);
+  return std::vector<char>(f.begin(), f.end());
+}
+
+void writeDoubles(hid_t g, const std::string& name, const std::vector<double>& v) { h5::writeDataset(g, name, v, {count(v.size())}); }
+
+void writeWorld(hid_t g, const WorldState& w) {
+  writeVectors(g, "position", w.bodies.position);
+  writeQuaternions(g, "orientation", w.bodies.orientation);
+  writeVectors(g, "velocity", w.bodies.velocity);
+  writeVectors(g, "angular_momentum", w.bodies.angularMomentum);
+  writeFlags(g, "fixed", w.bodies.fixed);
+  writeFlags(g, "retired", w.retired);
+  std::vector<Eigen::Vector3d> centre, velocity;
+  std::vector<double> radius;
+  for (const SphereObstacle& s : w.spheres) {
+    centre.push_back(s.center);
+    velocity.push_back(s.velocity);
+    radius.push_back(s.radius);
+  }
+  writeVectors(g, "sphere_centre", centre);
+  writeVectors(g, "sphere_velocity", velocity);
+  writeDoubles(g, "sphere_radius", radius);
+
+  std::vector<std::int32_t> a, b, n;
+  std::vector<double> keys, elastic, depth;
+  std::vector<Eigen::Vector3d> springs, fA, tA, fB, tB;
+  for (const PairContacts& p : w.pairs) {
+    a.push_back(p.a);
+    b.push_back(p.b);
+    n.push_back(static_cast<std::int32_t>(p.contacts.size()));
+    for (const NodeContact& c : p.contacts) {
+      keys.push_back(static_cast<double>(c.key));
+      springs.push_back(c.spring);
+    }
+    fA.push_back(p.forceA);
+    tA.push_back(p.torqueA);
+    fB.push_back(p.forceB);
+    tB.push_back(p.torqueB);
+    elastic.push_back(p.elasticEnergy);
+    depth.push_back(p.maxDepth);
+  }
+  h5::writeDataset(g, "pair_a", a, {count(a.size())});
+  h5::writeDataset(g, "pair_b", b, {count(b.size())});
+  h5::writeDataset(g, "pair_contacts", n, {count(n.size())});
+  writeDoubles(g, "contact_key", keys);
+  writeVectors(g, "contact_spring", springs);
+  writeVectors(g, "pair_force_a", fA);
+  writeVectors(g, "pair_torque_a", tA);
+  writeVectors(g, "pair_force_b", fB);
+  writeVectors(g, "pair_torque_b", tB);
+  writeDoubles(g, "pair_elastic", elastic);
+  writeDoubles(g, "pair_max_depth", depth);
+
+  writeVectors(g, "built_position", w.builtPosition);
+  writeQuaternions(g, "built_orientation", w.builtOrientation);
+  writeVectors(g, "built_sphere_centre", w.builtSphereCentre);
+  writeVectors(g, "force", w.force);
+  writeVectors(g, "torque", w.torque);
+  writeVectors(g, "contact_force", w.contactForce);
+  writeVectors(g, "contact_torque", w.contactTorque);
+  writeVectors(g, "sphere_reaction", w.sphereReaction);
+  writeVectors(g, "start_position", w.startPosition);
+  h5::writeAttribute(g, "pairs_valid", std::int64_t{w.pairsValid});
+  h5::writeAttribute(g, "forces_valid", std::int64_t{w.forcesValid});
+  h5::writeAttribute(g, "initial_energy", w.initialEnergy);
+  h5::writeAttribute(g, "obstacle_work", w.obstacleWork);
+  h5::writeAttribute(g, "most_supplied", w.mostSupplied);
+  h5::writeAttribute(g, "time", w.time);
+  h5::writeAttribute(g, "steps", std::int64_t{w.steps});
+}
+
+void readWorld(hid_t g, WorldState& w) {
+  w.bodies.position = readVectors(g, "position");
+  w.bodies.orientation = readQuaternions(g, "orientation");
+  w.bodies.velocity = readVectors(g, "velocity");
+  w.bodies.angularMomentum = readVectors(g, "angular_momentum");
+  w.bodies.fixed = readFlags(g, "fixed");
+  w.retired = readFlags(g, "retired");
+  const auto centre = readVectors(g, "sphere_centre"), velocity = readVectors(g, "sphere_velocity");
+  const auto radius = h5::readDataset<double>(g, "sphere_radius");
+  w.spheres.clear();
+  for (std::size_t k = 0; k < centre.size(); ++k) w.spheres.push_back({centre[k], radius[k], velocity[k]});
+
+  const auto a = h5::readDataset<std::int32_t>(g, "pair_a"), b = h5::readDataset<std::int32_t>(g, "pair_b");
+  const auto n = h5::readDataset<std::int32_t>(g, "pair_contacts");
+  const auto keys = h5::readDataset<double>(g, "contact_key");
+  const auto springs = readVectors(g, "contact_spring");
+  const auto fA = readVectors(g, "pair_force_a"), tA = readVectors(g, "pair_torque_a");
+  const auto fB = readVectors(g, "pair_force_b"), tB = readVectors(g, "pair_torque_b");
+  const auto elastic = h5::readDataset<double>(g, "pair_elastic"), depth = h5::readDataset<double>(g, "pair_max_depth");
+  w.pairs.clear();
+  std::size_t next = 0;
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    PairContacts pair;
+    pair.a = a[p];
+    pair.b = b[p];
+    for (int c = 0; c < n[p]; ++c, ++next) pair.contacts.push_back({static_cast<std::uint32_t>(keys[next]), springs[next]});
+    pair.forceA = fA[p];
+    pair.torqueA = tA[p];
+    pair.forceB = fB[p];
+    pair.torqueB = tB[p];
+    pair.elasticEnergy = elastic[p];
+    pair.maxDepth = depth[p];
+    w.pairs.push_back(std::move(pair));
+  }
+  w.builtPosition = readVectors(g, "built_position");
+  w.builtOrientation = readQuaternions(g, "built_orientation");
+  w.builtSphereCentre = readVectors(g, "built_sphere_centre");
+  w.force = readVectors(g, "force");
+  w.torque = readVectors(g, "torque");
+  w.contactForce = readVectors(g, "contact_force");
+  w.contactTorque = readVectors(g, "contact_torque");
+  w.sphereReaction = readVectors(g, "sphere_reaction");
+  w.startPosition = readVectors(g, "start_position");
+  w.pairsValid = h5::readIntAttribute(g, "pairs_valid") != 0;
+  w.forcesValid = h5::readIntAttribute(g, "forces_valid") != 0;
+  w.initialEnergy = h5::readDoubleAttribute(g, "initial_energy");
+  w.obstacleWork = h5::readDoubleAttribute(g, "obstacle_work");
+  w.mostSupplied = h5::readDoubleAttribute(g, "most_supplied");
+  w.time = h5::readDoubleAttribute(g, "time");
+  w.steps = h5::readIntAttribute(g, "steps");
+}
+
+void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r) {
+  h5::writeAttribute(g, "phase", std::int64_t{s.phase});
+  h5::writeAttribute(g, "sphere", std::int64_t{s.sphere});
+  h5::writeAttribute(g, "load_start", s.loadStart);
+  h5::writeAttribute(g, "contact_travel", s.contactTravel);
+  h5::writeAttribute(g, "peak", s.peak);
+  h5::writeAttribute(g, "next_sample", s.nextSample);
+  h5::writeAttribute(g, "next_snapshot", s.nextSnapshot);
+  h5::writeAttribute(g, "fallen_distance", s.fallenDistance);
+  h5::writeAttribute(g, "target_z0", s.targetZ0);
+  writeVectors(g, "settled_position", s.settledPosition);
+
+  h5::writeAttribute(g, "settle_time", r.settleTime);
+  h5::writeAttribute(g, "settle_steps", std::int64_t{r.settleSteps});
+  h5::writeAttribute(g, "settled", std::int64_t{r.settled});
+  h5::writeAttribute(g, "target", std::int64_t{r.target});
+  h5::writeAttribute(g, "target_name", r.targetName);
+  h5::writeAttribute(g, "stop_reason", r.stopReason);
+  h5::writeAttribute(g, "steps", std::int64_t{r.steps});
+  h5::writeAttribute(g, "time_step", r.timeStep);
+  h5::writeAttribute(g, "wall_seconds", r.wallSeconds);
+  std::vector<double> curve;
+  for (const CurveSample& c : r.curve)
+    curve.insert(curve.end(), {c.time, c.delta, c.load, c.kinetic, c.externalWork, c.elastic, static_cast<double>(c.contacts),
+                               c.targetDrop});
+  h5::writeDataset(g, "curve", curve, {count(r.curve.size()), 8});
+  std::vector<double> snapshot;
+  std::vector<Eigen::Vector3d> position;
+  std::vector<Eigen::Quaterniond> orientation;
+  for (const Snapshot& s2 : r.snapshots) {
+    snapshot.insert(snapshot.end(), {s2.delta, s2.load});
+    position.insert(position.end(), s2.position.begin(), s2.position.end());
+    orientation.insert(orientation.end(), s2.orientation.begin(), s2.orientation.end());
+  }
+  h5::writeDataset(g, "snapshot", snapshot, {count(r.snapshots.size()), 2});
+  writeVectors(g, "snapshot_position", position);
+  writeQuaternions(g, "snapshot_orientation", orientation);
+  std::vector<std::string> names;
+  std::vector<double> delta;
+  for (const FallenBody& f : r.fallen) {
+    names.push_back(f.name);
+    delta.push_back(f.delta);
+  }
+  h5::writeStrings(g, "fallen_names", names);
+  writeDoubles(g, "fallen_delta", delta);
+}
+
+void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t bodies) {
+  s.phase = static_cast<int>(h5::readIntAttribute(g, "phase"));
+  s.sphere = static_cast<int>(h5::readIntAttribute(g, "sphere"));
+  s.loadStart = h5::readDoubleAttribute(g, "load_start");
+  s.contactTravel = h5::readDoubleAttribute(g, "contact_travel");
+  s.peak = h5::readDoubleAttribute(g, "peak");
+  s.nextSample = h5::readDoubleAttribute(g, "next_sample");
+  s.nextSnapshot = h5::readDoubleAttribute(g, "next_snapshot");
+  s.fallenDistance = h5::readDoubleAttribute(g, "fallen_distance");
+  s.targetZ0 = h5::readDoubleAttribute(g, "target_z0");
+  s.settledPosition = readVectors(g, "settled_position");
+
+  r.settleTime = h5::readDoubleAttribute(g, "settle_time");
+  r.settleSteps = h5::readIntAttribute(g, "settle_steps");
+  r.settled = h5::readIntAttribute(g, "settled") != 0;
+  r.target = static_cast<int>(h5::readIntAttribute(g, "target"));
+  r.targetName = h5::readStringAttribute(g, "target_name");
+  r.stopReason = h5::readStringAttribute(g, "stop_reason");
+  r.steps = h5::readIntAttribute(g, "steps");
+  r.timeStep = h5::readDoubleAttribute(g, "time_step");
+  r.wallSeconds = h5::readDoubleAttribute(g, "wall_seconds");
+  const auto curve = h5::readDataset<double>(g, "curve");
+  r.curve.clear();
+  for (std::size_t i = 0; i + 7 < curve.size(); i += 8)
+    r.curve.push_back({curve[i], curve[i + 1], curve[i + 2], curve[i + 3], curve[i + 4], curve[i + 5],
+                       static_cast<long>(curve[i + 6]), curve[i + 7]});
+  const auto snapshot = h5::readDataset<double>(g, "snapshot");
+  const auto position = readVectors(g, "snapshot_position");
+  const auto orientation = readQuaternions(g, "snapshot_orientation");
+  r.snapshots.clear();
+  for (std::size_t k = 0; 2 * k + 1 < snapshot.size(); ++k)
+    r.snapshots.push_back({snapshot[2 * k], snapshot[2 * k + 1],
+                           std::vector<Eigen::Vector3d>(position.begin() + k * bodies, position.begin() + (k + 1) * bodies),
+                           std::vector<Eigen::Quaterniond>(orientation.begin() + k * bodies, orientation.begin() + (k + 1) * bodies)});
+  const auto names = h5::readStrings(g, "fallen_names");
+  const auto delta = h5::readDataset<double>(g, "fallen_delta");
+  r.fallen.clear();
+  for (std::size_t i = 0; i < names.size(); ++i) r.fallen.push_back({names[i], delta[i]});
+}
+
+}  // namespace
+
+void writeCheckpoint(const std::string& path, const CheckpointSource& source, const WorldState& world,
+                     const IndentationState& state, const IndentationRecord& record) {
+  const fs::path target(path);
+  const fs::path temporary = target.parent_path() / (".tmp-" + target.filename().string());
+  try {
+    {
+      Handle f = h5::createFile(temporary.string());
+      h5::writeAttribute(f.get(), "format", std::string(kFormat));
+      h5::writeAttribute(f.get(), "format_version", kVersion);
+      h5::writeAttribute(f.get(), "generator", generatorVersion());
+      h5::writeAttribute(f.get(), "scene", source.scene);
+      h5::writeAttribute(f.get(), "bundle", source.bundle);
+      h5::writeAttribute(f.get(), "threads", std::int64_t{source.threads});
+      Handle w = h5::createGroup(f.get(), "world");
+      writeWorld(w.get(), world);
+      Handle r = h5::createGroup(f.get(), "run");
+      writeRecord(r.get(), state, record);
+    }
+    fs::rename(temporary, target);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+}
+
+CheckpointSource readCheckpointSource(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path + ": no checkpoint to resume from (a run writes checkpoint.h5 into its output directory)");
+  try {
+    Handle f = h5::openFileReadOnly(path);
+    if (h5::readStringAttribute(f.get(), "format") != kFormat) throw InputError(path + ": not a Tessera checkpoint");
+    const auto version = h5::readIntAttribute(f.get(), "format_version");
+    if (version != kVersion)
+      throw InputError(path + ": checkpoint format version " + std::to_string(version) + " is not supported (this " +
+                       generatorVersion() + " reads version 1)");
+    return {h5::readStringAttribute(f.get(), "scene"), h5::readStringAttribute(f.get(), "bundle"),
+            static_cast<int>(h5::readIntAttribute(f.get(), "threads"))};
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path + ": corrupt checkpoint (" + e.what() + ")");
+  }
+}
+
+void readCheckpoint(const std::string& path, WorldState& world, IndentationState& state, IndentationRecord& record) {
+  try {
+    Handle f = h5::openFileReadOnly(path);
+    Handle w = h5::openGroup(f.get(), "world");
+    const std::size_t bodies = world.bodies.size();
+    readWorld(w.get(), world);
+    if (world.bodies.position.size() != bodies) throw std::runtime_error("it holds a different number of bodies than the bundle");
+    Handle r = h5::openGroup(f.get(), "run");
+    readRecord(r.get(), state, record, bodies);
+  } catch (const std::exception& e) {
+    throw InputError(path + ": cannot resume from this checkpoint (" + e.what() + ")");
+  }
+}
+
+}  // namespace tessera
