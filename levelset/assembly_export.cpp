@@ -98,9 +98,33 @@ std::size_t writeBlocksVtu(const Bundle& bundle, const std::vector<Eigen::Vector
 void writePvd(const std::string& path, const std::vector<std::string>& files, const std::vector<double>& times) {
   writeAtomically(path, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n<Collection>\n";
-    for (std::size_t i = 0; i < files.size(); ++i)
-      out << "<DataSet timestep=\"" << times[i] << "\" part=\"0\" file=\"" << files[i] << "\"/>\n";
+    int part = 0;
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      part = i > 0 && times[i] == times[i - 1] ? part + 1 : 0;
+      out << "<DataSet timestep=\"" << times[i] << "\" part=\"" << part << "\" file=\"" << files[i] << "\"/>\n";
+    }
     out << "</Collection>\n</VTKFile>\n";
+  });
+}
+
+void writePointsVtu(const std::string& path, const std::vector<Eigen::Vector3d>& points,
+                    const std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>>& vectors,
+                    const std::vector<std::pair<std::string, std::vector<double>>>& scalars) {
+  std::vector<double> flat;
+  for (const auto& p : points) flat.insert(flat.end(), {p.x(), p.y(), p.z()});
+  std::vector<std::int64_t> cells(points.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) cells[i] = static_cast<std::int64_t>(i);
+  writeAtomically(path, [&](std::ostream& out) {
+    writeVtu(out, flat, cells, kVtkVertex, 1,
+             [&](std::ostream& o) {
+               for (const auto& [name, values] : vectors) {
+                 std::vector<double> v;
+                 for (const auto& x : values) v.insert(v.end(), {x.x(), x.y(), x.z()});
+                 dataArray(o, "Float64", name.c_str(), 3, v);
+               }
+               for (const auto& [name, values] : scalars) dataArray(o, "Float64", name.c_str(), 1, values);
+             },
+             [](std::ostream&) {});
   });
 }
 

@@ -26,7 +26,13 @@ ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath
 std::size_t writeBlocksVtu(const Bundle& bundle, const std::vector<Eigen::Vector3d>& position,
                            const std::vector<Eigen::Quaterniond>& orientation, const std::string& path);
 
-/// Writes a ParaView collection (.pvd) of `files` (relative to the .pvd) at the given times.
+/// Writes a ParaView collection (.pvd) of `files` (relative to the .pvd) at the given times; files
+/// at the same time become parts 0, 1, ... of that time step.
 void writePvd(const std::string& path, const std::vector<std::string>& files, const std::vector<double>& times);
+
+/// Writes points as VTK vertex cells with named point-data vectors and scalars (m, any units).
+void writePointsVtu(const std::string& path, const std::vector<Eigen::Vector3d>& points,
+                    const std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>>& vectors,
+                    const std::vector<std::pair<std::string, std::vector<double>>>& scalars);
 
 }  // namespace tessera

@@ -208,6 +208,20 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
     orientation.insert(orientation.end(), s2.orientation.begin(), s2.orientation.end());
   }
   h5::writeDataset(g, "snapshot", snapshot, {count(r.snapshots.size()), 2});
+  std::vector<std::int32_t> linkCount, linkPair;
+  std::vector<Eigen::Vector3d> linkPoint, linkForce;
+  for (const Snapshot& s2 : r.snapshots) {
+    linkCount.push_back(static_cast<std::int32_t>(s2.forces.size()));
+    for (const ForceLink& l : s2.forces) {
+      linkPair.insert(linkPair.end(), {l.a, l.b});
+      linkPoint.push_back(l.point);
+      linkForce.push_back(l.force);
+    }
+  }
+  h5::writeDataset(g, "snapshot_links", linkCount, {count(linkCount.size())});
+  h5::writeDataset(g, "link_pair", linkPair, {count(linkPoint.size()), 2});
+  writeVectors(g, "link_point", linkPoint);
+  writeVectors(g, "link_force", linkForce);
   writeVectors(g, "snapshot_position", position);
   writeQuaternions(g, "snapshot_orientation", orientation);
   std::vector<std::string> names;
@@ -249,11 +263,20 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   const auto snapshot = h5::readDataset<double>(g, "snapshot");
   const auto position = readVectors(g, "snapshot_position");
   const auto orientation = readQuaternions(g, "snapshot_orientation");
+  const auto linkCount = h5::readDataset<std::int32_t>(g, "snapshot_links");
+  const auto linkPair = h5::readDataset<std::int32_t>(g, "link_pair");
+  const auto linkPoint = readVectors(g, "link_point"), linkForce = readVectors(g, "link_force");
   r.snapshots.clear();
-  for (std::size_t k = 0; 2 * k + 1 < snapshot.size(); ++k)
-    r.snapshots.push_back({snapshot[2 * k], snapshot[2 * k + 1],
-                           std::vector<Eigen::Vector3d>(position.begin() + k * bodies, position.begin() + (k + 1) * bodies),
-                           std::vector<Eigen::Quaterniond>(orientation.begin() + k * bodies, orientation.begin() + (k + 1) * bodies)});
+  std::size_t link = 0;
+  for (std::size_t k = 0; 2 * k + 1 < snapshot.size(); ++k) {
+    Snapshot s2{snapshot[2 * k], snapshot[2 * k + 1],
+                std::vector<Eigen::Vector3d>(position.begin() + k * bodies, position.begin() + (k + 1) * bodies),
+                std::vector<Eigen::Quaterniond>(orientation.begin() + k * bodies, orientation.begin() + (k + 1) * bodies),
+                {}};
+    for (int l = 0; l < linkCount[k]; ++l, ++link)
+      s2.forces.push_back({linkPair[2 * link], linkPair[2 * link + 1], linkPoint[link], linkForce[link]});
+    r.snapshots.push_back(std::move(s2));
+  }
   const auto names = h5::readStrings(g, "fallen_names");
   const auto delta = h5::readDataset<double>(g, "fallen_delta");
   r.fallen.clear();

@@ -26,6 +26,13 @@ int centralFreeBody(const World& world) {
 
 namespace {
 
+Snapshot snapshotOf(const World& world, double delta, double load) {
+  Snapshot s{delta, load, world.bodies().position, world.bodies().orientation, {}};
+  for (const PairContacts& p : world.pairs())
+    if (!p.contacts.empty()) s.forces.push_back({p.a, p.b, p.forcePoint, p.forceA});
+  return s;
+}
+
 long nodeContacts(const World& world) {
   long n = 0;
   for (const PairContacts& p : world.pairs()) n += static_cast<long>(p.contacts.size());
@@ -142,7 +149,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
       state.nextSample += scene.output.sampleEvery;
     }
     if (state.contactTravel >= 0 && delta >= state.nextSnapshot) {
-      record.snapshots.push_back({delta, load, bodies.position, bodies.orientation});
+      record.snapshots.push_back(snapshotOf(world, delta, load));
       state.nextSnapshot += scene.output.snapshotEvery;
     }
     state.peak = std::max(state.peak, load);
@@ -163,7 +170,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
       if (state.contactTravel >= 0 && (record.curve.empty() || record.curve.back().time < world.time() - state.loadStart))
         sample(delta, load);
       if (!record.curve.empty() && (record.snapshots.empty() || record.snapshots.back().delta < record.curve.back().delta))
-        record.snapshots.push_back({delta, load, bodies.position, bodies.orientation});
+        record.snapshots.push_back(snapshotOf(world, delta, load));
       state.phase = 2;
       break;
     }

@@ -21,12 +21,20 @@ struct CurveSample {
   double targetDrop = 0;    ///< m, downward displacement of the loaded block since settling
 };
 
-/// Body poses at one moment (for the ParaView time series).
+/// The resultant contact force of one pair at a snapshot (a force-chain link).
+struct ForceLink {
+  int a = -1, b = -1;            ///< bodies; b < 0: the indenter
+  Eigen::Vector3d point{0, 0, 0};  ///< m, force-weighted mean contact point
+  Eigen::Vector3d force{0, 0, 0};  ///< N, on body a
+};
+
+/// Body poses and contact forces at one moment (for the ParaView time series).
 struct Snapshot {
   double delta = 0;  ///< m
   double load = 0;   ///< N
   std::vector<Eigen::Vector3d> position;
   std::vector<Eigen::Quaterniond> orientation;
+  std::vector<ForceLink> forces;
 };
 
 struct FallenBody {

@@ -35,6 +35,7 @@ struct Accumulator {
   const ContactScene& scene;
   PairContacts& pair;
   History history;
+  double weight = 0.0;  // sum of force magnitudes, for forcePoint
 
   void add(std::uint32_t key, int nodeBody, int otherBody, const Eigen::Vector3d& x, const Eigen::Vector3d& nodeNormal,
            double area, const Eigen::Vector3d& normal, double depth, const Eigen::Vector3d& otherVelocityAtX,
@@ -51,6 +52,9 @@ struct Accumulator {
         contactForce(scene.parameters, scene.kn, scene.kt, input, spring, scene.dt, pair.elasticEnergy);
     pair.contacts.push_back({key, spring});
     pair.maxDepth = std::max(pair.maxDepth, depth);
+    const double magnitude = f.norm();
+    pair.forcePoint += magnitude * x;
+    weight += magnitude;
     // Equal and opposite forces at the same point: Newton's third law holds for forces and torques.
     if (nodeBodyIsA) {
       pair.forceA += f;
@@ -71,7 +75,7 @@ struct Accumulator {
 void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   std::swap(pair.contacts, pair.previous);
   pair.contacts.clear();
-  pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = Eigen::Vector3d::Zero();
+  pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = pair.forcePoint = Eigen::Vector3d::Zero();
   pair.elasticEnergy = 0.0;
   pair.maxDepth = 0.0;
   pair.evaluations = 0;
@@ -103,6 +107,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
                 0.5 * sm.nodes.area[rank], RO * normalO, -phi, vO + wO.cross(x - pO), side == 0);
       });
     }
+    if (acc.weight > 0) pair.forcePoint /= acc.weight;
     return;
   }
 
@@ -137,6 +142,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
               plane.normal, -phi, Eigen::Vector3d::Zero(), true);
     });
   }
+  if (acc.weight > 0) pair.forcePoint /= acc.weight;
 }
 
 }  // namespace tessera

@@ -81,6 +81,21 @@ void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bund
   const hsize_t frames = record.snapshots.size(), bodies = bundle.bodies.size();
   h5::writeDataset(snaps.get(), "position", position, {frames, bodies, 3});
   h5::writeDataset(snaps.get(), "orientation", orientation, {frames, bodies, 4});
+  // Force chains: links of snapshot k are rows force_offset[k] .. force_offset[k+1]-1.
+  std::vector<std::int32_t> offset{0}, pair;
+  std::vector<double> point, force;
+  for (const Snapshot& s : record.snapshots) {
+    for (const ForceLink& l : s.forces) {
+      pair.insert(pair.end(), {l.a, l.b});
+      point.insert(point.end(), {l.point.x(), l.point.y(), l.point.z()});
+      force.insert(force.end(), {l.force.x(), l.force.y(), l.force.z()});
+    }
+    offset.push_back(static_cast<std::int32_t>(pair.size() / 2));
+  }
+  h5::writeDataset(snaps.get(), "force_offset", offset, {offset.size()});
+  h5::writeDataset(snaps.get(), "force_pair", pair, {pair.size() / 2, 2});
+  h5::writeDataset(snaps.get(), "force_point", point, {point.size() / 3, 3});
+  h5::writeDataset(snaps.get(), "force", force, {force.size() / 3, 3});
 
   h5::Handle fallen = h5::createGroup(f.get(), "fallen");
   std::vector<std::string> fallenNames;
@@ -160,13 +175,25 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   std::vector<std::string> files;
   std::vector<double> times;
   for (std::size_t k = 0; k < record.snapshots.size(); ++k) {
-    char name[32];
-    std::snprintf(name, sizeof name, "blocks_%04zu.vtu", k);
+    const Snapshot& s = record.snapshots[k];
+    char blocks[32], forces[32];
+    std::snprintf(blocks, sizeof blocks, "blocks_%04zu.vtu", k);
+    std::snprintf(forces, sizeof forces, "forces_%04zu.vtu", k);
     // Frames are final once written (a resumed run writes the same ones): write each once.
-    if (!fs::exists(dir / "paraview" / name))
-      writeBlocksVtu(bundle, record.snapshots[k].position, record.snapshots[k].orientation, (dir / "paraview" / name).string());
-    files.push_back(name);
-    times.push_back(record.snapshots[k].delta * 1e3);  // "time" axis in ParaView: delta in mm
+    if (!fs::exists(dir / "paraview" / blocks))
+      writeBlocksVtu(bundle, s.position, s.orientation, (dir / "paraview" / blocks).string());
+    if (!fs::exists(dir / "paraview" / forces)) {
+      std::vector<Eigen::Vector3d> point, force;
+      std::vector<double> magnitude;
+      for (const ForceLink& l : s.forces) {
+        point.push_back(l.point);
+        force.push_back(l.force);
+        magnitude.push_back(l.force.norm());
+      }
+      writePointsVtu((dir / "paraview" / forces).string(), point, {{"force", force}}, {{"magnitude", magnitude}});
+    }
+    files.insert(files.end(), {blocks, forces});
+    times.insert(times.end(), 2, s.delta * 1e3);  // ParaView's "time" axis: delta in mm
   }
   writePvd((dir / "paraview" / "slab.pvd").string(), files, times);
 }

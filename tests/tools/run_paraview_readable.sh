@@ -13,15 +13,26 @@ printf 'bundle = "slab"\n[indenter]\nspeed = 0.05\n[protocol]\ndelta_max = 0.3e-
 import sys, xml.etree.ElementTree as ET
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 out = sys.argv[1]
-frames = [d.get("file") for d in ET.parse(f"{out}/paraview/slab.pvd").getroot().iter("DataSet")]
-assert len(frames) >= 3, frames
-for name in frames:
+files = [d.get("file") for d in ET.parse(f"{out}/paraview/slab.pvd").getroot().iter("DataSet")]
+blocks = [f for f in files if f.startswith("blocks_")]
+forces = [f for f in files if f.startswith("forces_")]
+assert len(blocks) >= 3 and len(forces) == len(blocks), files
+def load(name):
     r = vtkXMLUnstructuredGridReader()
     r.SetFileName(f"{out}/paraview/{name}")
     r.Update()
-    grid = r.GetOutput()
+    return r.GetOutput()
+for name in blocks:
+    grid = load(name)
     assert grid.GetNumberOfCells() == 9 * 12, (name, grid.GetNumberOfCells())
     assert grid.GetCellData().GetArray("body_id") is not None
-print(f"ok: {len(frames)} frames of 9 blocks")
+links = 0
+for name in forces:
+    grid = load(name)
+    assert grid.GetPointData().GetArray("force").GetNumberOfComponents() == 3
+    assert grid.GetPointData().GetArray("magnitude") is not None
+    links = max(links, grid.GetNumberOfPoints())
+assert links >= 3, links  # the loaded block against its neighbours and the indenter
+print(f"ok: {len(blocks)} frames of 9 blocks, up to {links} force-chain links")
 PY
 test -s "$work/out/curve.png"
