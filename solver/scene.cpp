@@ -110,11 +110,12 @@ Scene readScene(const std::string& path) {
   }
   Scene scene;
   scene.path = path;
-  const std::set<std::string> sections{"material", "span", "indenter", "protocol", "damping", "solver", "output"};
+  const std::set<std::string> sections{"material", "span", "indenter", "protocol", "damping", "solver", "output",
+                                       "resolution"};
   for (const auto& [key, node] : root)
     if (!node.is_table() && std::string(key.str()) != "bundle")
       throw InputError(path + ": unknown key '" + std::string(key.str()) + "'; top-level keys: bundle and the tables [" +
-                       "material], [span], [indenter], [protocol], [damping], [solver], [output]");
+                       "material], [span], [indenter], [protocol], [damping], [solver], [output], [resolution]");
     else if (node.is_table() && !sections.count(std::string(key.str())))
       throw InputError(path + ": unknown table [" + std::string(key.str()) + "]; see docs/scene.md");
 
@@ -165,6 +166,11 @@ Scene readScene(const std::string& path) {
   solver.vector3("gravity", scene.solver.gravity, "m/s^2");
   solver.number("max_penetration", scene.solver.maxPenetration, 0, 1, "m; 0 = a quarter voxel");
   solver.finish();
+
+  Table resolution(path, "resolution", root["resolution"].as_table());
+  resolution.number("node_spacing", scene.resolution.nodeSpacing, 0, 1, "m; 0 = the bundle's");
+  resolution.number("voxel", scene.resolution.voxelSize, 0, 1, "m; 0 = the bundle's");
+  resolution.finish();
 
   Table output(path, "output", root["output"].as_table());
   output.number("sample_every", scene.output.sampleEvery, 1e-9, 1, "m of travel");

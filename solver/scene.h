@@ -31,6 +31,12 @@ struct OutputSettings {
   double checkpointSeconds = 30.0; ///< s of wall time between checkpoints (and result files)
 };
 
+/// Re-prepare the bundle's shapes at another resolution for this run (0: keep the bundle's).
+struct ResolutionOverride {
+  double nodeSpacing = 0.0;  ///< m
+  double voxelSize = 0.0;    ///< m
+};
+
 /// Everything a `tessera run` needs besides the bundle itself. Lengths in m, SI throughout.
 struct Scene {
   std::string path;              ///< the scene file
@@ -40,6 +46,7 @@ struct Scene {
   IndenterSettings indenter;
   ProtocolSettings protocol;
   OutputSettings output;
+  ResolutionOverride resolution;
 };
 
 /// Reads a TOML scene file; unknown keys, wrong types and out-of-range values are InputErrors

@@ -1,6 +1,7 @@
 // tessera run: the indentation test of a slab, end to end.
 #include "geometry/input_error.h"
 #include "levelset/bundle.h"
+#include "levelset/shape_builder.h"
 #include "solver/checkpoint.h"
 #include "solver/indentation.h"
 #include "solver/response.h"
@@ -34,12 +35,14 @@ struct RunArguments {
   bool noPlot = false;
 };
 
-// Runs Debian's Python on the plotting script; a missing matplotlib only costs the picture.
-void plotCurve(const fs::path& out) {
-  const fs::path script = fs::path(TESSERA_SOURCE_DIR) / "tools" / "plot" / "plot_curve.py";
-  const std::string command = "/usr/bin/python3 '" + script.string() + "' '" + out.string() + "' >/dev/null 2>&1";
-  if (!fs::exists(script) || std::system(command.c_str()) != 0)
-    std::cerr << "run: note: curve.png not drawn (needs /usr/bin/python3 with matplotlib: scripts/setup.sh installs it)\n";
+// Runs Debian's Python on a plotting script of tools/plot; a missing matplotlib or VTK only costs
+// the picture.
+void drawPicture(const std::string& script, const fs::path& out, const std::string& picture) {
+  const fs::path path = fs::path(TESSERA_SOURCE_DIR) / "tools" / "plot" / script;
+  const std::string command = "/usr/bin/python3 '" + path.string() + "' '" + out.string() + "' >/dev/null 2>&1";
+  if (!fs::exists(path) || std::system(command.c_str()) != 0)
+    std::cerr << "run: note: " << picture << " not drawn (needs Debian's python3-matplotlib and python3-vtk9: "
+              << "scripts/setup.sh installs them)\n";
 }
 
 double thicknessOf(const Bundle& bundle, int body) {
@@ -92,7 +95,20 @@ int runTest(const RunArguments& a) {
       throw InputError(out + ": holds a run already; resume it with --resume " + out + " or choose another -o");
     source = {fs::absolute(scene.path).string(), fs::absolute(scene.bundle).string(), scene.solver.threads};
   }
-  const Bundle bundle = readBundle(scene.bundle);
+  Bundle bundle = readBundle(scene.bundle);
+  if (scene.resolution.nodeSpacing > 0 || scene.resolution.voxelSize > 0) {
+    // Each shape again from its (body-frame) mesh: the body frame, and so every pose, is unchanged.
+    for (Shape& shape : bundle.shapes) {
+      ShapeResolution r = shape.resolution;
+      if (scene.resolution.nodeSpacing > 0) r.nodeSpacing = scene.resolution.nodeSpacing;
+      if (scene.resolution.voxelSize > 0) r.voxelSize = scene.resolution.voxelSize;
+      PrepLog log;
+      shape = buildShape(shape.name, shape.mesh, shape.source, r, scene.path, log);
+      for (const auto& w : log.warnings) std::cerr << "run: warning: shape '" << shape.name << "': " << w << "\n";
+    }
+    std::fprintf(stderr, "run: shapes re-prepared at node spacing %.4g mm, voxel %.4g mm\n",
+                 bundle.shapes[0].resolution.nodeSpacing * 1e3, bundle.shapes[0].resolution.voxelSize * 1e3);
+  }
   if (bundle.bodies.empty())
     throw InputError(scene.bundle + ": the bundle holds no bodies; build a slab with tessera tile");
 
@@ -147,7 +163,10 @@ int runTest(const RunArguments& a) {
   if (!record.settled && record.stopReason != "interrupted")
     std::fprintf(stderr, "run: warning: the slab had not settled after %.3g s (kinetic energy above %.3g J)\n",
                  record.settleTime, scene.protocol.settleKinetic);
-  if (!a.noPlot && !record.curve.empty()) plotCurve(out);
+  if (!a.noPlot && !record.curve.empty()) {
+    drawPicture("plot_curve.py", out, "curve.png");
+    drawPicture("render_snapshots.py", out, "snapshots.png");
+  }
   printSummary(record, response(), out);
   if (!failure.empty()) {
     std::cerr << "tessera: error: the run became unstable and was stopped: " << failure << "\n";
@@ -166,7 +185,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--resume", args->resume, "Continue the stopped run in this output directory from its checkpoint.h5");
   cmd->add_option("--bundle", args->bundle, "Bundle directory, instead of the scene's 'bundle'");
   cmd->add_option("--threads", args->threads, "Threads for the contact loop [default: the scene's, 0 = all cores]");
-  cmd->add_flag("--no-plot", args->noPlot, "Do not draw curve.png");
+  cmd->add_flag("--no-plot", args->noPlot, "Do not draw curve.png and snapshots.png");
   cmd->footer("Example: tessera run assets/scenes/default.toml --bundle out/default_slab -o out/run\n"
               "Ctrl-C stops the run and still writes everything recorded so far (exit status 130);\n"
               "tessera run --resume out/run continues it, exactly as if it had not stopped.");

@@ -70,3 +70,11 @@ TEST_CASE("bad scene files are refused with the key and the reason") {
   refused("bundle = \"b\"\n[material\n", "not valid TOML");
   REQUIRE_THROWS_WITH(readScene(dir / "none.toml"), Contains("none.toml") && Contains("no such scene file"));
 }
+
+TEST_CASE("a scene can re-prepare the shapes at another resolution") {
+  test::TempDir dir;
+  const Scene s = sceneFrom(dir, "bundle = \"b\"\n[resolution]\nnode_spacing = 0.3e-3\nvoxel = 0.125e-3\n");
+  REQUIRE(s.resolution.nodeSpacing == 0.3e-3);
+  REQUIRE(s.resolution.voxelSize == 0.125e-3);
+  REQUIRE_THROWS_WITH(sceneFrom(dir, "bundle = \"b\"\n[resolution]\nnodes = 1\n"), Contains("unknown key 'resolution.nodes'"));
+}

@@ -93,3 +93,13 @@ TEST_CASE("bad scenes give one clear error and write nothing") {
   }
   refused("bundle = \"old\"\n", "format version 7 is not supported");
 }
+
+TEST_CASE("a scene's [resolution] re-prepares the shapes for the run") {
+  test::TempDir dir;
+  const std::string scene = smallRun(dir, "[resolution]\nnode_spacing = 1.5e-3\n");
+  const test::CliResult r = test::runTessera("run " + quoted(scene) + " --no-plot -o " + quoted(dir / "out"));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.err, Contains("shapes re-prepared at node spacing 1.5 mm"));
+  REQUIRE(readJson(dir / "out/summary.json")["response"]["peak_load_N"].get<double>() > 0);
+}
