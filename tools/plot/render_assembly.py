@@ -8,29 +8,13 @@ Usage: /usr/bin/python3 tools/plot/render_assembly.py DIR -o slab.png [--title T
 Needs Debian's python3-vtk9 and python3-matplotlib.
 """
 import argparse
-import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from blocks import block_colours, load_blocks  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
-from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader  # noqa: E402
-
-
-def read_blocks(path):
-    reader = vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    grid = reader.GetOutput()
-    if grid.GetNumberOfCells() == 0:
-        sys.exit(f"{path}: no cells; export a bundle with bodies (tessera tile ...)")
-    points = vtk_to_numpy(grid.GetPoints().GetData())
-    cells = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, 3)
-    fixed = vtk_to_numpy(grid.GetCellData().GetArray("fixed"))
-    return points, cells, fixed
 
 
 def main():
@@ -40,16 +24,9 @@ def main():
     parser.add_argument("--title", default="", help="figure title")
     args = parser.parse_args()
 
-    points, cells, fixed = read_blocks(f"{args.directory}/blocks.vtu")
-    points = points * 1e3  # m -> mm
-    triangles = points[cells]
-    normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
-    normals /= np.linalg.norm(normals, axis=1)[:, None]
-    light = np.array([0.4, -0.5, 0.8])
-    light /= np.linalg.norm(light)
-    shade = 0.45 + 0.55 * np.clip(normals @ light, 0, 1)
-    base = np.where(fixed[:, None] == 1, np.array([0.62, 0.64, 0.68]), np.array([0.95, 0.55, 0.15]))
-    colours = np.clip(base * shade[:, None], 0, 1)
+    triangles, fixed = load_blocks(f"{args.directory}/blocks.vtu")
+    colours = block_colours(triangles, fixed, [0.4, -0.5, 0.8])
+    points = triangles.reshape(-1, 3)
 
     figure = plt.figure(figsize=(8, 6), dpi=120)
     axes = figure.add_subplot(projection="3d")

@@ -13,30 +13,14 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from blocks import block_colours, load_blocks as load  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
-from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader  # noqa: E402
-
-
-def load(path):
-    reader = vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    grid = reader.GetOutput()
-    points = vtk_to_numpy(grid.GetPoints().GetData()) * 1e3
-    cells = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, 3)
-    fixed = vtk_to_numpy(grid.GetCellData().GetArray("fixed"))
-    return points[cells], fixed
 
 
 def draw(axes, triangles, fixed, elevation, azimuth, limits, stretch=1.0):
-    normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
-    normals /= np.linalg.norm(normals, axis=1)[:, None]
-    view = np.array([np.cos(np.radians(elevation)) * np.cos(np.radians(azimuth)),
-                     np.cos(np.radians(elevation)) * np.sin(np.radians(azimuth)), np.sin(np.radians(elevation))])
-    shade = 0.4 + 0.6 * np.abs(normals @ view)
-    base = np.where(fixed[:, None] == 1, np.array([0.62, 0.64, 0.68]), np.array([0.95, 0.55, 0.15]))
-    axes.add_collection3d(Poly3DCollection(triangles, facecolors=np.clip(base * shade[:, None], 0, 1), linewidths=0))
+    view = [np.cos(np.radians(elevation)) * np.cos(np.radians(azimuth)),
+            np.cos(np.radians(elevation)) * np.sin(np.radians(azimuth)), np.sin(np.radians(elevation))]
+    axes.add_collection3d(Poly3DCollection(triangles, facecolors=block_colours(triangles, fixed, view), linewidths=0))
     (x0, x1), (y0, y1), (z0, z1) = limits
     axes.set_xlim(x0, x1)
     axes.set_ylim(y0, y1)
