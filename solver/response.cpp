@@ -59,6 +59,7 @@ ResponseParameters analyseResponse(const IndentationRecord& record, double young
   else r.failureMode = "no failure by delta_max";
 
   if (youngsModulus > 0 && spanLength > 0) r.peakLoadNormalised = r.peakLoad / (youngsModulus * spanLength * spanLength);
+  r.thickness = thickness;
   if (thickness > 0) r.deltaAtPeakNormalised = r.deltaAtPeak / thickness;
   return r;
 }

@@ -15,6 +15,7 @@ struct ResponseParameters {
   double ultimateDeflection = 0;  ///< m: where the load returns to zero for good (below 1 % of P_max), else the last delta
   std::string failureMode;        ///< "central block out", "collapse", "no failure by delta_max"
   double quasiStaticRatio = 0;    ///< max kinetic energy / external work before the peak (once 1 % of that work is done)
+  double thickness = 0;           ///< m, h of the loaded block
   /// Normalised (the paper's upper-bound comparison): P* = P / (E L^2), delta* = delta / h.
   double peakLoadNormalised = 0, deltaAtPeakNormalised = 0;
 };

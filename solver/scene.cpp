@@ -181,4 +181,25 @@ Scene readScene(const std::string& path) {
   return scene;
 }
 
+std::string sceneWithOverrides(const std::string& path, const std::vector<std::pair<std::string, double>>& overrides) {
+  readScene(path);  // the base scene must be valid
+  toml::table root = toml::parse_file(path);
+  const std::string bundle = root["bundle"].value_or(std::string());
+  if (fs::path(bundle).is_relative())
+    root.insert_or_assign("bundle", fs::absolute(fs::path(path).parent_path() / bundle).lexically_normal().string());
+  for (const auto& [key, value] : overrides) {
+    const auto dot = key.find('.');
+    if (dot == std::string::npos) throw InputError("sweep key '" + key + "': give it as table.key, e.g. material.friction");
+    const std::string table = key.substr(0, dot), name = key.substr(dot + 1);
+    if (!root.contains(table)) root.insert(table, toml::table{});
+    toml::table* t = root[table].as_table();
+    if (!t) throw InputError("sweep key '" + key + "': [" + table + "] is not a table of the scene");
+    if (name == "interfaces" || name == "threads") t->insert_or_assign(name, static_cast<std::int64_t>(std::llround(value)));
+    else t->insert_or_assign(name, value);
+  }
+  std::ostringstream out;
+  out << root << "\n";
+  return out.str();
+}
+
 }  // namespace tessera

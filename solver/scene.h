@@ -3,6 +3,8 @@
 #include "solver/solver_settings.h"
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace tessera {
 
@@ -52,5 +54,10 @@ struct Scene {
 /// Reads a TOML scene file; unknown keys, wrong types and out-of-range values are InputErrors
 /// naming the file, the key and the accepted range. See docs/scene.md.
 Scene readScene(const std::string& path);
+
+/// The text of a scene file with some numeric keys replaced ("table.key" -> value) and its bundle
+/// path made absolute, for the cases of a sweep. Throws InputError for a key the scene format
+/// does not have (the result is re-read with readScene, which checks ranges).
+std::string sceneWithOverrides(const std::string& path, const std::vector<std::pair<std::string, double>>& overrides);
 
 }  // namespace tessera

@@ -338,10 +338,13 @@ void World::checkStability() {
       throw SolverInstability(where(i) + ": non-finite position or velocity; the time step " + format("%.3g s", dt_) +
                               " is probably too large (automatic: " + format("%.3g s)", automaticDt_));
   }
+  // Between bodies the bound is a fraction of the thinnest block; against the analytic indenter,
+  // whose penalty contact legitimately sinks deep at high loads (P = pi k_n R d^2), its radius.
+  const int sphereCount = static_cast<int>(spheres_.size());
   for (const PairContacts& p : pairs_)
-    if (p.maxDepth > penetrationLimit_)
-      throw SolverInstability(where(p.a) + ": penetration " + format("%.4g mm", p.maxDepth * 1e3) + " beyond the bound " +
-                              format("%.4g mm", penetrationLimit_ * 1e3) + " (against " +
+    if (p.maxDepth > (p.b < 0 && -1 - p.b < sphereCount ? spheres_[-1 - p.b].radius : penetrationLimit_))
+      throw SolverInstability(where(p.a) + ": penetration " + format("%.4g mm", p.maxDepth * 1e3) + " beyond the bound (" +
+                              format("%.4g mm", penetrationLimit_ * 1e3) + ", the indenter's radius against it; against " +
                               (p.b >= 0 ? "body '" + bodies_.name[p.b] + "'" : std::string("an obstacle")) +
                               "); the time step " + format("%.3g s", dt_) + " or the loading rate is too large");
   const EnergyBudget e = energy();

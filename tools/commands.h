@@ -11,5 +11,6 @@ void addBlockCommand(CLI::App& app);
 void addTileCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
+void addSweepCommand(CLI::App& app);  // also adds report
 
 }  // namespace tessera::tools

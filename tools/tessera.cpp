@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   tessera::tools::addTileCommand(app);
   tessera::tools::addExportCommand(app);
   tessera::tools::addRunCommand(app);
+  tessera::tools::addSweepCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {  // a command's own exit status (its message is already printed)

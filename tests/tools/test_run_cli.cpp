@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 using namespace tessera;
 using tessera::test::kDefaultBlock;
@@ -102,4 +103,44 @@ TEST_CASE("a scene's [resolution] re-prepares the shapes for the run") {
   REQUIRE(r.status == 0);
   REQUIRE_THAT(r.err, Contains("shapes re-prepared at node spacing 1.5 mm"));
   REQUIRE(readJson(dir / "out/summary.json")["response"]["peak_load_N"].get<double>() > 0);
+}
+
+TEST_CASE("sweep regression: P_max scales with E (gravity off) and a high-friction slab loses its central block") {
+  test::TempDir dir;
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 5x5 --pitch 10 --spacing 1.0 -o " +
+                           quoted(dir / "slab"))
+              .status == 0);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[indenter]\nspeed = 0.05\n[protocol]\ndelta_max = 5e-3\n"
+                                      "[damping]\nlocal = 0.3\n[solver]\ngravity = [0.0, 0.0, 0.0]\n");
+  const test::CliResult e = test::runTessera("sweep " + quoted(dir / "scene.toml") + " -o " + quoted(dir / "E") +
+                                             " --set E=4.2e9,8.4e9 --jobs 2");
+  INFO(e.err);
+  REQUIRE(e.status == 0);
+  std::ifstream csv(dir / "E/sweep.csv");
+  std::string header, first, second;
+  std::getline(csv, header);
+  std::getline(csv, first);
+  std::getline(csv, second);
+  const auto peak = [](const std::string& row) {  // case,E,peak_load_N,...
+    std::stringstream in(row);
+    std::string field;
+    std::getline(in, field, ',');
+    std::getline(in, field, ',');
+    std::getline(in, field, ',');
+    return std::stod(field);
+  };
+  REQUIRE(peak(second) / peak(first) == Approx(2.0).epsilon(0.01));
+
+  // High friction on the paper's 7 x 7 slab (coarse nodes, fast but quasi-static loading).
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 7x7 --pitch 10 --spacing 1.2 -o " +
+                           quoted(dir / "slab7"))
+              .status == 0);
+  test::writeFile(dir / "grippy.toml", "bundle = \"slab7\"\n[material]\nfriction = 3.0\n[indenter]\nspeed = 0.1\n"
+                                       "[protocol]\ndelta_max = 6e-3\n[damping]\nlocal = 0.3\n");
+  const test::CliResult mu = test::runTessera("run " + quoted(dir / "grippy.toml") + " --no-plot -o " + quoted(dir / "mu"));
+  INFO(mu.err);
+  REQUIRE(mu.status == 0);
+  const auto summary = readJson(dir / "mu/summary.json");
+  REQUIRE(summary["response"]["failure_mode"] == "central block out");
+  REQUIRE(summary["response"]["fallen"][0]["name"] == "r3c3");
 }
