@@ -110,6 +110,27 @@ void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bund
 
 }  // namespace
 
+void writeSweepTable(const std::string& path, const std::vector<std::string>& keys,
+                     const std::vector<std::vector<double>>& values, const std::vector<std::string>& columns,
+                     const std::vector<std::vector<double>>& table, const std::vector<std::string>& cases,
+                     const std::vector<std::string>& failureModes, const std::vector<std::string>& stopReasons) {
+  atomically(fs::path(path), [&](const fs::path& p) {
+    h5::Handle f = h5::createFile(p.string());
+    h5::writeAttribute(f.get(), "format", std::string("tessera-sweep"));
+    h5::writeAttribute(f.get(), "generator", generatorVersion());
+    h5::writeStrings(f.get(), "keys", keys);
+    h5::writeStrings(f.get(), "columns", columns);
+    std::vector<double> v, t;
+    for (const auto& row : values) v.insert(v.end(), row.begin(), row.end());
+    for (const auto& row : table) t.insert(t.end(), row.begin(), row.end());
+    h5::writeDataset(f.get(), "values", v, {values.size(), keys.size()});
+    h5::writeDataset(f.get(), "table", t, {table.size(), columns.size()});
+    h5::writeStrings(f.get(), "case", cases);
+    h5::writeStrings(f.get(), "failure_mode", failureModes);
+    h5::writeStrings(f.get(), "stop_reason", stopReasons);
+  });
+}
+
 void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
                      const ContactParameters& contact, const IndentationRecord& record,
                      const ResponseParameters& response) {

@@ -15,4 +15,11 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
                      const ContactParameters& contact, const IndentationRecord& record,
                      const ResponseParameters& response);
 
+/// The table of a sweep as HDF5: `keys` (K strings), `values` (C x K: each case's swept values),
+/// `columns` (names) and `table` (C x columns, numbers), `case`, `failure_mode`, `stop_reason` (C strings).
+void writeSweepTable(const std::string& path, const std::vector<std::string>& keys,
+                     const std::vector<std::vector<double>>& values, const std::vector<std::string>& columns,
+                     const std::vector<std::vector<double>>& table, const std::vector<std::string>& cases,
+                     const std::vector<std::string>& failureModes, const std::vector<std::string>& stopReasons);
+
 }  // namespace tessera

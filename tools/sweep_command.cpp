@@ -1,6 +1,7 @@
 // tessera sweep: a scene run over a list (or grid) of parameter values, cases in parallel;
 // tessera report: the paper's figures from a sweep.
 #include "geometry/input_error.h"
+#include "solver/run_output.h"
 #include "solver/scene.h"
 #include "tools/commands.h"
 
@@ -186,8 +187,8 @@ void runSweep(const SweepArguments& a) {
   for (const Axis& axis : axes) csv << "," << axis.key;
   csv << ",peak_load_N,delta_at_peak_mm,stiffness_N_per_mm,loading_energy_mJ,ultimate_deflection_mm,failure_mode,"
          "stop_reason,fallen,wall_seconds\n";
-  std::vector<std::vector<double>> numbers(5);
-  std::vector<std::string> modes;
+  std::vector<std::vector<double>> rowsValues, rowsTable;
+  std::vector<std::string> caseNames, modes, reasons;
   int complete = 0;
   for (std::size_t c = 0; c < cases.size(); ++c) {
     std::ifstream in(caseDirs[c] / "run" / "summary.json");
@@ -203,10 +204,11 @@ void runSweep(const SweepArguments& a) {
     for (double v : cases[c]) csv << "," << v;
     const double values[5] = {r["peak_load_N"], r["delta_at_peak_mm"], r["stiffness_N_per_mm"], r["loading_energy_mJ"],
                               r["ultimate_deflection_mm"]};
-    for (int k = 0; k < 5; ++k) {
-      csv << "," << values[k];
-      numbers[k].push_back(values[k]);
-    }
+    for (int k = 0; k < 5; ++k) csv << "," << values[k];
+    rowsValues.push_back(cases[c]);
+    rowsTable.push_back({values[0], values[1], values[2], values[3], values[4], j["run"]["wall_seconds"].get<double>()});
+    caseNames.push_back(caseDirs[c].filename().string());
+    reasons.push_back(j["stop_reason"]);
     std::string fallen;
     for (const auto& f : r["fallen"]) fallen += (fallen.empty() ? "" : " ") + f["name"].get<std::string>();
     csv << "," << r["failure_mode"].get<std::string>() << "," << j["stop_reason"].get<std::string>() << "," << fallen << ","
@@ -215,7 +217,14 @@ void runSweep(const SweepArguments& a) {
   }
   csv.close();
   fs::rename(dir / ".tmp-sweep.csv", dir / "sweep.csv");
-  std::printf("sweep: %d of %zu cases complete; table %s\n", complete, cases.size(), (dir / "sweep.csv").c_str());
+  std::vector<std::string> keys;
+  for (const Axis& axis : axes) keys.push_back(axis.key);
+  writeSweepTable((dir / "sweep.h5").string(), keys, rowsValues,
+                  {"peak_load_N", "delta_at_peak_mm", "stiffness_N_per_mm", "loading_energy_mJ", "ultimate_deflection_mm",
+                   "wall_seconds"},
+                  rowsTable, caseNames, modes, reasons);
+  std::printf("sweep: %d of %zu cases complete; table %s (and sweep.h5)\n", complete, cases.size(),
+              (dir / "sweep.csv").c_str());
   std::printf("draw the figures with: tessera report %s\n", a.output.c_str());
   if (failed) throw CLI::RuntimeError(130);
 }

@@ -130,6 +130,12 @@ TEST_CASE("sweep regression: P_max scales with E (gravity off) and a high-fricti
     return std::stod(field);
   };
   REQUIRE(peak(second) / peak(first) == Approx(2.0).epsilon(0.01));
+  REQUIRE(fs::exists(dir / "E/sweep.h5"));
+  // Run again: every case is complete, nothing is re-run.
+  const test::CliResult again = test::runTessera("sweep " + quoted(dir / "scene.toml") + " -o " + quoted(dir / "E") +
+                                                 " --set E=4.2e9,8.4e9 --jobs 2");
+  REQUIRE(again.status == 0);
+  REQUIRE_THAT(again.err, Contains("case_000 already complete") && Contains("case_001 already complete"));
 
   // High friction on the paper's 7 x 7 slab (coarse nodes, fast but quasi-static loading).
   REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 7x7 --pitch 10 --spacing 1.2 -o " +
