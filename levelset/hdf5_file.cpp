@@ -68,8 +68,6 @@ Handle openGroup(hid_t parent, const std::string& name) {
   return Handle(check(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), "open group '" + name + "'"));
 }
 
-bool exists(hid_t parent, const std::string& name) { return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0; }
-
 std::vector<std::string> childNames(hid_t group) {
   H5G_info_t info;
   check(H5Gget_info(group, &info), "list group");

@@ -30,7 +30,6 @@ Handle createFile(const std::string& path);
 Handle openFileReadOnly(const std::string& path);
 Handle createGroup(hid_t parent, const std::string& name);
 Handle openGroup(hid_t parent, const std::string& name);
-bool exists(hid_t parent, const std::string& name);
 std::vector<std::string> childNames(hid_t group);
 
 template <class T>

@@ -19,8 +19,8 @@ struct ShapeModel {
   std::vector<FacePlane> planes;  ///< body frame; empty: use the grid
   double radius = 0.0;            ///< m, largest |node| (bounding sphere about the centroid)
 
-  /// The level set at a body-frame point: phi (m) and its unit gradient. `inside` is false when
-  /// the point is certainly outside (phi >= 0), and then nothing else is computed.
+  /// The level set at a body-frame point: true with phi (m, < 0) and its unit gradient when the
+  /// point is inside; false (and nothing else computed) when it is outside.
   bool penetration(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& normal) const {
     if (!planes.empty()) {
       // phi = max_f (n_f . x - d_f): exact inside a convex polyhedron.

@@ -283,7 +283,10 @@ void World::evaluateForces() {
 void World::step() {
   if (!forcesValid_) {
     evaluateForces();
-    if (steps_ == 0) initialEnergy_ = energy().kinetic + energy().elastic;
+    if (steps_ == 0) {
+      const EnergyBudget e = energy();
+      initialEnergy_ = e.kinetic + e.elastic;
+    }
   }
   const double h = 0.5 * dt_;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
