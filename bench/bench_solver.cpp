@@ -38,11 +38,15 @@ void IndentationStep(benchmark::State& state) {
   indenter.velocity = Eigen::Vector3d(0, 0, -6e-3);
   world.addSphere(indenter);
   for (int i = 0; i < 200; ++i) world.step();  // contacts established, springs loaded
-  long evaluations = 0;
+  long evaluations = 0, contacts = 0;
   for (auto _ : state) {
     world.step();
-    for (const PairContacts& p : world.pairs()) evaluations += p.evaluations;
+    for (const PairContacts& p : world.pairs()) {
+      evaluations += p.evaluations;
+      contacts += static_cast<long>(p.contacts.size());
+    }
   }
+  state.counters["contacts_per_step"] = benchmark::Counter(static_cast<double>(contacts) / state.iterations());
   state.counters["evaluations_per_step"] = benchmark::Counter(static_cast<double>(evaluations) / state.iterations());
   state.counters["evaluations_per_s_per_core"] =
       benchmark::Counter(static_cast<double>(evaluations) / static_cast<double>(s.threads), benchmark::Counter::kIsRate);

@@ -33,15 +33,23 @@ inline Eigen::Vector3d contactForce(const ContactParameters& p, double kn, doubl
   const double elastic = normalStiffness * c.depth;
   const double fn = std::max(0.0, elastic - p.normalViscosity * c.area * vn);
 
-  Eigen::Vector3d u = spring - n * n.dot(spring);
-  const double length = spring.norm(), projected = u.norm();
-  if (projected > 0) u *= length / projected;
+  // Turn the spring onto the tangent plane, keeping its length: u = (s - n (n.s)) |s| / |s - n (n.s)|.
+  Eigen::Vector3d u = spring;
+  const double along = n.dot(spring);
+  if (along != 0) {
+    const double length2 = spring.squaredNorm();
+    u -= along * n;
+    const double projected2 = u.squaredNorm();
+    if (projected2 > 0) u *= std::sqrt(length2 / projected2);
+  }
   u += (c.relativeVelocity - vn * n) * dt;
   Eigen::Vector3d ft = -tangentStiffness * u;
-  const double cap = p.friction * fn, ftNorm = ft.norm();
-  if (ftNorm > cap) {
-    ft *= cap / ftNorm;
-    u = tangentStiffness > 0 ? Eigen::Vector3d(-ft / tangentStiffness) : Eigen::Vector3d::Zero();
+  const double cap = p.friction * fn, ft2 = ft.squaredNorm();
+  if (ft2 > cap * cap) {
+    // Sliding: f_t and u scaled back to the Coulomb cap (u = -f_t / k_t).
+    const double scale = cap / std::sqrt(ft2);
+    ft *= scale;
+    u *= scale;
   }
   spring = u;
   energy += 0.5 * elastic * c.depth + 0.5 * tangentStiffness * u.squaredNorm();

@@ -19,6 +19,16 @@ Eigen::AlignedBox3d regionInFrame(const Eigen::AlignedBox3d& otherBox, const Eig
   return Eigen::AlignedBox3d(centre - half, centre + half);
 }
 
+// A rigid motion as the contact law needs it: centroid, velocity, angular velocity (world).
+struct Motion {
+  Eigen::Vector3d position, velocity, angularVelocity;
+  Eigen::Vector3d velocityAt(const Eigen::Vector3d& x) const { return velocity + angularVelocity.cross(x - position); }
+};
+
+Motion motionOf(const RigidBodies& bodies, int i) {
+  return {bodies.position[i], bodies.velocity[i], bodies.angularVelocity(i)};
+}
+
 // Merge cursor over the previous step's contacts (sorted by key): the spring of a node that was
 // in contact, or zero.
 struct History {
@@ -30,23 +40,23 @@ struct History {
   }
 };
 
-// Shared per-node work: contact law, accumulation on both sides, history.
+// Shared per-node work: contact law, history, and the sums of the force on body a and of its
+// moment about the world origin (moved to the centroids once, in finish()).
 struct Accumulator {
   const ContactScene& scene;
   PairContacts& pair;
   History history;
-  double weight = 0.0;  // sum of force magnitudes, for forcePoint
+  Eigen::Vector3d forceOnA{0, 0, 0}, momentOnA{0, 0, 0};  // N, N m about the origin
+  double weight = 0.0;                                    // sum of force magnitudes, for forcePoint
 
-  void add(std::uint32_t key, int nodeBody, int otherBody, const Eigen::Vector3d& x, const Eigen::Vector3d& nodeNormal,
-           double area, const Eigen::Vector3d& normal, double depth, const Eigen::Vector3d& otherVelocityAtX,
-           bool nodeBodyIsA) {
+  // One node at world x of the body moving with `node`, inside the other side (moving with
+  // `other`) by depth along `normal` (world, out of the other side).
+  void add(std::uint32_t key, const Eigen::Vector3d& x, const Eigen::Vector3d& nodeNormal, double area,
+           const Eigen::Vector3d& normal, double depth, const Motion& node, const Motion& other, bool nodeBodyIsA) {
     // Effective area: the node's area projected on the contact plane (docs/physics.md).
     const double projection = -nodeNormal.dot(normal);
     if (projection <= 0) return;
-    const RigidBodies& bodies = *scene.bodies;
-    const Eigen::Vector3d arm = x - bodies.position[nodeBody];
-    const Eigen::Vector3d velocity = bodies.velocity[nodeBody] + bodies.angularVelocity(nodeBody).cross(arm);
-    NodeContactInput input{normal, depth, area * projection, velocity - otherVelocityAtX};
+    const NodeContactInput input{normal, depth, area * projection, node.velocityAt(x) - other.velocityAt(x)};
     Eigen::Vector3d spring = history.springFor(key);
     const Eigen::Vector3d f =
         contactForce(scene.parameters, scene.kn, scene.kt, input, spring, scene.dt, pair.elasticEnergy);
@@ -56,29 +66,53 @@ struct Accumulator {
     pair.forcePoint += magnitude * x;
     weight += magnitude;
     // Equal and opposite forces at the same point: Newton's third law holds for forces and torques.
-    if (nodeBodyIsA) {
-      pair.forceA += f;
-      pair.torqueA += arm.cross(f);
-      pair.forceB -= f;
-      if (otherBody >= 0) pair.torqueB -= (x - bodies.position[otherBody]).cross(f);
-    } else {
-      pair.forceB += f;
-      pair.torqueB += arm.cross(f);
-      pair.forceA -= f;
-      pair.torqueA -= (x - bodies.position[otherBody]).cross(f);
-    }
+    const Eigen::Vector3d fA = nodeBodyIsA ? f : Eigen::Vector3d(-f);
+    forceOnA += fA;
+    momentOnA += x.cross(fA);
+  }
+
+  void finish() {
+    const RigidBodies& bodies = *scene.bodies;
+    pair.forceA = forceOnA;
+    pair.torqueA = momentOnA - bodies.position[pair.a].cross(forceOnA);
+    pair.forceB = -forceOnA;
+    if (pair.b >= 0) pair.torqueB = bodies.position[pair.b].cross(forceOnA) - momentOnA;
+    if (weight > 0) pair.forcePoint /= weight;
   }
 };
+
+// Visits the nodes of one side (key = side << 31 | rank) that can touch: the pair's candidates
+// of that side or, when they are being rebuilt, every node in `region`, keeping as candidates
+// those with phi below the band. `test(rank)` returns the node's phi.
+template <class Test>
+void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::uint32_t side, bool rebuild,
+               double band, PairContacts& pair, Test&& test) {
+  if (rebuild) {
+    nodes.forEachNodeIn(region, [&](int rank) {
+      const std::uint32_t key = side << 31 | static_cast<std::uint32_t>(rank);
+      if (test(key) < band) pair.candidates.push_back(key);
+    });
+    return;
+  }
+  const auto first = std::lower_bound(pair.candidates.begin(), pair.candidates.end(), side << 31);
+  const auto last = side == 0 ? std::lower_bound(first, pair.candidates.end(), 1u << 31) : pair.candidates.end();
+  for (auto k = first; k != last; ++k) test(*k);
+}
+
+constexpr std::uint32_t kRankMask = (1u << 31) - 1;
 
 }  // namespace
 
 void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   std::swap(pair.contacts, pair.previous);
   pair.contacts.clear();
-  pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = pair.forcePoint = Eigen::Vector3d::Zero();
+  pair.forcePoint = Eigen::Vector3d::Zero();
   pair.elasticEnergy = 0.0;
   pair.maxDepth = 0.0;
   pair.evaluations = 0;
+  const bool rebuild = !pair.candidatesValid;
+  if (rebuild) pair.candidates.clear();
+  pair.candidatesValid = true;
   Accumulator acc{scene, pair, History{pair.previous}};
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
@@ -89,25 +123,30 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
       const int m = side == 0 ? pair.a : pair.b, o = side == 0 ? pair.b : pair.a;
       const ShapeModel& sm = shapes[bodies.shape[m]];
       const ShapeModel& so = shapes[bodies.shape[o]];
-      const Eigen::Quaterniond &qM = bodies.orientation[m], &qO = bodies.orientation[o];
-      const Eigen::Matrix3d RM = qM.toRotationMatrix(), RO = qO.toRotationMatrix();
+      const Eigen::Matrix3d RM = bodies.orientation[m].toRotationMatrix(), RO = bodies.orientation[o].toRotationMatrix();
       const Eigen::Matrix3d toO = RO.transpose() * RM;  // M body -> O body
       const Eigen::Vector3d shift = RO.transpose() * (bodies.position[m] - bodies.position[o]);
-      const Eigen::Vector3d vO = bodies.velocity[o], wO = bodies.angularVelocity(o), pO = bodies.position[o];
-      // Only nodes inside the other body's box can be inside the other body.
-      const Eigen::AlignedBox3d region = regionInFrame(so.nodes.box, qO, pO, qM, bodies.position[m]);
-      sm.nodes.forEachNodeIn(region, [&](int rank) {
+      const Motion node = motionOf(bodies, m), other = motionOf(bodies, o);
+      // Only nodes inside the other body's box (and band) can be inside the other body.
+      Eigen::AlignedBox3d region;
+      if (rebuild) {
+        region = regionInFrame(so.nodes.box, bodies.orientation[o], other.position, bodies.orientation[m], node.position);
+        region.min().array() -= scene.candidateBand;
+        region.max().array() += scene.candidateBand;
+      }
+      visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
         ++pair.evaluations;
+        const int rank = static_cast<int>(key & kRankMask);
         const Eigen::Vector3d xO = toO * sm.nodes.position[rank] + shift;
-        double phi;
-        Eigen::Vector3d normalO;
-        if (!so.penetration(xO, phi, normalO)) return;
-        const Eigen::Vector3d x = RM * sm.nodes.position[rank] + bodies.position[m];
-        acc.add(side << 31 | static_cast<std::uint32_t>(rank), m, o, x, RM * sm.nodes.normal[rank],
-                0.5 * sm.nodes.area[rank], RO * normalO, -phi, vO + wO.cross(x - pO), side == 0);
+        Eigen::Vector3d normalO = Eigen::Vector3d::Zero();
+        const double phi = so.levelSet(xO, normalO);
+        if (phi < 0)
+          acc.add(key, RO * xO + other.position, RM * sm.nodes.normal[rank], 0.5 * sm.nodes.area[rank], RO * normalO,
+                  -phi, node, other, side == 0);
+        return phi;
       });
     }
-    if (acc.weight > 0) pair.forcePoint /= acc.weight;
+    acc.finish();
     return;
   }
 
@@ -118,31 +157,37 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   const ShapeModel& sm = shapes[bodies.shape[m]];
   const Eigen::Quaterniond& qM = bodies.orientation[m];
   const Eigen::Matrix3d RM = qM.toRotationMatrix();
-  const Eigen::Vector3d pM = bodies.position[m];
+  const Motion node = motionOf(bodies, m);
+  const auto visitObstacle = [&](const Eigen::AlignedBox3d& region, const Motion& other, auto&& phiAndNormal) {
+    visitSide(sm.nodes, region, 0, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
+      ++pair.evaluations;
+      const Eigen::Vector3d x = RM * sm.nodes.position[key] + node.position;
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+      const double phi = phiAndNormal(x, normal);
+      if (phi < 0) acc.add(key, x, RM * sm.nodes.normal[key], sm.nodes.area[key], normal, -phi, node, other, true);
+      return phi;
+    });
+  };
   if (obstacle < sphereCount) {
     const SphereObstacle& sphere = (*scene.spheres)[obstacle];
-    const Eigen::Vector3d centre = qM.conjugate() * (sphere.center - pM);
-    const Eigen::AlignedBox3d region(centre.array() - sphere.radius, centre.array() + sphere.radius);
-    sm.nodes.forEachNodeIn(region, [&](int rank) {
-      ++pair.evaluations;
-      const Eigen::Vector3d x = RM * sm.nodes.position[rank] + pM;
-      const double phi = sphere.phi(x);
-      if (phi >= 0) return;
-      acc.add(static_cast<std::uint32_t>(rank), m, pair.b, x, RM * sm.nodes.normal[rank], sm.nodes.area[rank],
-              sphere.normal(x), -phi, sphere.velocity, true);
-    });
+    const Eigen::Vector3d centre = qM.conjugate() * (sphere.center - node.position);
+    const double reach = sphere.radius + scene.candidateBand;
+    visitObstacle(Eigen::AlignedBox3d(centre.array() - reach, centre.array() + reach),
+                  Motion{sphere.center, sphere.velocity, Eigen::Vector3d::Zero()},
+                  [&](const Eigen::Vector3d& x, Eigen::Vector3d& normal) {
+                    const double phi = sphere.phi(x);
+                    if (phi < 0) normal = sphere.normal(x);
+                    return phi;
+                  });
   } else {
     const PlaneObstacle& plane = (*scene.planes)[obstacle - sphereCount];
-    sm.nodes.forEachNodeIn(sm.nodes.box, [&](int rank) {
-      ++pair.evaluations;
-      const Eigen::Vector3d x = RM * sm.nodes.position[rank] + pM;
-      const double phi = plane.phi(x);
-      if (phi >= 0) return;
-      acc.add(static_cast<std::uint32_t>(rank), m, pair.b, x, RM * sm.nodes.normal[rank], sm.nodes.area[rank],
-              plane.normal, -phi, Eigen::Vector3d::Zero(), true);
-    });
+    visitObstacle(sm.nodes.box, Motion{plane.point, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()},
+                  [&](const Eigen::Vector3d& x, Eigen::Vector3d& normal) {
+                    normal = plane.normal;
+                    return plane.phi(x);
+                  });
   }
-  if (acc.weight > 0) pair.forcePoint /= acc.weight;
+  acc.finish();
 }
 
 }  // namespace tessera

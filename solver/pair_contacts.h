@@ -19,13 +19,14 @@ struct ShapeModel {
   std::vector<FacePlane> planes;  ///< body frame; empty: use the grid
   double radius = 0.0;            ///< m, largest |node| (bounding sphere about the centroid)
 
-  /// The level set at a body-frame point: true with phi (m, < 0) and its unit gradient when the
-  /// point is inside; false (and nothing else computed) when it is outside.
-  bool penetration(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& normal) const {
+  /// The level set at a body-frame point: phi (m, < 0 inside; positive outside, also beyond the
+  /// grid), and when phi < 0 its unit gradient in `normal`. 1-Lipschitz (exactly for the planes,
+  /// to the grid's interpolation error for the grid), which the pairs' candidate bands rely on.
+  double levelSet(const Eigen::Vector3d& x, Eigen::Vector3d& normal) const {
     if (!planes.empty()) {
       // phi = max_f (n_f . x - d_f): exact inside a convex polyhedron.
       int best = 0;
-      phi = planes[0].normal.dot(x) - planes[0].offset;
+      double phi = planes[0].normal.dot(x) - planes[0].offset;
       for (int f = 1; f < static_cast<int>(planes.size()); ++f) {
         const double v = planes[f].normal.dot(x) - planes[f].offset;
         if (v > phi) {
@@ -33,17 +34,15 @@ struct ShapeModel {
           best = f;
         }
       }
-      if (phi >= 0) return false;
-      normal = planes[best].normal;
-      return true;
+      if (phi < 0) normal = planes[best].normal;
+      return phi;
     }
-    if (!sdf.contains(x)) return false;
     const SdfSample s = sdf.sample(x);
-    phi = s.phi;
+    if (s.phi >= 0) return s.phi;
     const double g = s.gradient.norm();
-    if (phi >= 0 || !(g > 0)) return false;
+    if (!(g > 0)) return 0.0;  // no direction to push along: treated as touching, no force
     normal = s.gradient / g;
-    return true;
+    return s.phi;
   }
 };
 
@@ -60,6 +59,10 @@ struct NodeContact {
 struct PairContacts {
   int a = -1, b = -1;
   std::vector<NodeContact> contacts, previous;
+  /// Keys (as in NodeContact) of the nodes within the candidate band of the other side when the
+  /// broad phase was last built; only these can touch until it is built again. Sorted.
+  std::vector<std::uint32_t> candidates;
+  bool candidatesValid = false;  ///< false: the next evaluation visits every node in range and rebuilds them
   Eigen::Vector3d forceA{0, 0, 0}, torqueA{0, 0, 0}, forceB{0, 0, 0}, torqueB{0, 0, 0};
   Eigen::Vector3d forcePoint{0, 0, 0};  ///< m, world: contact points weighted by force magnitude (force chains)
   double elasticEnergy = 0.0;  ///< J
@@ -76,12 +79,16 @@ struct ContactScene {
   ContactParameters parameters;
   double kn = 0.0, kt = 0.0;  ///< N/m^3
   double dt = 0.0;            ///< s
+  /// m: a node farther than this outside the other side's level set when the candidates are built
+  /// cannot reach it before the broad phase is built again (World::candidateBand).
+  double candidateBand = 0.0;
 };
 
 /// Evaluates one pair: for two bodies, the nodes of each in the other's level set, each node with
 /// half its area (so the pair does not depend on which body is a, and a flat face-on-face contact
 /// carries exactly k_n d); for an obstacle, the body's nodes with their full area. Keeps the
-/// springs of nodes still in contact, drops the others. Thread-safe for distinct pairs.
+/// springs of nodes still in contact, drops the others. Visits only the pair's candidate nodes,
+/// rebuilding them first when they are not valid. Thread-safe for distinct pairs.
 void evaluatePair(const ContactScene& scene, PairContacts& pair);
 
 }  // namespace tessera

@@ -15,7 +15,7 @@ struct SolverSettings {
   double localDamping = 0.0;                    ///< alpha in [0, 1): Cundall's local non-viscous damping
   double viscousDamping = 0.0;                  ///< c, 1/s: global viscous damping F -= c m v, tau -= c I omega
   int threads = 0;                              ///< 0 = all cores
-  double broadPhaseMargin = 0.5e-3;             ///< m: bounding boxes are enlarged by this; rebuilt when bodies move half of it
+  double broadPhaseMargin = 0.5e-3;             ///< m: bounding boxes are enlarged by this; rebuilt when a body moves 0.4 of it
   double maxPenetration = 0.0;                  ///< m; 0 = a quarter of the thinnest block. Deeper stops the run
   double energyGrowthLimit = 10.0;              ///< stop when kinetic energy exceeds this x the energy supplied
   /// Convex polyhedral shapes (the planar and hex TIS blocks) use their face planes as an exact,

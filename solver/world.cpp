@@ -170,8 +170,14 @@ int World::addPlane(const PlaneObstacle& plane) {
   return static_cast<int>(planes_.size()) - 1;
 }
 
-// Candidate pairs from enlarged boxes, rebuilt only when a body (or sphere) has moved or turned by
-// more than half the margin since the last build. Contact states carry over by pair key.
+// Candidate pairs from boxes enlarged by the margin m, rebuilt only when a body (or sphere) has
+// moved or turned (angle x radius) by more than 0.4 m since the last build; contact states carry
+// over by pair key. Between builds any two bodies move by at most 0.8 m relative to each other, so
+// a node more than candidateBand() = 1.25 m outside the other side when the pair's node
+// candidates are built (in its next evaluation) cannot touch it before the next build, even where
+// the grid's level set is 1.5-Lipschitz rather than 1.
+double World::candidateBand() const { return 1.25 * settings_.broadPhaseMargin; }
+
 void World::updatePairs() {
   const double margin = settings_.broadPhaseMargin;
   if (pairsValid_) {
@@ -179,10 +185,10 @@ void World::updatePairs() {
     for (std::size_t i = 0; i < bodies_.size() && !moved; ++i) {
       if (bodies_.fixed[i]) continue;
       const double turn = bodies_.orientation[i].angularDistance(builtOrientation_[i]) * shapes_[bodies_.shape[i]].radius;
-      moved = (bodies_.position[i] - builtPosition_[i]).norm() + turn > 0.5 * margin;
+      moved = (bodies_.position[i] - builtPosition_[i]).norm() + turn > 0.4 * margin;
     }
     for (std::size_t k = 0; k < spheres_.size() && !moved; ++k)
-      moved = (spheres_[k].center - builtSphereCentre_[k]).norm() > 0.5 * margin;
+      moved = (spheres_[k].center - builtSphereCentre_[k]).norm() > 0.4 * margin;
     if (!moved) return;
   }
 
@@ -222,6 +228,7 @@ void World::updatePairs() {
     }
   }
   pairs_ = std::move(next);
+  for (PairContacts& pair : pairs_) pair.candidatesValid = false;
   builtPosition_ = bodies_.position;
   builtOrientation_ = bodies_.orientation;
   builtSphereCentre_.clear();
@@ -232,7 +239,7 @@ void World::updatePairs() {
 void World::evaluateForces() {
   updatePairs();
   ContactScene scene{&bodies_, &shapes_, &spheres_, &planes_, parameters_,
-                     parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt_};
+                     parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt_, candidateBand()};
   arena_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs_.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t p = r.begin(); p != r.end(); ++p) evaluatePair(scene, pairs_[p]);

@@ -98,6 +98,7 @@ public:
 private:
   void evaluateForces();
   void updatePairs();
+  double candidateBand() const;
   void checkStability();
 
   std::vector<ShapeModel> shapes_;
