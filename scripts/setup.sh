@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Tessera needs (only those missing), then configures and builds.
-# Usage: scripts/setup.sh            (run as root, or with sudo available)
+# Usage: scripts/setup.sh [--with-yade]   (run as root, or with sudo available)
+#        --with-yade also installs YADE, the peer LS-DEM code of bench/peer_yade.sh (large; not
+#        needed to build, run or test Tessera)
 # Env:   BUILD_DIR (default: build), BUILD_TYPE (default: Release), JOBS (default: nproc)
 set -euo pipefail
 
@@ -24,6 +26,9 @@ packages=(
   python3-vtk9 python3-matplotlib               # tests read exports with VTK; PNG rendering
   libbenchmark-dev                              # benchmarks (bench/)
 )
+if [ "${1:-}" = "--with-yade" ]; then
+  packages+=(yade python3-h5py python3-numpy)   # bench/peer_yade.sh
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -40,14 +40,13 @@ struct History {
   }
 };
 
-// Shared per-node work: contact law, history, and the sums of the force on body a and of its
-// moment about the world origin (moved to the centroids once, in finish()).
+// Shared per-node work: contact law, history, and the force and torque (about each centroid:
+// no cancellation against moments about a far origin) on both bodies.
 struct Accumulator {
   const ContactScene& scene;
   PairContacts& pair;
   History history;
-  Eigen::Vector3d forceOnA{0, 0, 0}, momentOnA{0, 0, 0};  // N, N m about the origin
-  double weight = 0.0;                                    // sum of force magnitudes, for forcePoint
+  double weight = 0.0;  // sum of force magnitudes, for forcePoint
 
   // One node at world x of the body moving with `node`, inside the other side (moving with
   // `other`) by depth along `normal` (world, out of the other side).
@@ -67,16 +66,15 @@ struct Accumulator {
     weight += magnitude;
     // Equal and opposite forces at the same point: Newton's third law holds for forces and torques.
     const Eigen::Vector3d fA = nodeBodyIsA ? f : Eigen::Vector3d(-f);
-    forceOnA += fA;
-    momentOnA += x.cross(fA);
+    const Motion& a = nodeBodyIsA ? node : other;
+    const Motion& b = nodeBodyIsA ? other : node;
+    pair.forceA += fA;
+    pair.torqueA += (x - a.position).cross(fA);
+    pair.forceB -= fA;
+    if (pair.b >= 0) pair.torqueB -= (x - b.position).cross(fA);
   }
 
   void finish() {
-    const RigidBodies& bodies = *scene.bodies;
-    pair.forceA = forceOnA;
-    pair.torqueA = momentOnA - bodies.position[pair.a].cross(forceOnA);
-    pair.forceB = -forceOnA;
-    if (pair.b >= 0) pair.torqueB = bodies.position[pair.b].cross(forceOnA) - momentOnA;
     if (weight > 0) pair.forcePoint /= weight;
   }
 };
@@ -106,7 +104,7 @@ constexpr std::uint32_t kRankMask = (1u << 31) - 1;
 void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   std::swap(pair.contacts, pair.previous);
   pair.contacts.clear();
-  pair.forcePoint = Eigen::Vector3d::Zero();
+  pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = pair.forcePoint = Eigen::Vector3d::Zero();
   pair.elasticEnergy = 0.0;
   pair.maxDepth = 0.0;
   pair.evaluations = 0;

@@ -164,7 +164,8 @@ Scene readScene(const std::string& path) {
   solver.number("time_step_factor", scene.solver.timeStepFactor, 1e-4, 1, "of the stability limit");
   solver.integer("threads", scene.solver.threads, 0, 1024);
   solver.vector3("gravity", scene.solver.gravity, "m/s^2");
-  solver.number("max_penetration", scene.solver.maxPenetration, 0, 1, "m; 0 = a quarter voxel");
+  solver.number("max_penetration", scene.solver.maxPenetration, 0, 1, "m; 0 = a quarter of the thinnest block");
+  solver.boolean("exact_convex_level_sets", scene.solver.exactConvexLevelSets);
   solver.finish();
 
   Table resolution(path, "resolution", root["resolution"].as_table());

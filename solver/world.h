@@ -69,9 +69,8 @@ public:
   double time() const { return time_; }
   long stepCount() const { return steps_; }
   double timeStep() const { return dt_; }
-  /// timeStepFactor x 2 / omega_max, omega_max the fastest mode of any free body in its stiffest
-  /// expected contact: its stiffest face pressed face-on-face (translation along and rotation about
-  /// each principal axis).
+  /// timeStepFactor x 2 / omega_max, omega_max an upper estimate of the fastest mode of any free
+  /// body: its whole surface in sticking contact with bodies like itself moving the other way.
   double automaticTimeStep() const { return automaticDt_; }
 
   /// Advances one step. Throws SolverInstability instead of producing garbage.

@@ -4,6 +4,7 @@
 #include "levelset/shape_builder.h"
 #include "solver/checkpoint.h"
 #include "solver/indentation.h"
+#include "solver/presets.h"
 #include "solver/response.h"
 #include "solver/run_output.h"
 #include "solver/scene.h"
@@ -15,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 namespace tessera::tools {
@@ -31,6 +33,7 @@ struct RunArguments {
   std::string output;
   std::string resume;  // output directory of a stopped run
   std::string bundle;  // overrides the scene's
+  std::string preset;  // named speed/accuracy setting over the scene
   int threads = -1;
   bool noPlot = false;
 };
@@ -88,7 +91,18 @@ int runTest(const RunArguments& a) {
       scene.solver.threads = a.threads;
     }
   } else {
-    scene = readScene(a.scene);
+    if (!a.preset.empty()) {
+      // The scene with the preset's keys, kept beside the results (and read again on --resume).
+      const std::string text = sceneWithOverrides(a.scene, findPreset(a.preset).overrides);
+      if (fs::exists(checkpointFile))
+        throw InputError(out + ": holds a run already; resume it with --resume " + out + " or choose another -o");
+      fs::create_directories(out);
+      const std::string effective = (fs::path(out) / "scene.toml").string();
+      std::ofstream(effective) << "# " << a.scene << " with --preset " << a.preset << "\n" << text;
+      scene = readScene(effective);
+    } else {
+      scene = readScene(a.scene);
+    }
     if (!a.bundle.empty()) scene.bundle = a.bundle;
     if (a.threads >= 0) scene.solver.threads = a.threads;
     if (fs::exists(checkpointFile))
@@ -184,6 +198,9 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Directory for the results (created)");
   cmd->add_option("--resume", args->resume, "Continue the stopped run in this output directory from its checkpoint.h5");
   cmd->add_option("--bundle", args->bundle, "Bundle directory, instead of the scene's 'bundle'");
+  std::string presetHelp = "Speed/accuracy setting over the scene's (docs/performance.md):";
+  for (const Preset& p : presets()) presetHelp += "\n  " + p.name + ": " + p.description;
+  cmd->add_option("--preset", args->preset, presetHelp);
   cmd->add_option("--threads", args->threads, "Threads for the contact loop [default: the scene's, 0 = all cores]");
   cmd->add_flag("--no-plot", args->noPlot, "Do not draw curve.png and snapshots.png");
   cmd->footer("Example: tessera run assets/scenes/default.toml --bundle out/default_slab -o out/run\n"
