@@ -1,6 +1,7 @@
 // tessera sweep: a scene run over a list (or grid) of parameter values, cases in parallel;
 // tessera report: the paper's figures from a sweep.
 #include "geometry/input_error.h"
+#include "solver/presets.h"
 #include "solver/run_output.h"
 #include "solver/scene.h"
 #include "tools/commands.h"
@@ -70,6 +71,7 @@ Axis parseAxis(const std::string& text) {
 
 struct SweepArguments {
   std::string scene, output;
+  std::string preset;  // applied to every case
   std::vector<std::string> sets;
   int jobs = 0;     // 0: one per core
   int threads = 1;  // per case
@@ -116,7 +118,9 @@ void runSweep(const SweepArguments& a) {
   std::vector<fs::path> caseDirs;
   std::vector<std::string> texts;
   for (std::size_t c = 0; c < cases.size(); ++c) {
-    std::vector<std::pair<std::string, double>> overrides;
+    // The preset's keys first: a --set of the same key wins.
+    std::vector<std::pair<std::string, double>> overrides =
+        a.preset.empty() ? std::vector<std::pair<std::string, double>>{} : findPreset(a.preset).overrides;
     for (std::size_t k = 0; k < axes.size(); ++k) overrides.emplace_back(axes[k].key, cases[c][k]);
     texts.push_back(sceneWithOverrides(a.scene, overrides));
     char name[32];
@@ -240,6 +244,7 @@ void addSweepCommand(CLI::App& app) {
                   "KEY=v1,v2,... or KEY=first:last:count, SI units; KEY is table.key of the scene or E, mu, speed, radius, "
                   "density; repeat for a grid")
       ->required();
+  cmd->add_option("--preset", args->preset, "Speed/accuracy setting applied to every case (as in tessera run --preset)");
   cmd->add_option("--jobs", args->jobs, "Cases run at once [default: cores / threads]");
   cmd->add_option("--threads", args->threads, "Threads per case")->capture_default_str();
   cmd->footer("Example (the paper's E study): tessera sweep assets/scenes/default.toml -o out/E \\\n"
