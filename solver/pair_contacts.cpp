@@ -40,13 +40,15 @@ struct History {
   }
 };
 
-// Shared per-node work: contact law, history, and the force and torque (about each centroid:
-// no cancellation against moments about a far origin) on both bodies.
+// Shared per-node work: contact law, history, and the force on body a with its torque about a's
+// centroid; b's follow in finish() (equal and opposite force; torque moved by the short lever
+// between the two centroids, no cancellation against moments about a far origin).
 struct Accumulator {
   const ContactScene& scene;
   PairContacts& pair;
   History history;
-  double weight = 0.0;  // sum of force magnitudes, for forcePoint
+  Eigen::Vector3d centreA;  // m, body a's centroid
+  double weight = 0.0;      // sum of force magnitudes, for forcePoint
 
   // One node at world x of the body moving with `node`, inside the other side (moving with
   // `other`) by depth along `normal` (world, out of the other side).
@@ -64,17 +66,15 @@ struct Accumulator {
     const double magnitude = f.norm();
     pair.forcePoint += magnitude * x;
     weight += magnitude;
-    // Equal and opposite forces at the same point: Newton's third law holds for forces and torques.
     const Eigen::Vector3d fA = nodeBodyIsA ? f : Eigen::Vector3d(-f);
-    const Motion& a = nodeBodyIsA ? node : other;
-    const Motion& b = nodeBodyIsA ? other : node;
     pair.forceA += fA;
-    pair.torqueA += (x - a.position).cross(fA);
-    pair.forceB -= fA;
-    if (pair.b >= 0) pair.torqueB -= (x - b.position).cross(fA);
+    pair.torqueA += (x - centreA).cross(fA);
   }
 
+  // Newton's third law: on b, -F_A at the same points: tau_B = -(tau_A + (c_A - c_B) x F_A).
   void finish() {
+    pair.forceB = -pair.forceA;
+    if (pair.b >= 0) pair.torqueB = -(pair.torqueA + (centreA - scene.bodies->position[pair.b]).cross(pair.forceA));
     if (weight > 0) pair.forcePoint /= weight;
   }
 };
@@ -111,7 +111,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = !pair.candidatesValid;
   if (rebuild) pair.candidates.clear();
   pair.candidatesValid = true;
-  Accumulator acc{scene, pair, History{pair.previous}};
+  Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a]};
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
 
