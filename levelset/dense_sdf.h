@@ -37,6 +37,25 @@ struct DenseSdf {
     return (x.array() >= origin.array()).all() && (x.array() <= upperCorner().array()).all();
   }
 
+  /// The value of sample(x) alone (no gradient): the cheap test of whether x is inside.
+  double value(const Eigen::Vector3d& x) const {
+    const Eigen::Vector3d clamped = x.cwiseMax(origin).cwiseMin(upperCorner());
+    const Eigen::Vector3d u = (clamped - origin) / voxelSize;
+    int i0[3];
+    double w[3];
+    for (int a = 0; a < 3; ++a) {
+      i0[a] = std::min(static_cast<int>(u[a]), dims[a] - 2);  // u >= 0: truncation is floor
+      w[a] = u[a] - i0[a];
+    }
+    const float* c = &values[index(i0[0], i0[1], i0[2])];
+    const std::size_t dj = dims[2], di = static_cast<std::size_t>(dims[1]) * dims[2];
+    const auto lerp = [](double a, double b, double t) { return a + t * (b - a); };
+    const double c00 = lerp(c[0], c[1], w[2]), c01 = lerp(c[dj], c[dj + 1], w[2]);
+    const double c10 = lerp(c[di], c[di + 1], w[2]), c11 = lerp(c[di + dj], c[di + dj + 1], w[2]);
+    const double phi = lerp(lerp(c00, c01, w[1]), lerp(c10, c11, w[1]), w[0]);
+    return phi + (x - clamped).norm();
+  }
+
   /// Trilinear interpolation of the node values and its exact gradient.
   /// Outside the grid: the value at the nearest grid point plus the distance to it (positive,
   /// continuous, growing away from the grid), with the gradient pointing away from the grid.

@@ -37,6 +37,8 @@ struct ShapeModel {
       if (phi < 0) normal = planes[best].normal;
       return phi;
     }
+    const double outside = sdf.value(x);  // most candidates are outside: no gradient for them
+    if (outside >= 0) return outside;
     const SdfSample s = sdf.sample(x);
     if (s.phi >= 0) return s.phi;
     const double g = s.gradient.norm();

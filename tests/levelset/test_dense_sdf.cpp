@@ -48,3 +48,14 @@ TEST_CASE("outside the grid the value grows with the distance to the grid and po
   REQUIRE(s.phi == Approx(sdf.at(8, 6, 4) + 0.1).margin(1e-6));
   REQUIRE((s.gradient - Eigen::Vector3d(1, 0, 0)).norm() < 1e-12);
 }
+
+TEST_CASE("value() is sample().phi to the last bit, inside the grid and out") {
+  const DenseSdf sdf = linearField(Eigen::Vector3d(0.6, 0.48, -0.64), 0.02);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(-0.3, 1.3);  // a band beyond every side of the grid
+  for (int n = 0; n < 2000; ++n) {
+    const Eigen::Vector3d x = sdf.origin + (sdf.upperCorner() - sdf.origin).cwiseProduct(Eigen::Vector3d(u(random), u(random), u(random)));
+    REQUIRE(sdf.value(x) == sdf.sample(x).phi);
+  }
+  REQUIRE(sdf.value(sdf.upperCorner()) == sdf.sample(sdf.upperCorner()).phi);
+}
