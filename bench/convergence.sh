@@ -20,8 +20,7 @@ sed "s#^bundle = .*#bundle = \"$slab\"#" "$here/assets/scenes/default.toml" > "$
 { cat "$out/base.toml"; printf '\n[solver]\nexact_convex_level_sets = false\n'; } > "$out/grid.toml"
 
 sweep() { "$tessera" sweep "$out/$1.toml" -o "$out/$2" --jobs 2 --threads 1 "${@:3}"; }
-sweep base reference --set resolution.node_spacing=0.3e-3 --set indenter.speed=0.015
-sweep base spacing --set resolution.node_spacing=0.45e-3,0.6e-3,0.9e-3,1.2e-3
+sweep base spacing --set resolution.node_spacing=0.3e-3,0.45e-3,0.6e-3,0.9e-3,1.2e-3  # 0.3 mm: the reference
 sweep base speed --set indenter.speed=0.006,0.015,0.06,0.12
 sweep base factor --set solver.time_step_factor=0.25,1.0
 sweep grid voxel --set resolution.voxel=0.125e-3,0.25e-3,0.5e-3

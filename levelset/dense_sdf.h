@@ -37,16 +37,21 @@ struct DenseSdf {
     return (x.array() >= origin.array()).all() && (x.array() <= upperCorner().array()).all();
   }
 
-  /// The value of sample(x) alone (no gradient): the cheap test of whether x is inside.
-  double value(const Eigen::Vector3d& x) const {
-    const Eigen::Vector3d clamped = x.cwiseMax(origin).cwiseMin(upperCorner());
-    const Eigen::Vector3d u = (clamped - origin) / voxelSize;
-    int i0[3];
-    double w[3];
+  /// The cell of a point inside the grid (its lower node i0) and the weights w in [0, 1] within it.
+  void locate(const Eigen::Vector3d& inside, int i0[3], double w[3]) const {
+    const Eigen::Vector3d u = (inside - origin) / voxelSize;
     for (int a = 0; a < 3; ++a) {
       i0[a] = std::min(static_cast<int>(u[a]), dims[a] - 2);  // u >= 0: truncation is floor
       w[a] = u[a] - i0[a];
     }
+  }
+
+  /// The value of sample(x) alone (no gradient): the cheap test of whether x is inside.
+  double value(const Eigen::Vector3d& x) const {
+    const Eigen::Vector3d clamped = x.cwiseMax(origin).cwiseMin(upperCorner());
+    int i0[3];
+    double w[3];
+    locate(clamped, i0, w);
     const float* c = &values[index(i0[0], i0[1], i0[2])];
     const std::size_t dj = dims[2], di = static_cast<std::size_t>(dims[1]) * dims[2];
     const auto lerp = [](double a, double b, double t) { return a + t * (b - a); };
@@ -61,13 +66,9 @@ struct DenseSdf {
   /// continuous, growing away from the grid), with the gradient pointing away from the grid.
   SdfSample sample(const Eigen::Vector3d& x) const {
     const Eigen::Vector3d clamped = x.cwiseMax(origin).cwiseMin(upperCorner());
-    const Eigen::Vector3d u = (clamped - origin) / voxelSize;
     int i0[3];
     double w[3];
-    for (int a = 0; a < 3; ++a) {
-      i0[a] = std::min(static_cast<int>(std::floor(u[a])), dims[a] - 2);
-      w[a] = u[a] - i0[a];
-    }
+    locate(clamped, i0, w);
     double c[2][2][2];
     for (int di = 0; di < 2; ++di)
       for (int dj = 0; dj < 2; ++dj)

@@ -150,3 +150,22 @@ TEST_CASE("sweep regression: P_max scales with E (gravity off) and a high-fricti
   REQUIRE(summary["response"]["failure_mode"] == "central block out");
   REQUIRE(summary["response"]["fallen"][0]["name"] == "r3c3");
 }
+
+TEST_CASE("--preset runs the scene with the preset's keys, kept as OUT/scene.toml; an unknown one is refused") {
+  test::TempDir dir;
+  const std::string scene = smallRun(dir);
+  const test::CliResult r = test::runTessera("run " + quoted(scene) + " --preset fast --no-plot -o " + quoted(dir / "out"));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.err, Contains("re-prepared at node spacing 0.6 mm"));
+  std::ifstream in(dir / "out/scene.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  REQUIRE_THAT(text.str(), Contains("--preset fast") && Contains("speed = 0.12") && Contains("node_spacing = 0.000599999"));  // toml++ writes 17 digits
+  REQUIRE_THAT(text.str(), Contains("delta_max = 0.000299999"));  // the scene's own keys stay
+
+  const test::CliResult bad = test::runTessera("run " + quoted(scene) + " --preset turbo -o " + quoted(dir / "none"));
+  REQUIRE(bad.status == 2);
+  REQUIRE_THAT(bad.err, Contains("unknown preset 'turbo'") && Contains("fast, default, paper, fine"));
+  REQUIRE_FALSE(fs::exists(dir / "none"));
+}
