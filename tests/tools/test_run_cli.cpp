@@ -157,11 +157,11 @@ TEST_CASE("--preset runs the scene with the preset's keys, kept as OUT/scene.tom
   const test::CliResult r = test::runTessera("run " + quoted(scene) + " --preset fast --no-plot -o " + quoted(dir / "out"));
   INFO(r.err);
   REQUIRE(r.status == 0);
-  REQUIRE_THAT(r.err, Contains("re-prepared at node spacing 0.6 mm"));
+  REQUIRE_THAT(r.err, Contains("re-prepared at node spacing 1.2 mm"));
   std::ifstream in(dir / "out/scene.toml");
   std::stringstream text;
   text << in.rdbuf();
-  REQUIRE_THAT(text.str(), Contains("--preset fast") && Contains("speed = 0.12") && Contains("node_spacing = 0.000599999"));  // toml++ writes 17 digits
+  REQUIRE_THAT(text.str(), Contains("--preset fast") && Contains("speed = 0.12") && Contains("node_spacing = 0.0011999"));  // toml++ writes 17 digits
   REQUIRE_THAT(text.str(), Contains("delta_max = 0.000299999"));  // the scene's own keys stay
 
   const test::CliResult bad = test::runTessera("run " + quoted(scene) + " --preset turbo -o " + quoted(dir / "none"));
