@@ -202,9 +202,9 @@ TEST_CASE("free rotation near the intermediate axis: the block flips, energy and
 }
 
 TEST_CASE("instability is caught: 5x the automatic time step stops the run with a diagnostic") {
-  // A cube clamped on all six faces by fixed cubes (overlapping by 1 um, sticking: mu = 100): its
-  // rocking mode is sqrt(5) times faster than in the single-face contact the step is chosen for,
-  // so 5x the automatic step puts it past Verlet's limit omega dt = 2.
+  // A cube clamped on all six faces by fixed cubes (overlapping by 1 um, sticking: mu = 100):
+  // 5x the automatic step is 2.5x the stability estimate 2 / omega_max (allowed here only for the
+  // test), past Verlet's limit omega dt = 2 for its clamped modes.
   ContactParameters p;
   p.friction = 100;
   SolverSettings s;
