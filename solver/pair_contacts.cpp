@@ -81,7 +81,7 @@ struct Accumulator {
 
 // Visits the nodes of one side (key = side << 31 | rank) that can touch: the pair's candidates
 // of that side or, when they are being rebuilt, every node in `region`, keeping as candidates
-// those with phi below the band. `test(rank)` returns the node's phi.
+// those with phi below the band. `test(key)` returns the node's phi.
 template <class Test>
 void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::uint32_t side, bool rebuild,
                double band, PairContacts& pair, Test&& test) {

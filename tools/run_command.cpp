@@ -19,6 +19,8 @@
 #include <fstream>
 #include <iostream>
 
+#include <unistd.h>
+
 namespace tessera::tools {
 
 namespace fs = std::filesystem;
@@ -81,6 +83,7 @@ int runTest(const RunArguments& a) {
 
   Scene scene;
   CheckpointSource source;
+  std::string presetScene;  // with --preset: the scene text the run reads
   if (resume) {
     source = readCheckpointSource(checkpointFile);
     scene = readScene(source.scene);
@@ -91,22 +94,28 @@ int runTest(const RunArguments& a) {
       scene.solver.threads = a.threads;
     }
   } else {
+    if (fs::exists(checkpointFile))
+      throw InputError(out + ": holds a run already; resume it with --resume " + out + " or choose another -o");
     if (!a.preset.empty()) {
-      // The scene with the preset's keys, kept beside the results (and read again on --resume).
-      const std::string text = sceneWithOverrides(a.scene, findPreset(a.preset).overrides);
-      if (fs::exists(checkpointFile))
-        throw InputError(out + ": holds a run already; resume it with --resume " + out + " or choose another -o");
-      fs::create_directories(out);
-      const std::string effective = (fs::path(out) / "scene.toml").string();
-      std::ofstream(effective) << "# " << a.scene << " with --preset " << a.preset << "\n" << text;
-      scene = readScene(effective);
+      // The scene with the preset's keys: read from a temporary file, written as OUT/scene.toml
+      // with the first results (and read from there by --resume).
+      presetScene = "# " + a.scene + " with --preset " + a.preset + "\n" +
+                    sceneWithOverrides(a.scene, findPreset(a.preset).overrides);
+      const fs::path temporary = fs::temp_directory_path() / ("tessera-preset-" + std::to_string(::getpid()) + ".toml");
+      std::ofstream(temporary) << presetScene;
+      try {
+        scene = readScene(temporary.string());
+      } catch (...) {
+        fs::remove(temporary);
+        throw;
+      }
+      fs::remove(temporary);
+      scene.path = (fs::path(out) / "scene.toml").string();
     } else {
       scene = readScene(a.scene);
     }
     if (!a.bundle.empty()) scene.bundle = a.bundle;
     if (a.threads >= 0) scene.solver.threads = a.threads;
-    if (fs::exists(checkpointFile))
-      throw InputError(out + ": holds a run already; resume it with --resume " + out + " or choose another -o");
     source = {fs::absolute(scene.path).string(), fs::absolute(scene.bundle).string(), scene.solver.threads};
   }
   Bundle bundle = readBundle(scene.bundle);
@@ -157,8 +166,12 @@ int runTest(const RunArguments& a) {
   };
   hooks.interrupted = [] { return stopRequested.load(); };
   hooks.checkpointSeconds = scene.output.checkpointSeconds;
-  hooks.checkpoint = [&](const IndentationState& s) {
+  const auto keepPresetScene = [&] {
     fs::create_directories(out);
+    if (!presetScene.empty() && !fs::exists(scene.path)) std::ofstream(scene.path) << presetScene;
+  };
+  hooks.checkpoint = [&](const IndentationState& s) {
+    keepPresetScene();
     writeCheckpoint(checkpointFile, source, world.state(), s, record);
     writeRunOutputs(out, scene, bundle, contact, record, response());
   };
@@ -172,6 +185,7 @@ int runTest(const RunArguments& a) {
     failure = e.what();
     record.stopReason = "instability";
     record.steps = world.stepCount();
+    keepPresetScene();
     writeRunOutputs(out, scene, bundle, contact, record, response());  // what was recorded, not the unstable state
   }
   if (!record.settled && record.stopReason != "interrupted")
