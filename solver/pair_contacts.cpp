@@ -3,6 +3,7 @@
 #include "solver/contact_law.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace tessera {
@@ -99,6 +100,36 @@ void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::ui
 
 constexpr std::uint32_t kRankMask = (1u << 31) - 1;
 
+// The face planes of a convex body expressed in another body's frame (x_O = R x_M + t), in hot
+// arrays: phi(p) = max_f (n_f . p - d_f), the exact level set of a convex polyhedron (1-Lipschitz),
+// evaluated without transforming p.
+struct PlanesInFrame {
+  static constexpr int kMax = 64;  // convexPolyhedronPlanes' default limit
+  std::array<Eigen::Vector3d, kMax> normal;
+  std::array<double, kMax> offset;
+  int count = 0;
+
+  PlanesInFrame(const std::vector<FacePlane>& planes, const Eigen::Matrix3d& R, const Eigen::Vector3d& t)
+      : count(static_cast<int>(std::min<std::size_t>(planes.size(), kMax))) {
+    for (int f = 0; f < count; ++f) {
+      normal[f] = R.transpose() * planes[f].normal;
+      offset[f] = planes[f].offset - planes[f].normal.dot(t);
+    }
+  }
+  double phi(const Eigen::Vector3d& p, int& best) const {
+    best = 0;
+    double value = normal[0].dot(p) - offset[0];
+    for (int f = 1; f < count; ++f) {
+      const double v = normal[f].dot(p) - offset[f];
+      if (v > value) {
+        value = v;
+        best = f;
+      }
+    }
+    return value;
+  }
+};
+
 }  // namespace
 
 void evaluatePair(const ContactScene& scene, PairContacts& pair) {
@@ -132,12 +163,29 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
         region.min().array() -= scene.candidateBand;
         region.max().array() += scene.candidateBand;
       }
+      if (!so.planes.empty()) {
+        // A convex other side: its planes moved into M's frame once, n' = toO^T n, d' = d - n . shift,
+        // so that a candidate is tested as it is: phi = max_f (n'_f . p - d'_f).
+        const PlanesInFrame planes(so.planes, toO, shift);
+        visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
+          ++pair.evaluations;
+          const int rank = static_cast<int>(key & kRankMask);
+          const Eigen::Vector3d& p = sm.nodes.position[rank];
+          int best;
+          const double phi = planes.phi(p, best);
+          if (phi < 0)
+            acc.add(key, RM * p + node.position, RM * sm.nodes.normal[rank], 0.5 * sm.nodes.area[rank],
+                    RM * planes.normal[best], -phi, node, other, side == 0);
+          return phi;
+        });
+        continue;
+      }
       visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
         ++pair.evaluations;
         const int rank = static_cast<int>(key & kRankMask);
         const Eigen::Vector3d xO = toO * sm.nodes.position[rank] + shift;
         Eigen::Vector3d normalO = Eigen::Vector3d::Zero();
-        const double phi = so.levelSet(xO, normalO);
+        const double phi = so.gridLevelSet(xO, normalO);
         if (phi < 0)
           acc.add(key, RO * xO + other.position, RM * sm.nodes.normal[rank], 0.5 * sm.nodes.area[rank], RO * normalO,
                   -phi, node, other, side == 0);

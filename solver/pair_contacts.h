@@ -19,24 +19,11 @@ struct ShapeModel {
   std::vector<FacePlane> planes;  ///< body frame; empty: use the grid
   double radius = 0.0;            ///< m, largest |node| (bounding sphere about the centroid)
 
-  /// The level set at a body-frame point: phi (m, < 0 inside; positive outside, also beyond the
-  /// grid), and when phi < 0 its unit gradient in `normal`. 1-Lipschitz (exactly for the planes,
-  /// to the grid's interpolation error for the grid), which the pairs' candidate bands rely on.
-  double levelSet(const Eigen::Vector3d& x, Eigen::Vector3d& normal) const {
-    if (!planes.empty()) {
-      // phi = max_f (n_f . x - d_f): exact inside a convex polyhedron.
-      int best = 0;
-      double phi = planes[0].normal.dot(x) - planes[0].offset;
-      for (int f = 1; f < static_cast<int>(planes.size()); ++f) {
-        const double v = planes[f].normal.dot(x) - planes[f].offset;
-        if (v > phi) {
-          phi = v;
-          best = f;
-        }
-      }
-      if (phi < 0) normal = planes[best].normal;
-      return phi;
-    }
+  /// The grid's level set at a body-frame point: phi (m, < 0 inside; positive outside, also
+  /// beyond the grid), and when phi < 0 its unit gradient in `normal`. About 1-Lipschitz (to the
+  /// interpolation error), which the pairs' candidate bands rely on. (With `planes`, the pair
+  /// evaluation uses the exact phi = max_f (n_f . x - d_f) instead.)
+  double gridLevelSet(const Eigen::Vector3d& x, Eigen::Vector3d& normal) const {
     const double outside = sdf.value(x);  // most candidates are outside: no gradient for them
     if (outside >= 0) return outside;
     const SdfSample s = sdf.sample(x);
