@@ -83,7 +83,7 @@ TEST_CASE("the paper's slab: 49 bodies, 24 fixed, one shape, no overlap, every f
   }
 }
 
-TEST_CASE("straight-sided boxes do not interlock; wave faces interlock even at zero angle") {
+TEST_CASE("straight-sided boxes do not interlock, and wave faces interlock even at zero angle") {
   test::TempDir dir;
   const double shift = 0.1e-3;
   const Bundle boxes = squareSlab(writeBlock(dir, makeBox(10, 10, 3.18), "box.obj"));

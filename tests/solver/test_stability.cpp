@@ -31,7 +31,7 @@ TEST_CASE("a fixed time step above the stability estimate 2 / omega_max is refus
   REQUIRE_NOTHROW(World(bundle, ContactParameters{}, s));
 }
 
-TEST_CASE("deep penetration: grid forces match the exact level set's far past the exterior band; beyond the bound the run stops") {
+TEST_CASE("deep penetration: grid forces match the exact level set's far past the exterior band, and beyond the bound the run stops") {
   // A box pressed 1 mm (4 voxels, past the grid's 3-voxel exterior band) into a fixed box: the
   // grid's interior values are exact distances, so its forces match the exact planes'.
   ContactParameters p;

@@ -151,7 +151,7 @@ TEST_CASE("sweep regression: P_max scales with E (gravity off) and a high-fricti
   REQUIRE(summary["response"]["fallen"][0]["name"] == "r3c3");
 }
 
-TEST_CASE("--preset runs the scene with the preset's keys, kept as OUT/scene.toml; an unknown one is refused") {
+TEST_CASE("run with a preset uses its keys, kept as OUT/scene.toml, and refuses an unknown preset") {
   test::TempDir dir;
   const std::string scene = smallRun(dir);
   const test::CliResult r = test::runTessera("run " + quoted(scene) + " --preset fast --no-plot -o " + quoted(dir / "out"));
