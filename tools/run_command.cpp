@@ -142,7 +142,16 @@ int runTest(const RunArguments& a) {
     throw InputError(scene.path + ": the span (M, L) for k_n = E M / L is unknown: the bundle does not define one; "
                      "set [span] length and interfaces");
 
-  World world(bundle, contact, scene.solver);
+  // The World checks what only the bundle and material decide (e.g. a fixed time step against
+  // the stability estimate): a bad scene value, reported as such.
+  const auto makeWorld = [&] {
+    try {
+      return World(bundle, contact, scene.solver);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(scene.path + ": " + e.what());
+    }
+  };
+  World world = makeWorld();
   IndentationRecord record;
   IndentationState state;
   if (resume) {

@@ -84,6 +84,7 @@ TEST_CASE("bad scenes give one clear error and write nothing") {
   refused("bundle = \"slab\"\n[material]\nyoungs_modulus = -4.2e9\n", "youngs_modulus must be in");
   refused("bundle = \"slab\"\n[material]\nfriction = -1\n", "friction must be in");
   refused("bundle = \"missing\"\n", "no such bundle");
+  refused("bundle = \"slab\"\n[solver]\ntime_step = 1e-3\n", "above the stability estimate");
 
   // A bundle of another format version.
   fs::copy(dir / "slab", dir / "old", fs::copy_options::recursive);
