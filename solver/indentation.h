@@ -24,7 +24,7 @@ struct CurveSample {
 /// The resultant contact force of one pair at a snapshot (a force-chain link).
 struct ForceLink {
   int a = -1, b = -1;            ///< bodies; b < 0: the indenter
-  Eigen::Vector3d point{0, 0, 0};  ///< m, force-weighted mean contact point
+  Eigen::Vector3d point{0, 0, 0};  ///< m, mean contact point weighted by normal force
   Eigen::Vector3d force{0, 0, 0};  ///< N, on body a
 };
 

@@ -49,7 +49,7 @@ struct Accumulator {
   PairContacts& pair;
   History history;
   Eigen::Vector3d centreA;  // m, body a's centroid
-  double weight = 0.0;      // sum of force magnitudes, for forcePoint
+  double weight = 0.0;      // sum of normal forces, for forcePoint
 
   // One node at world x of the body moving with `node`, inside the other side (moving with
   // `other`) by depth along `normal` (world, out of the other side).
@@ -64,9 +64,9 @@ struct Accumulator {
         contactForce(scene.parameters, scene.kn, scene.kt, input, spring, scene.dt, pair.elasticEnergy);
     pair.contacts.push_back({key, spring});
     pair.maxDepth = std::max(pair.maxDepth, depth);
-    const double magnitude = f.norm();
-    pair.forcePoint += magnitude * x;
-    weight += magnitude;
+    const double normalForce = f.dot(normal);  // f_n: the tangential part is normal to n
+    pair.forcePoint += normalForce * x;
+    weight += normalForce;
     const Eigen::Vector3d fA = nodeBodyIsA ? f : Eigen::Vector3d(-f);
     pair.forceA += fA;
     pair.torqueA += (x - centreA).cross(fA);

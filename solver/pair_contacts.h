@@ -53,7 +53,7 @@ struct PairContacts {
   std::vector<std::uint32_t> candidates;
   bool candidatesValid = false;  ///< false: the next evaluation visits every node in range and rebuilds them
   Eigen::Vector3d forceA{0, 0, 0}, torqueA{0, 0, 0}, forceB{0, 0, 0}, torqueB{0, 0, 0};
-  Eigen::Vector3d forcePoint{0, 0, 0};  ///< m, world: contact points weighted by force magnitude (force chains)
+  Eigen::Vector3d forcePoint{0, 0, 0};  ///< m, world: contact points weighted by normal force (force chains)
   double elasticEnergy = 0.0;  ///< J
   double maxDepth = 0.0;       ///< m, deepest node penetration
   long evaluations = 0;        ///< node-vs-level-set evaluations in the last evaluation (for benchmarks)
