@@ -2,8 +2,7 @@
 // indentation: time per step and node-vs-level-set evaluations per second per core, with 1 and
 // 2 threads, for the exact convex level sets (default) and the grids.
 // Run: build/bench/bench_solver --benchmark_min_time=3   (results: bench/README.md)
-#include "geometry/tessellation.h"
-#include "levelset/tiler.h"
+#include "bench/default_slab.h"
 #include "solver/world.h"
 
 #include <benchmark/benchmark.h>
@@ -15,14 +14,7 @@ using namespace tessera;
 namespace {
 
 const Bundle& defaultSlab() {
-  static const Bundle slab = [] {
-    LayoutShape shape;
-    shape.key = "planar";
-    shape.mesh = TESSERA_ASSETS "/blocks/planar_a10_h3.18_5deg.obj";
-    PrepLog log;
-    Bundle b = tileAssembly({shape}, squareGrid(SquareGridOptions{}, "planar"), "mm", ShapeResolution{}, log);
-    return b;
-  }();
+  static const Bundle slab = bench::defaultSlab();
   return slab;
 }
 

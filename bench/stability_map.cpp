@@ -10,10 +10,9 @@
 // The critical factor is the smallest failing one; the margin of the automatic step is
 // critical / 0.5.
 //
-// Run: build/bench/stability_map OUT.csv [jobs]   (about 10 min on 2 cores; plot with
+// Run: build/bench/stability_map OUT.csv [jobs]   (about 20 min on 2 cores; plot with
 // bench/plot_stability_map.py OUT.csv docs/stability_map.png; results: docs/performance.md)
-#include "geometry/tessellation.h"
-#include "levelset/tiler.h"
+#include "bench/default_slab.h"
 #include "solver/indentation.h"
 #include "solver/response.h"
 #include "solver/world.h"
@@ -30,14 +29,6 @@
 using namespace tessera;
 
 namespace {
-
-Bundle defaultSlab() {
-  LayoutShape shape;
-  shape.key = "planar";
-  shape.mesh = TESSERA_ASSETS "/blocks/planar_a10_h3.18_5deg.obj";
-  PrepLog log;
-  return tileAssembly({shape}, squareGrid(SquareGridOptions{}, "planar"), "mm", ShapeResolution{}, log);
-}
 
 struct Outcome {
   bool stable = false;     // the solver did not stop it
@@ -143,7 +134,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const int jobs = argc > 2 ? std::max(1, std::atoi(argv[2])) : 2;
-  const Bundle slab = defaultSlab();
+  const Bundle slab = bench::defaultSlab();
   std::vector<Cell> cells;
   for (double e : {3.3e9, 4.2e9, 10e9, 20e9, 40e9, 75e9})
     for (double mu : {0.19, 0.23, 0.5, 1.0, 3.0, 9.0}) {

@@ -37,7 +37,7 @@ ShapeModel makeShapeModel(const Shape& shape, bool exactConvex) {
 //   K_k = k_n sum a (n.e_k)^2 + k_t sum a (1 - (n.e_k)^2)                        omega^2 = 2 K_k / m
 //   G_k = k_n sum a ((e_k x r).n)^2 + k_t sum a (|e_k x r|^2 - ((e_k x r).n)^2)    omega^2 = 2 G_k / I_k
 // (k_t counts only with friction; without it no tangential force acts.) Translation-rotation
-// coupling is left out: the measured critical steps (bench/stability_map.sh) bound what that costs.
+// coupling is left out: the measured critical steps (bench/stability_map.cpp) bound what that costs.
 double fastestMode(const Shape& shape, double mass, const Eigen::Vector3d& inertia, const ContactParameters& p) {
   const double kn = p.normalStiffness(), kt = p.friction > 0 ? p.tangentialStiffness() : 0.0;
   double omega2 = 0.0;
