@@ -65,7 +65,7 @@ Outcome indent(const Bundle& slab, double youngsModulus, double friction, double
     o.stable = !record.curve.empty();
     if (o.stable) {
       o.load = record.curve.back().load;
-      o.stiffness = analyseResponse(record, youngsModulus, contact.spanLength, 3.18e-3).stiffness;
+      o.stiffness = analyseResponse(record, ResponseSettings{youngsModulus, contact.spanLength}).stiffness;
     }
   } catch (const SolverInstability& e) {
     o.message = e.what();

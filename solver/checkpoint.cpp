@@ -2,6 +2,7 @@
 
 #include "geometry/input_error.h"
 #include "levelset/hdf5_file.h"
+#include "solver/curve_table.h"
 
 #include <filesystem>
 #include <stdexcept>
@@ -14,7 +15,7 @@ using h5::Handle;
 namespace {
 
 constexpr const char* kFormat = "tessera-checkpoint";
-constexpr std::int64_t kVersion = 1;
+constexpr std::int64_t kVersion = 2;
 
 hsize_t count(std::size_t n) { return static_cast<hsize_t>(n); }
 
@@ -63,15 +64,17 @@ void writeWorld(hid_t g, const WorldState& w) {
   writeFlags(g, "fixed", w.bodies.fixed);
   writeFlags(g, "retired", w.retired);
   std::vector<Eigen::Vector3d> centre, velocity;
-  std::vector<double> radius;
+  std::vector<double> radius, factor;
   for (const SphereObstacle& s : w.spheres) {
     centre.push_back(s.center);
     velocity.push_back(s.velocity);
     radius.push_back(s.radius);
+    factor.push_back(s.stiffnessFactor);
   }
   writeVectors(g, "sphere_centre", centre);
   writeVectors(g, "sphere_velocity", velocity);
   writeDoubles(g, "sphere_radius", radius);
+  writeDoubles(g, "sphere_stiffness_factor", factor);
 
   std::vector<std::int32_t> a, b, n;
   std::vector<double> keys, elastic, depth;
@@ -88,7 +91,7 @@ void writeWorld(hid_t g, const WorldState& w) {
     tA.push_back(p.torqueA);
     fB.push_back(p.forceB);
     tB.push_back(p.torqueB);
-    elastic.push_back(p.elasticEnergy);
+    elastic.push_back(p.tally.elastic);
     depth.push_back(p.maxDepth);
   }
   h5::writeDataset(g, "pair_a", a, {count(a.size())});
@@ -111,11 +114,16 @@ void writeWorld(hid_t g, const WorldState& w) {
   writeVectors(g, "contact_force", w.contactForce);
   writeVectors(g, "contact_torque", w.contactTorque);
   writeVectors(g, "sphere_reaction", w.sphereReaction);
+  writeVectors(g, "damping_force", w.dampingForce);
+  writeVectors(g, "damping_torque", w.dampingTorque);
   writeVectors(g, "start_position", w.startPosition);
   h5::writeAttribute(g, "pairs_valid", std::int64_t{w.pairsValid});
   h5::writeAttribute(g, "forces_valid", std::int64_t{w.forcesValid});
   h5::writeAttribute(g, "initial_energy", w.initialEnergy);
   h5::writeAttribute(g, "obstacle_work", w.obstacleWork);
+  h5::writeAttribute(g, "friction_dissipated", w.friction);
+  h5::writeAttribute(g, "damping_dissipated", w.damping);
+  h5::writeAttribute(g, "retired_kinetic", w.retiredKinetic);
   h5::writeAttribute(g, "most_supplied", w.mostSupplied);
   h5::writeAttribute(g, "time", w.time);
   h5::writeAttribute(g, "steps", std::int64_t{w.steps});
@@ -130,8 +138,11 @@ void readWorld(hid_t g, WorldState& w) {
   w.retired = readFlags(g, "retired");
   const auto centre = readVectors(g, "sphere_centre"), velocity = readVectors(g, "sphere_velocity");
   const auto radius = h5::readDataset<double>(g, "sphere_radius");
+  const auto factor = h5::readDataset<double>(g, "sphere_stiffness_factor");
+  if (radius.size() != centre.size() || factor.size() != centre.size() || velocity.size() != centre.size())
+    throw std::runtime_error("inconsistent indenter records");
   w.spheres.clear();
-  for (std::size_t k = 0; k < centre.size(); ++k) w.spheres.push_back({centre[k], radius[k], velocity[k]});
+  for (std::size_t k = 0; k < centre.size(); ++k) w.spheres.push_back({centre[k], radius[k], velocity[k], factor[k]});
 
   const auto a = h5::readDataset<std::int32_t>(g, "pair_a"), b = h5::readDataset<std::int32_t>(g, "pair_b");
   const auto n = h5::readDataset<std::int32_t>(g, "pair_contacts");
@@ -151,7 +162,7 @@ void readWorld(hid_t g, WorldState& w) {
     pair.torqueA = tA[p];
     pair.forceB = fB[p];
     pair.torqueB = tB[p];
-    pair.elasticEnergy = elastic[p];
+    pair.tally.elastic = elastic[p];
     pair.maxDepth = depth[p];
     w.pairs.push_back(std::move(pair));
   }
@@ -163,11 +174,16 @@ void readWorld(hid_t g, WorldState& w) {
   w.contactForce = readVectors(g, "contact_force");
   w.contactTorque = readVectors(g, "contact_torque");
   w.sphereReaction = readVectors(g, "sphere_reaction");
+  w.dampingForce = readVectors(g, "damping_force");
+  w.dampingTorque = readVectors(g, "damping_torque");
   w.startPosition = readVectors(g, "start_position");
   w.pairsValid = h5::readIntAttribute(g, "pairs_valid") != 0;
   w.forcesValid = h5::readIntAttribute(g, "forces_valid") != 0;
   w.initialEnergy = h5::readDoubleAttribute(g, "initial_energy");
   w.obstacleWork = h5::readDoubleAttribute(g, "obstacle_work");
+  w.friction = h5::readDoubleAttribute(g, "friction_dissipated");
+  w.damping = h5::readDoubleAttribute(g, "damping_dissipated");
+  w.retiredKinetic = h5::readDoubleAttribute(g, "retired_kinetic");
   w.mostSupplied = h5::readDoubleAttribute(g, "most_supplied");
   w.time = h5::readDoubleAttribute(g, "time");
   w.steps = h5::readIntAttribute(g, "steps");
@@ -181,24 +197,22 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
   h5::writeAttribute(g, "peak", s.peak);
   h5::writeAttribute(g, "next_sample", s.nextSample);
   h5::writeAttribute(g, "next_snapshot", s.nextSnapshot);
-  h5::writeAttribute(g, "fallen_distance", s.fallenDistance);
-  h5::writeAttribute(g, "target_z0", s.targetZ0);
+  h5::writeAttribute(g, "quiet_from", s.quietFrom);
   writeVectors(g, "settled_position", s.settledPosition);
+  writeDoubles(g, "lost_support_at", s.lostSupportAt);
 
   h5::writeAttribute(g, "settle_time", r.settleTime);
   h5::writeAttribute(g, "settle_steps", std::int64_t{r.settleSteps});
   h5::writeAttribute(g, "settled", std::int64_t{r.settled});
   h5::writeAttribute(g, "target", std::int64_t{r.target});
   h5::writeAttribute(g, "target_name", r.targetName);
+  h5::writeAttribute(g, "thickness", r.thickness);
+  h5::writeAttribute(g, "delta_max", r.deltaMax);
   h5::writeAttribute(g, "stop_reason", r.stopReason);
   h5::writeAttribute(g, "steps", std::int64_t{r.steps});
   h5::writeAttribute(g, "time_step", r.timeStep);
   h5::writeAttribute(g, "wall_seconds", r.wallSeconds);
-  std::vector<double> curve;
-  for (const CurveSample& c : r.curve)
-    curve.insert(curve.end(), {c.time, c.delta, c.load, c.kinetic, c.externalWork, c.elastic, static_cast<double>(c.contacts),
-                               c.targetDrop});
-  h5::writeDataset(g, "curve", curve, {count(r.curve.size()), 8});
+  writeCurve(h5::createGroup(g, "curve").get(), r.curve);
   std::vector<double> snapshot;
   std::vector<Eigen::Vector3d> position;
   std::vector<Eigen::Quaterniond> orientation;
@@ -226,12 +240,15 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
   writeQuaternions(g, "snapshot_orientation", orientation);
   std::vector<std::string> names;
   std::vector<double> delta;
+  std::vector<char> retired;
   for (const FallenBody& f : r.fallen) {
     names.push_back(f.name);
     delta.push_back(f.delta);
+    retired.push_back(f.retired);
   }
   h5::writeStrings(g, "fallen_names", names);
   writeDoubles(g, "fallen_delta", delta);
+  writeFlags(g, "fallen_retired", retired);
 }
 
 void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t bodies) {
@@ -242,24 +259,24 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   s.peak = h5::readDoubleAttribute(g, "peak");
   s.nextSample = h5::readDoubleAttribute(g, "next_sample");
   s.nextSnapshot = h5::readDoubleAttribute(g, "next_snapshot");
-  s.fallenDistance = h5::readDoubleAttribute(g, "fallen_distance");
-  s.targetZ0 = h5::readDoubleAttribute(g, "target_z0");
+  s.quietFrom = h5::readDoubleAttribute(g, "quiet_from");
   s.settledPosition = readVectors(g, "settled_position");
+  s.lostSupportAt = h5::readDataset<double>(g, "lost_support_at");
+  if ((s.phase > 0 && s.settledPosition.size() != bodies) || s.lostSupportAt.size() != s.settledPosition.size())
+    throw std::runtime_error("settled positions for a different number of bodies");
 
   r.settleTime = h5::readDoubleAttribute(g, "settle_time");
   r.settleSteps = h5::readIntAttribute(g, "settle_steps");
   r.settled = h5::readIntAttribute(g, "settled") != 0;
   r.target = static_cast<int>(h5::readIntAttribute(g, "target"));
   r.targetName = h5::readStringAttribute(g, "target_name");
+  r.thickness = h5::readDoubleAttribute(g, "thickness");
+  r.deltaMax = h5::readDoubleAttribute(g, "delta_max");
   r.stopReason = h5::readStringAttribute(g, "stop_reason");
   r.steps = h5::readIntAttribute(g, "steps");
   r.timeStep = h5::readDoubleAttribute(g, "time_step");
   r.wallSeconds = h5::readDoubleAttribute(g, "wall_seconds");
-  const auto curve = h5::readDataset<double>(g, "curve");
-  r.curve.clear();
-  for (std::size_t i = 0; i + 7 < curve.size(); i += 8)
-    r.curve.push_back({curve[i], curve[i + 1], curve[i + 2], curve[i + 3], curve[i + 4], curve[i + 5],
-                       static_cast<long>(curve[i + 6]), curve[i + 7]});
+  r.curve = readCurve(h5::openGroup(g, "curve").get());
   const auto snapshot = h5::readDataset<double>(g, "snapshot");
   const auto position = readVectors(g, "snapshot_position");
   const auto orientation = readQuaternions(g, "snapshot_orientation");
@@ -279,8 +296,10 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   }
   const auto names = h5::readStrings(g, "fallen_names");
   const auto delta = h5::readDataset<double>(g, "fallen_delta");
+  const auto retired = readFlags(g, "fallen_retired");
+  if (delta.size() != names.size() || retired.size() != names.size()) throw std::runtime_error("inconsistent fallen records");
   r.fallen.clear();
-  for (std::size_t i = 0; i < names.size(); ++i) r.fallen.push_back({names[i], delta[i]});
+  for (std::size_t i = 0; i < names.size(); ++i) r.fallen.push_back({names[i], delta[i], retired[i] != 0});
 }
 
 }  // namespace
@@ -319,7 +338,7 @@ CheckpointSource readCheckpointSource(const std::string& path) {
     const auto version = h5::readIntAttribute(f.get(), "format_version");
     if (version != kVersion)
       throw InputError(path + ": checkpoint format version " + std::to_string(version) + " is not supported (this " +
-                       generatorVersion() + " reads version 1)");
+                       generatorVersion() + " reads version " + std::to_string(kVersion) + "; run it again from the scene)");
     return {h5::readStringAttribute(f.get(), "scene"), h5::readStringAttribute(f.get(), "bundle"),
             static_cast<int>(h5::readIntAttribute(f.get(), "threads"))};
   } catch (const InputError&) {

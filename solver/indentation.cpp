@@ -1,5 +1,7 @@
 #include "solver/indentation.h"
 
+#include "solver/assembly_state.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -33,13 +35,7 @@ Snapshot snapshotOf(const World& world, double delta, double load) {
   return s;
 }
 
-long nodeContacts(const World& world) {
-  long n = 0;
-  for (const PairContacts& p : world.pairs()) n += static_cast<long>(p.contacts.size());
-  return n;
-}
-
-// After settling: choose the target, place the indenter just above its top.
+// After settling: choose the target, measure its thickness, place the indenter just above its top.
 void startLoading(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
                   IndentationState& state) {
   RigidBodies& bodies = world.bodies();
@@ -53,23 +49,57 @@ void startLoading(World& world, const Bundle& bundle, const Scene& scene, Indent
     if (record.target < 0) throw std::invalid_argument("the bundle has no free body to load");
   }
   record.targetName = bodies.name[record.target];
+  // h: the settled block's extent along the loading direction (z), from its mesh as posed.
   double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
   for (const auto& v : bundle.shapes[bodies.shape[record.target]].mesh.vertices) {
     const double z = (bodies.orientation[record.target] * v + bodies.position[record.target]).z();
     top = std::max(top, z);
     bottom = std::min(bottom, z);
   }
-  state.fallenDistance = scene.protocol.fallenDistance > 0 ? scene.protocol.fallenDistance : top - bottom;
+  record.thickness = top - bottom;
+  record.deltaMax = scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * record.thickness;
   SphereObstacle indenter;
   indenter.radius = scene.indenter.radius;
   indenter.center = bodies.position[record.target];
   indenter.center.z() = top + scene.indenter.radius + scene.indenter.clearance;
   indenter.velocity = Eigen::Vector3d(0, 0, -scene.indenter.speed);
+  indenter.stiffnessFactor = scene.indenter.stiffnessFactor;
   state.sphere = world.addSphere(indenter);
   state.settledPosition = bodies.position;
-  state.targetZ0 = bodies.position[record.target].z();
+  state.lostSupportAt.assign(bodies.size(), -1.0);
   state.loadStart = world.time();
   state.phase = 1;
+}
+
+// At a sample: who is held, who has fallen (and since when), who has left and is retired.
+void updateFallen(World& world, const Scene& scene, IndentationRecord& record, IndentationState& state, double delta) {
+  const FallenRule rule{scene.protocol.fallenClearance};
+  const std::vector<char> supported = supportedBodies(world), touching = touchingBlocks(world);
+  const RigidBodies& bodies = world.bodies();
+  record.fallen.clear();
+  for (int i = 0; i < static_cast<int>(bodies.size()); ++i) {
+    if (world.isSupport(i)) continue;
+    if (world.isRetired(i)) {
+      record.fallen.push_back({bodies.name[i], state.lostSupportAt[i], true});
+      continue;
+    }
+    if (supported[i]) state.lostSupportAt[i] = -1.0;
+    else if (state.lostSupportAt[i] < 0) state.lostSupportAt[i] = delta;
+    if (canRetire(world, i, touching, supported, state.settledPosition[i], rule)) {
+      world.retireBody(i);
+      record.fallen.push_back({bodies.name[i], state.lostSupportAt[i], true});
+    } else if (hasFallen(world, i, supported, state.settledPosition[i], rule)) {
+      record.fallen.push_back({bodies.name[i], state.lostSupportAt[i], false});
+    }
+  }
+}
+
+bool allAtRestOrFallen(const World& world, const Scene& scene, const IndentationRecord& record) {
+  std::vector<char> fallen(world.bodies().size(), 0);
+  for (const FallenBody& f : record.fallen)
+    for (std::size_t i = 0; i < fallen.size(); ++i)
+      if (world.bodies().name[i] == f.name) fallen[i] = 1;
+  return restingBodies(world, fallen, scene.protocol.restSpeedRatio * scene.indenter.speed);
 }
 
 }  // namespace
@@ -118,13 +148,31 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
   // 2. Push at constant speed.
   RigidBodies& bodies = world.bodies();
   const double speed = scene.indenter.speed;
-  const double travelMax = scene.protocol.deltaMax + scene.indenter.clearance + scene.indenter.radius;
+  const double travelMax = record.deltaMax + scene.indenter.clearance + scene.indenter.radius;
   const auto sample = [&](double delta, double load) {
+    updateFallen(world, scene, record, state, delta);
     const EnergyBudget e = world.energy();
-    record.curve.push_back({world.time() - state.loadStart, delta, load, e.kinetic, e.obstacleWork, e.elastic,
-                            nodeContacts(world),
-                            world.isRetired(record.target) ? state.fallenDistance
-                                                           : state.targetZ0 - bodies.position[record.target].z()});
+    const ContactCounts c = countContacts(world, record.target);
+    CurveSample s;
+    s.time = world.time() - state.loadStart;
+    s.delta = delta;
+    s.load = load;
+    s.blockDisplacement = state.settledPosition[record.target].z() - bodies.position[record.target].z();
+    s.indenterPenetration = c.indenterDepth;
+    s.contacts = static_cast<double>(c.all);
+    s.blockContacts = static_cast<double>(c.blocks);
+    s.slidingContacts = static_cast<double>(c.blocksSliding);
+    s.loadedContacts = static_cast<double>(c.loaded);
+    s.loadedSliding = static_cast<double>(c.loadedSliding);
+    s.kinetic = e.kinetic;
+    s.externalWork = e.obstacleWork;
+    s.elastic = e.elastic;
+    s.friction = e.friction;
+    s.damping = e.damping;
+    s.gravityWork = e.gravityWork;
+    s.retiredKinetic = e.retiredKinetic;
+    s.residual = e.residual();
+    record.curve.push_back(s);
   };
   while (state.phase == 1) {
     if (hooks.interrupted()) {
@@ -136,37 +184,40 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     const double load = world.sphereReaction(state.sphere).z();
     if (state.contactTravel < 0 && load > 0) state.contactTravel = travel;
     const double delta = state.contactTravel < 0 ? 0.0 : travel - state.contactTravel;
+    state.peak = std::max(state.peak, load);
 
-    // Retire bodies that have fallen clear.
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-      if (!bodies.fixed[i] && state.settledPosition[i].z() - bodies.position[i].z() > state.fallenDistance) {
-        record.fallen.push_back({bodies.name[i], delta});
-        world.retireBody(static_cast<int>(i));
-      }
-
+    bool sampled = false;
     if (state.contactTravel >= 0 && delta >= state.nextSample) {
       sample(delta, load);
+      sampled = true;
       state.nextSample += scene.output.sampleEvery;
+      // The load gone: below 1 % of the peak since quietFrom.
+      if (state.peak > 0 && load < 0.01 * state.peak) {
+        if (state.quietFrom < 0) state.quietFrom = delta;
+      } else {
+        state.quietFrom = -1;
+      }
     }
     if (state.contactTravel >= 0 && delta >= state.nextSnapshot) {
       record.snapshots.push_back(snapshotOf(world, delta, load));
       state.nextSnapshot += scene.output.snapshotEvery;
     }
-    state.peak = std::max(state.peak, load);
 
     if (hooks.progress && wall() - lastProgress >= scene.output.progressSeconds) {
       lastProgress = wall();
       const double done = std::max(travel / travelMax, 1e-9);
-      hooks.progress({delta, load, world.energy().kinetic, world.energy().obstacleWork, nodeContacts(world),
+      const EnergyBudget e = world.energy();
+      hooks.progress({delta, load, e.kinetic, e.obstacleWork, static_cast<long>(countContacts(world, record.target).all),
                       world.stepCount(), world.stepCount() / (wallBefore + wall()), (wallBefore + wall()) * (1 - done) / done});
     }
-    const bool reachedMax = (state.contactTravel >= 0 && delta >= scene.protocol.deltaMax) ||
-                            travel > travelMax + scene.protocol.deltaMax;  // the latter: never touched anything
-    const bool failed = scene.protocol.stopOnFailure && state.peak > 0 && world.isRetired(record.target) &&
-                        load <= 0.01 * state.peak;
+    const bool reachedMax = (state.contactTravel >= 0 && delta >= record.deltaMax) ||
+                            travel > travelMax + record.deltaMax;  // the latter: never touched anything
+    const bool failed = scene.protocol.stopOnFailure && sampled && state.quietFrom >= 0 &&
+                        delta - state.quietFrom >= scene.protocol.quietTravel * record.thickness &&
+                        allAtRestOrFallen(world, scene, record);
     if (reachedMax || failed) {
       record.stopReason = failed ? "failure" : "delta_max";
-      // The state at the stop closes the curve (the drop to zero of a failure, for one).
+      // The state at the stop closes the curve.
       if (state.contactTravel >= 0 && (record.curve.empty() || record.curve.back().time < world.time() - state.loadStart))
         sample(delta, load);
       if (!record.curve.empty() && (record.snapshots.empty() || record.snapshots.back().delta < record.curve.back().delta))

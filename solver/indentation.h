@@ -9,16 +9,26 @@
 
 namespace tessera {
 
-/// One point of the load-deflection record.
+/// One point of the load-deflection record (docs/outputs.md). Counts are stored as numbers.
 struct CurveSample {
-  double time = 0;          ///< s since the start of loading
-  double delta = 0;         ///< m, indenter travel since first contact
-  double load = 0;          ///< N, P: the bodies' push on the indenter (upward)
-  double kinetic = 0;       ///< J
-  double externalWork = 0;  ///< J, work done by the indenter
-  double elastic = 0;       ///< J, stored in the contacts
-  long contacts = 0;        ///< node contacts
-  double targetDrop = 0;    ///< m, downward displacement of the loaded block since settling
+  double time = 0;                ///< s since the start of loading
+  double delta = 0;               ///< m, indenter travel since first contact
+  double load = 0;                ///< N, P: the bodies' push on the indenter (upward)
+  double blockDisplacement = 0;   ///< m, delta_b: downward displacement of the loaded block since settling
+  double indenterPenetration = 0; ///< m, deepest node inside the indenter (delta - delta_b, but for rotation)
+  double contacts = 0;            ///< node contacts, the indenter's included
+  double blockContacts = 0;       ///< node contacts between bodies
+  double slidingContacts = 0;     ///< of those, at the Coulomb cap
+  double loadedContacts = 0;      ///< node contacts between the loaded block and other bodies
+  double loadedSliding = 0;       ///< of those, at the Coulomb cap
+  double kinetic = 0;             ///< J; the energies are since the start of the run (settling included)
+  double externalWork = 0;        ///< J, work done by the indenter
+  double elastic = 0;             ///< J, stored in the contacts
+  double friction = 0;            ///< J, dissipated by sliding
+  double damping = 0;             ///< J, dissipated by damping
+  double gravityWork = 0;         ///< J, work done by gravity
+  double retiredKinetic = 0;      ///< J, carried off by retired bodies
+  double residual = 0;            ///< J, EnergyBudget::residual
 };
 
 /// The resultant contact force of one pair at a snapshot (a force-chain link).
@@ -37,9 +47,11 @@ struct Snapshot {
   std::vector<ForceLink> forces;
 };
 
+/// A block that has fallen (assembly_state.h): no chain of block contacts holds it to a support.
 struct FallenBody {
   std::string name;
-  double delta;  ///< m, when it was found fallen (and retired)
+  double delta = 0;      ///< m, when it lost its last contact path to a support (a lone block: its last block contact)
+  bool retired = false;  ///< taken out of the computation, having left the assembly
 };
 
 /// What a run produced.
@@ -49,9 +61,11 @@ struct IndentationRecord {
   bool settled = false;    ///< false: settle_max_time ran out first
   int target = -1;
   std::string targetName;
+  double thickness = 0;    ///< m, h: the loaded block's extent along the loading direction
+  double deltaMax = 0;     ///< m, where the run stops at the latest
   std::vector<CurveSample> curve;
   std::vector<Snapshot> snapshots;
-  std::vector<FallenBody> fallen;
+  std::vector<FallenBody> fallen;  ///< as of the last sample
   std::string stopReason;  ///< "delta_max", "failure", "interrupted"
   long steps = 0;          ///< all steps, settling included
   double timeStep = 0;     ///< s
@@ -73,9 +87,9 @@ struct IndentationState {
   double contactTravel = -1; ///< m, indenter travel at first contact (< 0: not yet)
   double peak = 0;           ///< N, largest load so far
   double nextSample = 0, nextSnapshot = 0;  ///< m of delta
-  double fallenDistance = 0; ///< m
-  double targetZ0 = 0;       ///< m, settled height of the loaded block
+  double quietFrom = -1;     ///< m of delta since which the load has stayed below 1 % of the peak (< 0: it has not)
   std::vector<Eigen::Vector3d> settledPosition;
+  std::vector<double> lostSupportAt;  ///< m of delta per body: when it lost its last contact path to a support (< 0: held)
 };
 
 /// What the caller hears while the test runs.
@@ -86,13 +100,14 @@ struct RunHooks {
   double checkpointSeconds = 30.0;
 };
 
-/// The indentation test (DESIGN §5): settle under gravity until the kinetic energy is below
-/// protocol.settleKinetic (or settleMaxTime passes); put the spherical indenter just above the top
-/// of the target block; push it down at constant speed, sampling the curve; retire bodies that
-/// have fallen `fallenDistance` below their settled position; stop at deltaMax, or (stopOnFailure)
-/// once the loaded block has fallen and the load is below 1 % of its peak, or when `interrupted`
-/// returns true. SolverInstability propagates (the caller keeps what was recorded so far through
-/// `record`).
+/// The indentation test (docs/physics.md, "Protocol"): settle under gravity until the kinetic
+/// energy is below protocol.settleKinetic (or settleMaxTime passes); put the spherical indenter
+/// just above the top of the target block; push it down at constant speed, sampling the curve.
+/// At each sample, bodies that have fallen are listed and those that have left the assembly
+/// retired (assembly_state.h: never a body touching a block). Stops at deltaMax (0: 2 h of the
+/// loaded block), or (stopOnFailure) once the load has stayed below 1 % of its peak over
+/// quietTravel x h and every free body is at rest or fallen, or when `interrupted` returns true.
+/// SolverInstability propagates (the caller keeps what was recorded so far through `record`).
 /// Runs (or, from a restored World, record and state, resumes) the test.
 void runIndentation(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
                     IndentationState& state, const RunHooks& hooks);

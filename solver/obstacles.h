@@ -11,6 +11,7 @@ struct SphereObstacle {
   Eigen::Vector3d center{0, 0, 0};    ///< m
   double radius = 2.5e-3;             ///< m
   Eigen::Vector3d velocity{0, 0, 0};  ///< m/s, prescribed
+  double stiffnessFactor = 1.0;       ///< its contact stiffnesses are this x k_n and k_t of the bodies
 
   double phi(const Eigen::Vector3d& x) const { return (x - center).norm() - radius; }
   /// Unit gradient (outward normal); along +z at the centre itself.

@@ -49,6 +49,7 @@ struct Accumulator {
   PairContacts& pair;
   History history;
   Eigen::Vector3d centreA;  // m, body a's centroid
+  double kn, kt;            // N/m^3, this pair's stiffnesses
   double weight = 0.0;      // sum of normal forces, for forcePoint
 
   // One node at world x of the body moving with `node`, inside the other side (moving with
@@ -61,7 +62,7 @@ struct Accumulator {
     const NodeContactInput input{normal, depth, area * projection, node.velocityAt(x) - other.velocityAt(x)};
     Eigen::Vector3d spring = history.springFor(key);
     const Eigen::Vector3d f =
-        contactForce(scene.parameters, scene.kn, scene.kt, input, spring, scene.dt, pair.elasticEnergy);
+        contactForce(scene.parameters, kn, kt, input, spring, scene.dt, pair.tally);
     pair.contacts.push_back({key, spring});
     pair.maxDepth = std::max(pair.maxDepth, depth);
     const double normalForce = f.dot(normal);  // f_n: the tangential part is normal to n
@@ -136,13 +137,13 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   std::swap(pair.contacts, pair.previous);
   pair.contacts.clear();
   pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = pair.forcePoint = Eigen::Vector3d::Zero();
-  pair.elasticEnergy = 0.0;
+  pair.tally = ContactTally{};
   pair.maxDepth = 0.0;
   pair.evaluations = 0;
   const bool rebuild = !pair.candidatesValid;
   if (rebuild) pair.candidates.clear();
   pair.candidatesValid = true;
-  Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a]};
+  Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a], scene.kn, scene.kt};
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
 
@@ -216,6 +217,8 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   };
   if (obstacle < sphereCount) {
     const SphereObstacle& sphere = (*scene.spheres)[obstacle];
+    acc.kn *= sphere.stiffnessFactor;
+    acc.kt *= sphere.stiffnessFactor;
     const Eigen::Vector3d centre = qM.conjugate() * (sphere.center - node.position);
     const double reach = sphere.radius + scene.candidateBand;
     visitObstacle(Eigen::AlignedBox3d(centre.array() - reach, centre.array() + reach),

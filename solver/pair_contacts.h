@@ -1,6 +1,7 @@
 #pragma once
 #include "geometry/convex_planes.h"
 #include "levelset/dense_sdf.h"
+#include "solver/contact_law.h"
 #include "solver/contact_parameters.h"
 #include "solver/node_bins.h"
 #include "solver/obstacles.h"
@@ -54,7 +55,7 @@ struct PairContacts {
   bool candidatesValid = false;  ///< false: the next evaluation visits every node in range and rebuilds them
   Eigen::Vector3d forceA{0, 0, 0}, torqueA{0, 0, 0}, forceB{0, 0, 0}, torqueB{0, 0, 0};
   Eigen::Vector3d forcePoint{0, 0, 0};  ///< m, world: contact points weighted by normal force (force chains)
-  double elasticEnergy = 0.0;  ///< J
+  ContactTally tally;          ///< stored and dissipated energy, sliding nodes, of the last evaluation
   double maxDepth = 0.0;       ///< m, deepest node penetration
   long evaluations = 0;        ///< node-vs-level-set evaluations in the last evaluation (for benchmarks)
 };

@@ -5,10 +5,46 @@
 
 namespace tessera {
 
-ResponseParameters analyseResponse(const IndentationRecord& record, double youngsModulus, double spanLength,
-                                   double thickness) {
+namespace {
+
+ContactState contactStateAt(const CurveSample& s) {
+  return {s.delta, s.blockDisplacement, s.indenterPenetration, s.blockContacts > 0 ? s.slidingContacts / s.blockContacts : 0.0,
+          s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0};
+}
+
+// Trapezoidal area under P(delta) over samples [0, last].
+double areaUpTo(const std::vector<CurveSample>& c, std::size_t last) {
+  double w = 0;
+  for (std::size_t i = 1; i <= last && i < c.size(); ++i) w += 0.5 * (c[i].load + c[i - 1].load) * (c[i].delta - c[i - 1].delta);
+  return w;
+}
+
+// Sudden drops after the peak: the load falls by at least `fraction` x P_max within a travel
+// `window`; one drop per such fall (the search restarts after it).
+std::vector<LoadDrop> loadDrops(const std::vector<CurveSample>& c, std::size_t peak, double fraction, double window) {
+  std::vector<LoadDrop> drops;
+  const double size = fraction * c[peak].load;
+  std::size_t from = peak;
+  for (std::size_t i = peak + 1; i < c.size(); ++i) {
+    while (c[i].delta - c[from].delta > window) ++from;
+    std::size_t top = from;
+    for (std::size_t k = from; k <= i; ++k)
+      if (c[k].load > c[top].load) top = k;
+    if (c[top].load - c[i].load < size) continue;
+    // Follow the fall to its bottom, then look for the next one from there.
+    while (i + 1 < c.size() && c[i + 1].load < c[i].load) ++i;
+    drops.push_back({c[top].delta, c[top].load, c[i].load});
+    from = i;
+  }
+  return drops;
+}
+
+}  // namespace
+
+ResponseParameters analyseResponse(const IndentationRecord& record, const ResponseSettings& settings) {
   ResponseParameters r;
   const auto& c = record.curve;
+  r.thickness = record.thickness;
   if (c.empty()) {
     r.failureMode = "no contact";
     return r;
@@ -19,6 +55,7 @@ ResponseParameters analyseResponse(const IndentationRecord& record, double young
     if (c[i].load > c[peak].load) peak = i;
   r.peakLoad = c[peak].load;
   r.deltaAtPeak = c[peak].delta;
+  r.atPeak = contactStateAt(c[peak]);
 
   // K: least squares P = K delta + b over the fit window.
   r.fitFrom = 0.0;
@@ -34,6 +71,16 @@ ResponseParameters analyseResponse(const IndentationRecord& record, double young
     }
   if (n >= 2 && n * sxx - sx * sx > 0) r.stiffness = (n * sxy - sx * sy) / (n * sxx - sx * sx);
 
+  // Failure deflection: the load first below the fraction of P_max after the peak.
+  std::size_t failure = c.size() - 1;
+  for (std::size_t i = peak + 1; i < c.size(); ++i)
+    if (c[i].load < settings.failureLoadFraction * r.peakLoad) {
+      failure = i;
+      r.failureDeflection = c[i].delta;
+      break;
+    }
+  r.atFailure = contactStateAt(c[failure]);
+
   // Ultimate deflection: after the peak, where the load falls below 1 % of the peak for good.
   std::size_t last = c.size() - 1;
   for (std::size_t i = c.size(); i-- > peak;)
@@ -43,8 +90,10 @@ ResponseParameters analyseResponse(const IndentationRecord& record, double young
     }
   r.ultimateDeflection = c[last].delta;
 
-  // W: trapezoidal area under P(delta) up to the ultimate deflection.
-  for (std::size_t i = 1; i <= last; ++i) r.energy += 0.5 * (c[i].load + c[i - 1].load) * (c[i].delta - c[i - 1].delta);
+  r.energy = areaUpTo(c, failure);
+  r.energyToEnd = areaUpTo(c, c.size() - 1);
+  r.drops = loadDrops(c, peak, 0.1, 0.05 * record.thickness);
+  r.end = c.back();
 
   // Quasi-static check before the peak, once the indenter has done 1 % of its work up to the peak
   // (before that the ratio only measures the settling's leftover motion against almost nothing).
@@ -52,15 +101,18 @@ ResponseParameters analyseResponse(const IndentationRecord& record, double young
     if (c[i].externalWork > 0.01 * c[peak].externalWork)
       r.quasiStaticRatio = std::max(r.quasiStaticRatio, c[i].kinetic / c[i].externalWork);
 
-  const bool targetFell = std::any_of(record.fallen.begin(), record.fallen.end(),
-                                      [&](const FallenBody& f) { return f.name == record.targetName; });
-  if (record.fallen.size() > 1) r.failureMode = "collapse";
-  else if (targetFell) r.failureMode = "central block out";
-  else r.failureMode = "no failure by delta_max";
+  // Failure mode from the final state.
+  const int fallen = static_cast<int>(record.fallen.size());
+  const bool loadedOut = std::any_of(record.fallen.begin(), record.fallen.end(),
+                                     [&](const FallenBody& f) { return f.name == record.targetName; });
+  if (fallen == 0) r.failureMode = "no failure";
+  else if (settings.freeBodies > 1 && fallen >= settings.freeBodies) r.failureMode = "collapse";
+  else if (fallen == 1 && loadedOut) r.failureMode = "loaded block out";
+  else r.failureMode = std::to_string(fallen) + (fallen == 1 ? " block out" : " blocks out");
 
-  if (youngsModulus > 0 && spanLength > 0) r.peakLoadNormalised = r.peakLoad / (youngsModulus * spanLength * spanLength);
-  r.thickness = thickness;
-  if (thickness > 0) r.deltaAtPeakNormalised = r.deltaAtPeak / thickness;
+  if (settings.youngsModulus > 0 && settings.spanLength > 0)
+    r.peakLoadNormalised = r.peakLoad / (settings.youngsModulus * settings.spanLength * settings.spanLength);
+  if (r.thickness > 0) r.deltaAtPeakNormalised = r.deltaAtPeak / r.thickness;
   return r;
 }
 

@@ -2,18 +2,48 @@
 #include "solver/indentation.h"
 
 #include <string>
+#include <vector>
 
 namespace tessera {
 
-/// The response parameters of an indentation (DESIGN §7; Feldfogel et al., Fig. 1d).
+/// What the analysis needs besides the record.
+struct ResponseSettings {
+  double youngsModulus = 0;        ///< Pa, for P* = P / (E L^2)
+  double spanLength = 0;           ///< m
+  double failureLoadFraction = 0.1;  ///< failure: the load first below this x P_max after the peak
+  int freeBodies = 0;              ///< free bodies of the slab ("collapse": all of them fell)
+};
+
+/// A sudden fall of the load after the peak: by at least 10 % of P_max within 0.05 h of travel.
+struct LoadDrop {
+  double delta = 0;             ///< m, where the load began to fall
+  double before = 0, after = 0; ///< N
+};
+
+/// The stick/slip state at one sample.
+struct ContactState {
+  double delta = 0;                ///< m
+  double blockDisplacement = 0;    ///< m, delta_b of the loaded block
+  double indenterPenetration = 0;  ///< m
+  double slidingFraction = 0;      ///< of the node contacts between bodies, the fraction at the Coulomb cap
+  double loadedSlidingFraction = 0;  ///< the same on the loaded block's interfaces
+};
+
+/// The response parameters of an indentation (docs/outputs.md; Feldfogel et al., Fig. 1d).
 struct ResponseParameters {
   double peakLoad = 0;            ///< N, P_max
   double deltaAtPeak = 0;         ///< m
   double stiffness = 0;           ///< N/m, K: least-squares slope of P(delta) over the fit window
   double fitFrom = 0, fitTo = 0;  ///< m, the fit window
-  double energy = 0;              ///< J, W: area under P(delta) up to the ultimate deflection
-  double ultimateDeflection = 0;  ///< m: where the load returns to zero for good (below 1 % of P_max), else the last delta
-  std::string failureMode;        ///< "central block out", "collapse", "no failure by delta_max"
+  /// m, where the load first falls below failureLoadFraction x P_max after the peak; < 0: it never does.
+  double failureDeflection = -1;
+  double energy = 0;              ///< J, W: area under P(delta) up to the failure deflection (or the end)
+  double energyToEnd = 0;         ///< J, area under P(delta) over the whole run
+  double ultimateDeflection = 0;  ///< m: where the load returns below 1 % of P_max for good, else the last delta
+  std::string failureMode;        ///< from the final state: "no failure", "loaded block out", "N blocks out", "collapse"
+  std::vector<LoadDrop> drops;    ///< every sudden load drop after the peak, the main one first
+  ContactState atPeak, atFailure; ///< atFailure: at the failure deflection (or the end)
+  CurveSample end;                ///< the last sample: energies at the end of the run
   double quasiStaticRatio = 0;    ///< max kinetic energy / external work before the peak (once 1 % of that work is done)
   double thickness = 0;           ///< m, h of the loaded block
   /// Normalised (the paper's upper-bound comparison): P* = P / (E L^2), delta* = delta / h.
@@ -21,7 +51,6 @@ struct ResponseParameters {
 };
 
 /// Fit window for K: [0, min(0.4 mm, delta at the peak / 2)] (the paper's phase I ends near 0.4 mm).
-ResponseParameters analyseResponse(const IndentationRecord& record, double youngsModulus, double spanLength,
-                                   double thickness);
+ResponseParameters analyseResponse(const IndentationRecord& record, const ResponseSettings& settings);
 
 }  // namespace tessera

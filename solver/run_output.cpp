@@ -2,6 +2,7 @@
 
 #include "levelset/assembly_export.h"
 #include "levelset/hdf5_file.h"
+#include "solver/curve_table.h"
 
 #include <nlohmann/json.hpp>
 
@@ -34,7 +35,7 @@ void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bund
                     const IndentationRecord& record) {
   h5::Handle f = h5::createFile(path.string());
   h5::writeAttribute(f.get(), "format", std::string("tessera-results"));
-  h5::writeAttribute(f.get(), "format_version", std::int64_t{1});
+  h5::writeAttribute(f.get(), "format_version", std::int64_t{2});
   h5::writeAttribute(f.get(), "generator", generatorVersion());
   h5::writeAttribute(f.get(), "scene_file", scene.path);
   h5::writeAttribute(f.get(), "bundle", scene.bundle);
@@ -45,21 +46,9 @@ void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bund
   h5::writeAttribute(f.get(), "time_step", record.timeStep);
   h5::writeAttribute(f.get(), "stop_reason", record.stopReason);
 
-  h5::Handle curve = h5::createGroup(f.get(), "curve");
-  const hsize_t n = record.curve.size();
-  const auto column = [&](const char* name, auto get) {
-    std::vector<double> v;
-    for (const CurveSample& s : record.curve) v.push_back(get(s));
-    h5::writeDataset(curve.get(), name, v, {n});
-  };
-  column("time", [](const CurveSample& s) { return s.time; });
-  column("delta", [](const CurveSample& s) { return s.delta; });
-  column("load", [](const CurveSample& s) { return s.load; });
-  column("kinetic_energy", [](const CurveSample& s) { return s.kinetic; });
-  column("external_work", [](const CurveSample& s) { return s.externalWork; });
-  column("elastic_energy", [](const CurveSample& s) { return s.elastic; });
-  column("contacts", [](const CurveSample& s) { return static_cast<double>(s.contacts); });
-  column("target_drop", [](const CurveSample& s) { return s.targetDrop; });
+  h5::writeAttribute(f.get(), "target", record.targetName);
+  h5::writeAttribute(f.get(), "thickness", record.thickness);
+  writeCurve(h5::createGroup(f.get(), "curve").get(), record.curve);
 
   h5::Handle snaps = h5::createGroup(f.get(), "snapshots");
   std::vector<std::string> names;
@@ -100,12 +89,15 @@ void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bund
   h5::Handle fallen = h5::createGroup(f.get(), "fallen");
   std::vector<std::string> fallenNames;
   std::vector<double> fallenDelta;
+  std::vector<std::uint8_t> fallenRetired;
   for (const FallenBody& b : record.fallen) {
     fallenNames.push_back(b.name);
     fallenDelta.push_back(b.delta);
+    fallenRetired.push_back(b.retired);
   }
   h5::writeStrings(fallen.get(), "names", fallenNames);
   h5::writeDataset(fallen.get(), "delta", fallenDelta, {fallenDelta.size()});
+  h5::writeDataset(fallen.get(), "retired", fallenRetired, {fallenRetired.size()});
 }
 
 }  // namespace
@@ -141,18 +133,34 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
 
   atomically(dir / "curve.csv", [&](const fs::path& p) {
     std::ofstream out(p);
-    out << "delta_mm,load_N,time_s,kinetic_J,external_work_J,contacts\n";
-    char line[160];
+    out << "delta_mm,load_N,time_s,kinetic_J,external_work_J,contacts,block_displacement_mm,indenter_penetration_mm,"
+           "sliding_fraction,loaded_sliding_fraction\n";
+    char line[320];
     for (const CurveSample& s : record.curve) {
-      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%ld\n", s.delta * 1e3, s.load, s.time, s.kinetic,
-                    s.externalWork, s.contacts);
+      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g\n", s.delta * 1e3, s.load,
+                    s.time, s.kinetic, s.externalWork, s.contacts, s.blockDisplacement * 1e3, s.indenterPenetration * 1e3,
+                    s.blockContacts > 0 ? s.slidingContacts / s.blockContacts : 0.0,
+                    s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0);
       out << line;
     }
     if (!out) throw std::runtime_error(p.string() + ": cannot write");
   });
 
   nlohmann::json fallen = nlohmann::json::array();
-  for (const FallenBody& b : record.fallen) fallen.push_back({{"name", b.name}, {"delta_mm", b.delta * 1e3}});
+  for (const FallenBody& b : record.fallen)
+    fallen.push_back({{"name", b.name}, {"delta_mm", b.delta * 1e3}, {"retired", b.retired}});
+  nlohmann::json drops = nlohmann::json::array();
+  for (const LoadDrop& d : response.drops)
+    drops.push_back({{"delta_mm", d.delta * 1e3}, {"load_before_N", d.before}, {"load_after_N", d.after}});
+  const auto contactState = [](const ContactState& c) {
+    return nlohmann::json{{"delta_mm", c.delta * 1e3},
+                          {"block_displacement_mm", c.blockDisplacement * 1e3},
+                          {"indenter_penetration_mm", c.indenterPenetration * 1e3},
+                          {"sliding_fraction", c.slidingFraction},
+                          {"loaded_sliding_fraction", c.loadedSlidingFraction}};
+  };
+  const CurveSample& end = response.end;
+  const bool failed = response.failureDeflection >= 0;
   const nlohmann::json summary = {
       {"generator", generatorVersion()},
       {"scene", scene.path},
@@ -164,18 +172,38 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
         {"delta_at_peak_mm", response.deltaAtPeak * 1e3},
         {"stiffness_N_per_mm", response.stiffness * 1e-3},
         {"stiffness_fit_window_mm", {response.fitFrom * 1e3, response.fitTo * 1e3}},
+        {"failure_deflection_mm", failed ? nlohmann::json(response.failureDeflection * 1e3) : nlohmann::json(nullptr)},
+        {"failure_load_fraction", scene.protocol.failureLoadFraction},
+        {"block_displacement_at_failure_mm",
+         failed ? nlohmann::json(response.atFailure.blockDisplacement * 1e3) : nlohmann::json(nullptr)},
         {"loading_energy_mJ", response.energy * 1e3},
+        {"loading_energy_to_end_mJ", response.energyToEnd * 1e3},
         {"ultimate_deflection_mm", response.ultimateDeflection * 1e3},
         {"failure_mode", response.failureMode},
         {"fallen", fallen},
+        {"load_drops", drops},
+        {"at_peak", contactState(response.atPeak)},
+        {"at_failure", failed ? contactState(response.atFailure) : nlohmann::json(nullptr)},
+        {"energy",
+         {{"work_mJ", end.externalWork * 1e3},
+          {"elastic_mJ", end.elastic * 1e3},
+          {"kinetic_mJ", end.kinetic * 1e3},
+          {"friction_mJ", end.friction * 1e3},
+          {"damping_mJ", end.damping * 1e3},
+          {"gravity_mJ", end.gravityWork * 1e3},
+          {"retired_kinetic_mJ", end.retiredKinetic * 1e3},
+          {"residual_mJ", end.residual * 1e3}}},
         {"quasi_static_ratio", response.quasiStaticRatio},
         {"peak_load_normalised", response.peakLoadNormalised},
         {"delta_at_peak_normalised", response.deltaAtPeakNormalised},
-        {"thickness_mm", response.thickness * 1e3}}},
+        {"thickness_mm", response.thickness * 1e3},
+        {"delta_max_mm", record.deltaMax * 1e3}}},
       {"material",
        {{"youngs_modulus_GPa", contact.youngsModulus * 1e-9},
         {"friction", contact.friction},
         {"normal_stiffness_N_per_m3", contact.normalStiffness()},
+        {"tangential_stiffness_N_per_m3", contact.tangentialStiffness()},
+        {"indenter_stiffness_factor", scene.indenter.stiffnessFactor},
         {"span_length_mm", contact.spanLength * 1e3},
         {"span_interfaces", contact.spanInterfaces}}},
       {"run",

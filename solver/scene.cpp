@@ -129,7 +129,11 @@ Scene readScene(const std::string& path) {
   material.number("density", scene.solver.density, 1e-3, 1e5, "kg/m^3");
   material.number("friction", scene.contact.friction, 0, 1e3, "Coulomb coefficient");
   material.number("tangential_ratio", scene.contact.tangentialRatio, 0, 100, "k_t / k_n");
+  material.number("tangential_stiffness", scene.contact.tangentialStiffnessAbsolute, 0, 1e20,
+                  "N/m^3; 0 = tangential_ratio x k_n");
   material.number("normal_viscosity", scene.contact.normalViscosity, 0, 1e12, "Pa s / m");
+  if (scene.contact.tangentialStiffnessAbsolute > 0 && root["material"]["tangential_ratio"])
+    throw InputError(path + ": give material.tangential_stiffness (N/m^3) or material.tangential_ratio (k_t / k_n), not both");
   material.finish();
 
   scene.contact.spanLength = 0;  // from the bundle unless given
@@ -144,14 +148,22 @@ Scene readScene(const std::string& path) {
   indenter.number("speed", scene.indenter.speed, 1e-9, 100, "m/s");
   indenter.text("target", scene.indenter.target);
   indenter.number("clearance", scene.indenter.clearance, 0, 1, "m");
+  indenter.number("stiffness_factor", scene.indenter.stiffnessFactor, 1e-3, 10, "x the blocks' k_n and k_t");
   indenter.finish();
 
   Table protocol(path, "protocol", root["protocol"].as_table());
   protocol.number("settle_kinetic", scene.protocol.settleKinetic, 0, 1e6, "J");
   protocol.number("settle_max_time", scene.protocol.settleMaxTime, 0, 1e3, "s");
-  protocol.number("delta_max", scene.protocol.deltaMax, 1e-9, 10, "m");
+  protocol.number("delta_max", scene.protocol.deltaMax, 0, 10, "m; 0 = delta_max_ratio x the loaded block's thickness");
+  protocol.number("delta_max_ratio", scene.protocol.deltaMaxRatio, 1e-3, 100, "of the loaded block's thickness");
+  protocol.number("failure_load_fraction", scene.protocol.failureLoadFraction, 1e-3, 0.99, "of P_max");
   protocol.boolean("stop_on_failure", scene.protocol.stopOnFailure);
-  protocol.number("fallen_distance", scene.protocol.fallenDistance, 0, 10, "m");
+  protocol.number("quiet_travel", scene.protocol.quietTravel, 0, 100, "of the loaded block's thickness");
+  protocol.number("rest_speed_ratio", scene.protocol.restSpeedRatio, 0, 1, "of the indenter's speed");
+  protocol.number("fallen_clearance", scene.protocol.fallenClearance, 1e-3, 10, "of each body's size");
+  if (root["protocol"]["fallen_distance"])
+    throw InputError(path + ": protocol.fallen_distance is gone: a body now falls when no block contact holds it "
+                            "(docs/physics.md, \"Failure\"); remove the key, or tune protocol.fallen_clearance (a ratio)");
   protocol.finish();
 
   Table damping(path, "damping", root["damping"].as_table());
@@ -197,6 +209,9 @@ std::string sceneWithOverrides(const std::string& path, const std::vector<std::p
     if (!t) throw InputError("sweep key '" + key + "': [" + table + "] is not a table of the scene");
     if (name == "interfaces" || name == "threads") t->insert_or_assign(name, static_cast<std::int64_t>(std::llround(value)));
     else t->insert_or_assign(name, value);
+    // k_t is given one way or the other: the swept one replaces the scene's.
+    if (key == "material.tangential_stiffness") t->erase("tangential_ratio");
+    if (key == "material.tangential_ratio") t->erase("tangential_stiffness");
   }
   std::ostringstream out;
   out << root << "\n";

@@ -8,22 +8,31 @@
 
 namespace tessera {
 
-/// The indenter of the test (DESIGN §5, §6).
+/// The indenter of the test (docs/scene.md).
 struct IndenterSettings {
   double radius = 2.5e-3;   ///< m
   double speed = 6e-3;      ///< m/s, downward
   std::string target;       ///< body to load; empty: the free body nearest the slab's centre (x, y)
   double clearance = 1e-6;  ///< m, start this far above the target's top
+  double stiffnessFactor = 1.0;  ///< its contact stiffnesses are this x the blocks' k_n and k_t
 };
 
-/// The loading protocol (docs/scene.md).
+/// The loading protocol (docs/scene.md, docs/physics.md "Protocol"). Ratios are of h, the loaded
+/// block's extent along the loading direction, or of each body's own size.
 struct ProtocolSettings {
   double settleKinetic = 1e-12;   ///< J: settled when the kinetic energy is below this ...
   double settleMaxTime = 0.05;    ///< s: ... or after this much simulated time (with a warning)
-  double deltaMax = 6e-3;         ///< m: stop at this deflection
-  bool stopOnFailure = true;      ///< stop once the load is gone for good and the loaded block has fallen
-  double fallenDistance = 0.0;    ///< m: a body this far below its settled position has fallen
-                                  ///< (0: the thickness of the loaded block)
+  double deltaMax = 0.0;          ///< m: stop at this deflection (0: deltaMaxRatio x h)
+  double deltaMaxRatio = 2.0;     ///< delta_max / h when deltaMax is 0 (the paper's snapshots reach 1.5 h)
+  /// The failure deflection is where the load first falls below this fraction of P_max after the peak.
+  double failureLoadFraction = 0.1;
+  /// Stop before deltaMax once the load has stayed below 1 % of P_max over quietTravel x h and
+  /// every free body is at rest (slower than restSpeedRatio x the indenter's speed) or fallen.
+  bool stopOnFailure = true;
+  double quietTravel = 0.1;
+  double restSpeedRatio = 0.01;
+  /// Fallen and retired bodies (FallenRule): a ratio of each body's size.
+  double fallenClearance = 0.1;
 };
 
 struct OutputSettings {

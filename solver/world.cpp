@@ -95,6 +95,8 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   torque_.assign(n, Eigen::Vector3d::Zero());
   contactForce_.assign(n, Eigen::Vector3d::Zero());
   contactTorque_.assign(n, Eigen::Vector3d::Zero());
+  dampingForce_.assign(n, Eigen::Vector3d::Zero());
+  dampingTorque_.assign(n, Eigen::Vector3d::Zero());
   startPosition_ = bodies_.position;
   retired_.assign(n, 0);
 }
@@ -115,10 +117,15 @@ WorldState World::state() const {
   s.contactForce = contactForce_;
   s.contactTorque = contactTorque_;
   s.sphereReaction = sphereReaction_;
+  s.dampingForce = dampingForce_;
+  s.dampingTorque = dampingTorque_;
   s.forcesValid = forcesValid_;
   s.startPosition = startPosition_;
   s.initialEnergy = initialEnergy_;
   s.obstacleWork = obstacleWork_;
+  s.friction = friction_;
+  s.damping = damping_;
+  s.retiredKinetic = retiredKinetic_;
   s.mostSupplied = mostSupplied_;
   s.time = time_;
   s.steps = steps_;
@@ -141,10 +148,15 @@ void World::restore(const WorldState& s) {
   contactForce_ = s.contactForce;
   contactTorque_ = s.contactTorque;
   sphereReaction_ = s.sphereReaction;
+  dampingForce_ = s.dampingForce;
+  dampingTorque_ = s.dampingTorque;
   forcesValid_ = s.forcesValid;
   startPosition_ = s.startPosition;
   initialEnergy_ = s.initialEnergy;
   obstacleWork_ = s.obstacleWork;
+  friction_ = s.friction;
+  damping_ = s.damping;
+  retiredKinetic_ = s.retiredKinetic;
   mostSupplied_ = s.mostSupplied;
   time_ = s.time;
   steps_ = s.steps;
@@ -152,6 +164,7 @@ void World::restore(const WorldState& s) {
 
 void World::retireBody(int i) {
   if (retired_[i]) return;
+  retiredKinetic_ += bodies_.kineticEnergy(i);
   retired_[i] = 1;
   bodies_.fixed[i] = 1;
   bodies_.velocity[i].setZero();
@@ -160,6 +173,12 @@ void World::retireBody(int i) {
 }
 
 World::~World() = default;
+
+Eigen::AlignedBox3d World::bodyBox(int i, double margin) const {
+  return worldBox(shapes_[bodies_.shape[i]].nodes.box, bodies_.orientation[i], bodies_.position[i], margin);
+}
+
+double World::bodySize(int i) const { return shapes_[bodies_.shape[i]].nodes.box.sizes().minCoeff(); }
 
 int World::addSphere(const SphereObstacle& sphere) {
   spheres_.push_back(sphere);
@@ -257,6 +276,8 @@ void World::evaluateForces() {
   std::fill(sphereReaction_.begin(), sphereReaction_.end(), Eigen::Vector3d::Zero());
   const int sphereCount = static_cast<int>(spheres_.size());
   for (const PairContacts& pair : pairs_) {
+    friction_ += pair.tally.friction;
+    damping_ += pair.tally.viscous;
     contactForce_[pair.a] += pair.forceA;
     contactTorque_[pair.a] += pair.torqueA;
     if (pair.b >= 0) {
@@ -270,22 +291,25 @@ void World::evaluateForces() {
   // Gravity and damping (docs/physics.md, "Damping").
   const double alpha = settings_.localDamping, c = settings_.viscousDamping;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    Eigen::Vector3d f = contactForce_[i] + bodies_.mass[i] * settings_.gravity;
-    Eigen::Vector3d t = contactTorque_[i];
+    const Eigen::Vector3d f = contactForce_[i] + bodies_.mass[i] * settings_.gravity;
+    const Eigen::Vector3d& t = contactTorque_[i];
+    Eigen::Vector3d fd = Eigen::Vector3d::Zero(), td = Eigen::Vector3d::Zero();
     if (!bodies_.fixed[i]) {
       const Eigen::Vector3d v = bodies_.velocity[i], w = bodies_.angularVelocity(i);
       if (c > 0) {
-        f -= c * bodies_.mass[i] * v;
-        t -= c * (bodies_.orientation[i] * bodies_.angularMomentum[i]);  // c I omega = c L
+        fd -= c * bodies_.mass[i] * v;
+        td -= c * (bodies_.orientation[i] * bodies_.angularMomentum[i]);  // c I omega = c L
       }
       if (alpha > 0)
         for (int k = 0; k < 3; ++k) {
-          f[k] -= alpha * std::abs(f[k]) * (v[k] > 0 ? 1.0 : v[k] < 0 ? -1.0 : 0.0);
-          t[k] -= alpha * std::abs(t[k]) * (w[k] > 0 ? 1.0 : w[k] < 0 ? -1.0 : 0.0);
+          fd[k] -= alpha * std::abs(f[k] + fd[k]) * (v[k] > 0 ? 1.0 : v[k] < 0 ? -1.0 : 0.0);
+          td[k] -= alpha * std::abs(t[k] + td[k]) * (w[k] > 0 ? 1.0 : w[k] < 0 ? -1.0 : 0.0);
         }
     }
-    force_[i] = f;
-    torque_[i] = t;
+    dampingForce_[i] = fd;
+    dampingTorque_[i] = td;
+    force_[i] = f + fd;
+    torque_[i] = t + td;
   }
   forcesValid_ = true;
 }
@@ -301,10 +325,19 @@ void World::step() {
     }
   }
   const double h = 0.5 * dt_;
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (bodies_.fixed[i]) continue;
+  // A half kick of body i; the damping forces' work over it, exactly as the kick changes the
+  // kinetic energy: h f . (v_before + v_after) / 2 (and h tau . omega_mean for the rotation).
+  const auto kick = [&](std::size_t i) {
+    const Eigen::Vector3d v0 = bodies_.velocity[i], L0 = bodies_.angularMomentum[i];
     bodies_.velocity[i] += h * force_[i] / bodies_.mass[i];
     bodies_.angularMomentum[i] += h * (bodies_.orientation[i].conjugate() * torque_[i]);
+    if (dampingForce_[i].isZero() && dampingTorque_[i].isZero()) return;
+    const Eigen::Vector3d omega = bodies_.orientation[i] * (0.5 * (L0 + bodies_.angularMomentum[i])).cwiseQuotient(bodies_.inertia[i]);
+    damping_ -= h * (dampingForce_[i].dot(0.5 * (v0 + bodies_.velocity[i])) + dampingTorque_[i].dot(omega));
+  };
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.fixed[i]) continue;
+    kick(i);
     bodies_.position[i] += dt_ * bodies_.velocity[i];
     rotateFreely(bodies_.orientation[i], bodies_.angularMomentum[i], bodies_.inertia[i], dt_);
   }
@@ -314,11 +347,8 @@ void World::step() {
     spheres_[k].center += dt_ * spheres_[k].velocity;
   }
   evaluateForces();
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (bodies_.fixed[i]) continue;
-    bodies_.velocity[i] += h * force_[i] / bodies_.mass[i];
-    bodies_.angularMomentum[i] += h * (bodies_.orientation[i].conjugate() * torque_[i]);
-  }
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    if (!bodies_.fixed[i]) kick(i);
   time_ += dt_;
   ++steps_;
   checkStability();
@@ -327,13 +357,16 @@ void World::step() {
 EnergyBudget World::energy() const {
   EnergyBudget e;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (bodies_.fixed[i]) continue;
-    e.kinetic += bodies_.kineticEnergy(i);
+    // Every body: a retired one keeps the gravity work done on it until it was frozen.
     e.gravityWork += bodies_.mass[i] * settings_.gravity.dot(bodies_.position[i] - startPosition_[i]);
+    if (!bodies_.fixed[i]) e.kinetic += bodies_.kineticEnergy(i);
   }
-  for (const PairContacts& p : pairs_) e.elastic += p.elasticEnergy;
+  for (const PairContacts& p : pairs_) e.elastic += p.tally.elastic;
   e.obstacleWork = obstacleWork_;
   e.initial = initialEnergy_;
+  e.friction = friction_;
+  e.damping = damping_;
+  e.retiredKinetic = retiredKinetic_;
   return e;
 }
 

@@ -20,16 +20,21 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-/// Energy bookkeeping, J.
+/// Energy bookkeeping since the start, J (docs/physics.md, "Energy balance").
 struct EnergyBudget {
   double kinetic = 0.0;
-  double elastic = 0.0;        ///< stored in the contact springs (normal and tangential)
-  double gravityWork = 0.0;    ///< work done by gravity since the start
-  double obstacleWork = 0.0;   ///< work done by the prescribed obstacles (the indenter) since the start
-  double initial = 0.0;        ///< kinetic + elastic at the start
-  /// What is left once what went in and what is stored are counted: 0 for a conservative run,
-  /// negative by what damping and friction dissipated.
-  double balance() const { return kinetic + elastic - gravityWork - obstacleWork - initial; }
+  double elastic = 0.0;         ///< stored in the contact springs (normal and tangential)
+  double gravityWork = 0.0;     ///< work done by gravity
+  double obstacleWork = 0.0;    ///< work done by the prescribed obstacles (the indenter)
+  double initial = 0.0;         ///< kinetic + elastic at the start
+  double friction = 0.0;        ///< dissipated by sliding at the Coulomb cap
+  double damping = 0.0;         ///< dissipated by local and viscous damping and the normal viscosity
+  double retiredKinetic = 0.0;  ///< carried off by bodies taken out of the computation (retired)
+  /// What went in minus what is stored, dissipated or carried off: zero but for the integrator's
+  /// error (a time-step quantity: it shrinks with dt^2).
+  double residual() const {
+    return initial + gravityWork + obstacleWork - (kinetic + elastic + friction + damping + retiredKinetic);
+  }
 };
 
 /// Everything a World changes as it runs: saved in checkpoints, restored to resume bit-identically.
@@ -42,10 +47,10 @@ struct WorldState {
   std::vector<Eigen::Vector3d> builtPosition, builtSphereCentre;
   std::vector<Eigen::Quaterniond> builtOrientation;
   bool pairsValid = false;
-  std::vector<Eigen::Vector3d> force, torque, contactForce, contactTorque, sphereReaction;
+  std::vector<Eigen::Vector3d> force, torque, contactForce, contactTorque, sphereReaction, dampingForce, dampingTorque;
   bool forcesValid = false;
   std::vector<Eigen::Vector3d> startPosition;
-  double initialEnergy = 0, obstacleWork = 0, mostSupplied = 0, time = 0;
+  double initialEnergy = 0, obstacleWork = 0, friction = 0, damping = 0, retiredKinetic = 0, mostSupplied = 0, time = 0;
   long steps = 0;
 };
 
@@ -61,6 +66,8 @@ public:
   int addSphere(const SphereObstacle& sphere);  ///< returns its index
   int addPlane(const PlaneObstacle& plane);
   SphereObstacle& sphere(int k) { return spheres_[k]; }
+  /// A pair's `b` < 0 names an obstacle: is it a sphere (else a plane)?
+  bool isSphere(int b) const { return b < 0 && -1 - b < static_cast<int>(spheres_.size()); }
 
   /// Body state; change velocities or poses freely between steps.
   RigidBodies& bodies() { return bodies_; }
@@ -81,9 +88,15 @@ public:
   void restore(const WorldState& state);
 
   /// Takes a body out of the computation (a block that has fallen clear): it is frozen where it
-  /// is, no longer integrated and no longer in any pair.
+  /// is, no longer integrated and no longer in any pair; its kinetic energy is booked as carried off.
   void retireBody(int i);
   bool isRetired(int i) const { return retired_[i] != 0; }
+  /// A support of the assembly: fixed from the start (not retired).
+  bool isSupport(int i) const { return bodies_.fixed[i] && !retired_[i]; }
+  /// World-aligned box around body i's surface nodes, enlarged by `margin` (m).
+  Eigen::AlignedBox3d bodyBox(int i, double margin) const;
+  /// The smallest extent of body i's box in its own frame, m (the thickness of a slab block).
+  double bodySize(int i) const;
 
   /// Contact force and torque (about the centroid) on each body from the last evaluation, N and N m.
   const std::vector<Eigen::Vector3d>& contactForces() const { return contactForce_; }
@@ -119,11 +132,13 @@ private:
   std::vector<Eigen::Vector3d> force_, torque_;      // total, world; torque about the centroid
   std::vector<Eigen::Vector3d> contactForce_, contactTorque_;
   std::vector<Eigen::Vector3d> sphereReaction_;
+  std::vector<Eigen::Vector3d> dampingForce_, dampingTorque_;  // the damping part of force_, torque_
   bool forcesValid_ = false;
 
   std::vector<Eigen::Vector3d> startPosition_;
   double initialEnergy_ = 0.0;
   double obstacleWork_ = 0.0;
+  double friction_ = 0.0, damping_ = 0.0, retiredKinetic_ = 0.0;  // J, dissipated / carried off so far
   double mostSupplied_ = 0.0;  // the largest energy put in so far (J), for the blow-up check
   double penetrationLimit_ = 0.0;
   double dt_ = 0.0, automaticDt_ = 0.0, time_ = 0.0;

@@ -50,24 +50,31 @@ void drawPicture(const std::string& script, const fs::path& out, const std::stri
               << "scripts/setup.sh installs them)\n";
 }
 
-double thicknessOf(const Bundle& bundle, int body) {
-  if (body < 0) return 0.0;
-  Eigen::AlignedBox3d box;
-  for (const auto& v : bundle.shapes[bundle.bodies[body].shape].mesh.vertices) box.extend(v);
-  return box.sizes().z();
-}
-
-void printSummary(const IndentationRecord& record, const ResponseParameters& r, const std::string& out) {
+void printSummary(const IndentationRecord& record, const ResponseParameters& r, double failureFraction, const std::string& out) {
   std::printf("settled in %.4g s (%ld steps)%s; loaded block '%s'; stopped: %s\n", record.settleTime, record.settleSteps,
               record.settled ? "" : " (not settled)", record.targetName.c_str(), record.stopReason.c_str());
   std::printf("  peak load          P_max = %.4g N at delta = %.4g mm\n", r.peakLoad, r.deltaAtPeak * 1e3);
   std::printf("  initial stiffness  K = %.4g N/mm (fit over delta in [%.3g, %.3g] mm)\n", r.stiffness * 1e-3,
               r.fitFrom * 1e3, r.fitTo * 1e3);
-  std::printf("  loading energy     W = %.4g mJ\n", r.energy * 1e3);
-  std::printf("  ultimate deflection %.4g mm\n", r.ultimateDeflection * 1e3);
+  if (r.failureDeflection >= 0)
+    std::printf("  failure deflection %.4g mm (load below %.3g x P_max; loaded block moved %.4g mm = %.3g h)\n",
+                r.failureDeflection * 1e3, failureFraction,
+                r.atFailure.blockDisplacement * 1e3, r.thickness > 0 ? r.atFailure.blockDisplacement / r.thickness : 0.0);
+  else
+    std::printf("  failure deflection none (the load stayed above the failure fraction of P_max)\n");
+  std::printf("  loading energy     W = %.4g mJ to failure, %.4g mJ to the end (delta %.4g mm)\n", r.energy * 1e3,
+              r.energyToEnd * 1e3, r.end.delta * 1e3);
   std::printf("  failure            %s", r.failureMode.c_str());
-  for (const FallenBody& f : record.fallen) std::printf(" [%s at %.3g mm]", f.name.c_str(), f.delta * 1e3);
-  std::printf("\n  quasi-static check max KE / W before the peak = %.2e\n", r.quasiStaticRatio);
+  for (const FallenBody& f : record.fallen)
+    std::printf(" [%s lost its support at %.3g mm%s]", f.name.c_str(), f.delta * 1e3, f.retired ? ", retired" : "");
+  std::printf("\n  load drops         %zu after the peak", r.drops.size());
+  for (const LoadDrop& d : r.drops) std::printf(" [%.3g mm: %.4g -> %.4g N]", d.delta * 1e3, d.before, d.after);
+  const CurveSample& e = r.end;
+  std::printf("\n  energy (mJ)        work %.4g = elastic %.4g + kinetic %.3g + friction %.4g + damping %.4g - gravity %.3g"
+              " + retired %.3g; residual %.3g (%.2g %% of the work)\n",
+              e.externalWork * 1e3, e.elastic * 1e3, e.kinetic * 1e3, e.friction * 1e3, e.damping * 1e3, e.gravityWork * 1e3,
+              e.retiredKinetic * 1e3, e.residual * 1e3, e.externalWork > 0 ? 100 * std::abs(e.residual) / e.externalWork : 0.0);
+  std::printf("  quasi-static check max KE / W before the peak = %.2e\n", r.quasiStaticRatio);
   std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
   std::printf("written to %s (results.h5, curve.csv, summary.json, curve.png, paraview/slab.pvd, checkpoint.h5)\n",
               out.c_str());
@@ -164,9 +171,10 @@ int runTest(const RunArguments& a) {
                bundle.bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
                world.timeStep(), world.automaticTimeStep());
 
-  const auto response = [&] {
-    return analyseResponse(record, contact.youngsModulus, contact.spanLength, thicknessOf(bundle, record.target));
-  };
+  int freeBodies = 0;
+  for (const Body& b : bundle.bodies) freeBodies += b.fixed ? 0 : 1;
+  const ResponseSettings analysis{contact.youngsModulus, contact.spanLength, scene.protocol.failureLoadFraction, freeBodies};
+  const auto response = [&] { return analyseResponse(record, analysis); };
   RunHooks hooks;
   hooks.progress = [](const Progress& p) {
     std::fprintf(stderr, "run: delta %7.3f mm  P %9.3f N  KE/W %.2e  contacts %7ld  step %9ld  %6.0f steps/s  ETA %.0f s\n",
@@ -204,7 +212,7 @@ int runTest(const RunArguments& a) {
     drawPicture("plot_curve.py", out, "curve.png");
     drawPicture("render_snapshots.py", out, "snapshots.png");
   }
-  printSummary(record, response(), out);
+  printSummary(record, response(), scene.protocol.failureLoadFraction, out);
   if (!failure.empty()) {
     std::cerr << "tessera: error: the run became unstable and was stopped: " << failure << "\n";
     return 3;

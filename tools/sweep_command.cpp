@@ -75,6 +75,7 @@ struct SweepArguments {
   std::vector<std::string> sets;
   int jobs = 0;     // 0: one per core
   int threads = 1;  // per case
+  bool zip = false; // axes varied together, not as a grid
 };
 
 std::string selfExecutable() {
@@ -100,17 +101,28 @@ void runSweep(const SweepArguments& a) {
   for (const auto& s : a.sets) axes.push_back(parseAxis(s));
   if (axes.empty()) throw InputError("give at least one --set KEY=values (e.g. --set E=3.3e9,4.2e9)");
 
-  // Every case: the Cartesian product of the axes, the first axis varying slowest.
+  // Every case: the Cartesian product of the axes, the first axis varying slowest; with --zip,
+  // the k-th value of every axis together.
   std::vector<std::vector<double>> cases{{}};
-  for (const Axis& axis : axes) {
-    std::vector<std::vector<double>> next;
-    for (const auto& c : cases)
-      for (double v : axis.values) {
-        auto d = c;
-        d.push_back(v);
-        next.push_back(d);
-      }
-    cases = next;
+  if (a.zip) {
+    cases.assign(axes[0].values.size(), {});
+    for (const Axis& axis : axes) {
+      if (axis.values.size() != cases.size())
+        throw InputError("--zip: every --set needs the same number of values (" + axes[0].key + " has " +
+                         std::to_string(cases.size()) + ", " + axis.key + " has " + std::to_string(axis.values.size()) + ")");
+      for (std::size_t c = 0; c < cases.size(); ++c) cases[c].push_back(axis.values[c]);
+    }
+  } else {
+    for (const Axis& axis : axes) {
+      std::vector<std::vector<double>> next;
+      for (const auto& c : cases)
+        for (double v : axis.values) {
+          auto d = c;
+          d.push_back(v);
+          next.push_back(d);
+        }
+      cases = next;
+    }
   }
 
   // Write (and so validate) every case's scene before running anything.
@@ -189,7 +201,8 @@ void runSweep(const SweepArguments& a) {
   std::ofstream csv(dir / ".tmp-sweep.csv");
   csv << "case";
   for (const Axis& axis : axes) csv << "," << axis.key;
-  csv << ",peak_load_N,delta_at_peak_mm,stiffness_N_per_mm,loading_energy_mJ,ultimate_deflection_mm,failure_mode,"
+  csv << ",peak_load_N,delta_at_peak_mm,stiffness_N_per_mm,loading_energy_mJ,loading_energy_to_end_mJ,"
+         "failure_deflection_mm,block_displacement_at_failure_mm,load_drops,energy_residual_fraction,failure_mode,"
          "stop_reason,fallen,wall_seconds\n";
   std::vector<std::vector<double>> rowsValues, rowsTable;
   std::vector<std::string> caseNames, modes, reasons;
@@ -206,11 +219,20 @@ void runSweep(const SweepArguments& a) {
     const auto& r = j["response"];
     csv << caseDirs[c].filename().string();
     for (double v : cases[c]) csv << "," << v;
-    const double values[5] = {r["peak_load_N"], r["delta_at_peak_mm"], r["stiffness_N_per_mm"], r["loading_energy_mJ"],
-                              r["ultimate_deflection_mm"]};
-    for (int k = 0; k < 5; ++k) csv << "," << values[k];
+    // Missing (no failure): NaN in the table, empty in the CSV.
+    const auto number = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
+    const double work = r["energy"]["work_mJ"];
+    const std::vector<double> values{r["peak_load_N"], r["delta_at_peak_mm"], r["stiffness_N_per_mm"], r["loading_energy_mJ"],
+                                     r["loading_energy_to_end_mJ"], number(r["failure_deflection_mm"]),
+                                     number(r["block_displacement_at_failure_mm"]), static_cast<double>(r["load_drops"].size()),
+                                     work > 0 ? r["energy"]["residual_mJ"].get<double>() / work : 0.0,
+                                     j["run"]["wall_seconds"].get<double>()};
+    for (std::size_t k = 0; k + 1 < values.size(); ++k) {
+      csv << ",";
+      if (!std::isnan(values[k])) csv << values[k];
+    }
     rowsValues.push_back(cases[c]);
-    rowsTable.push_back({values[0], values[1], values[2], values[3], values[4], j["run"]["wall_seconds"].get<double>()});
+    rowsTable.push_back(values);
     caseNames.push_back(caseDirs[c].filename().string());
     reasons.push_back(j["stop_reason"]);
     std::string fallen;
@@ -224,7 +246,8 @@ void runSweep(const SweepArguments& a) {
   std::vector<std::string> keys;
   for (const Axis& axis : axes) keys.push_back(axis.key);
   writeSweepTable((dir / "sweep.h5").string(), keys, rowsValues,
-                  {"peak_load_N", "delta_at_peak_mm", "stiffness_N_per_mm", "loading_energy_mJ", "ultimate_deflection_mm",
+                  {"peak_load_N", "delta_at_peak_mm", "stiffness_N_per_mm", "loading_energy_mJ", "loading_energy_to_end_mJ",
+                   "failure_deflection_mm", "block_displacement_at_failure_mm", "load_drops", "energy_residual_fraction",
                    "wall_seconds"},
                   rowsTable, caseNames, modes, reasons);
   std::printf("sweep: %d of %zu cases complete; table %s (and sweep.h5)\n", complete, cases.size(),
@@ -244,6 +267,8 @@ void addSweepCommand(CLI::App& app) {
                   "KEY=v1,v2,... or KEY=first:last:count, SI units; KEY is table.key of the scene or E, mu, speed, radius, "
                   "density; repeat for a grid")
       ->required();
+  cmd->add_flag("--zip", args->zip,
+               "Vary the --set keys together (the k-th value of each in case k; equal counts) instead of as a grid");
   cmd->add_option("--preset", args->preset, "Speed/accuracy setting applied to every case (as in tessera run --preset)");
   cmd->add_option("--jobs", args->jobs, "Cases run at once [default: cores / threads]");
   cmd->add_option("--threads", args->threads, "Threads per case")->capture_default_str();

@@ -1,0 +1,37 @@
+// The energy balance: what the indenter and gravity put in equals what is stored (kinetic,
+// elastic), dissipated (friction, damping) and carried off, to the integrator's error.
+#include "geometry/block_generators.h"
+#include "solver/world.h"
+#include "tests/fixtures/scenes.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace tessera;
+
+namespace {
+const double kA = 10e-3, kH = 3.18e-3;
+}  // namespace
+
+TEST_CASE("energy: a block sliding to rest on a fixed block dissipates its kinetic energy as mu m g s") {
+  ContactParameters p;
+  p.friction = 0.3;
+  const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
+  SolverSettings s;  // no damping
+  World world(bundle, p, s);
+  const double v0 = 0.02;  // m/s along x, from the start (the initial energy counts it)
+  world.bodies().velocity[1] = Eigen::Vector3d(v0, 0, 0);
+  const double x0 = world.bodies().position[1].x(), m = world.bodies().mass[1];
+  for (int i = 0; i < 200000 && world.bodies().velocity[1].x() > 1e-6 * v0; ++i) world.step();
+  const EnergyBudget after = world.energy();
+  const double slid = world.bodies().position[1].x() - x0;
+  const double friction = after.friction;
+  INFO("slid " << slid * 1e6 << " um; friction " << friction << " J; mu m g s " << p.friction * m * 9.81 * slid
+               << " J; initial kinetic " << 0.5 * m * v0 * v0 << " J; residual " << after.residual());
+  // Sliding at constant deceleration mu g: s = v0^2 / (2 mu g).
+  REQUIRE(slid == Approx(v0 * v0 / (2 * p.friction * 9.81)).epsilon(0.02));
+  REQUIRE(friction == Approx(p.friction * m * 9.81 * slid).epsilon(0.02));
+  REQUIRE(friction == Approx(0.5 * m * v0 * v0).epsilon(0.02));
+  REQUIRE(std::abs(after.residual()) < 0.01 * after.initial);
+}
