@@ -77,7 +77,7 @@ void writeWorld(hid_t g, const WorldState& w) {
   writeDoubles(g, "sphere_stiffness_factor", factor);
 
   std::vector<std::int32_t> a, b, n;
-  std::vector<double> keys, elastic, depth;
+  std::vector<double> keys, energy, elastic, depth;
   std::vector<Eigen::Vector3d> springs, fA, tA, fB, tB;
   for (const PairContacts& p : w.pairs) {
     a.push_back(p.a);
@@ -86,6 +86,7 @@ void writeWorld(hid_t g, const WorldState& w) {
     for (const NodeContact& c : p.contacts) {
       keys.push_back(static_cast<double>(c.key));
       springs.push_back(c.spring);
+      energy.push_back(c.energy);
     }
     fA.push_back(p.forceA);
     tA.push_back(p.torqueA);
@@ -99,6 +100,7 @@ void writeWorld(hid_t g, const WorldState& w) {
   h5::writeDataset(g, "pair_contacts", n, {count(n.size())});
   writeDoubles(g, "contact_key", keys);
   writeVectors(g, "contact_spring", springs);
+  writeDoubles(g, "contact_energy", energy);
   writeVectors(g, "pair_force_a", fA);
   writeVectors(g, "pair_torque_a", tA);
   writeVectors(g, "pair_force_b", fB);
@@ -124,6 +126,7 @@ void writeWorld(hid_t g, const WorldState& w) {
   h5::writeAttribute(g, "friction_dissipated", w.friction);
   h5::writeAttribute(g, "damping_dissipated", w.damping);
   h5::writeAttribute(g, "retired_kinetic", w.retiredKinetic);
+  h5::writeAttribute(g, "ended_contacts_energy", w.ended);
   h5::writeAttribute(g, "most_supplied", w.mostSupplied);
   h5::writeAttribute(g, "time", w.time);
   h5::writeAttribute(g, "steps", std::int64_t{w.steps});
@@ -148,6 +151,7 @@ void readWorld(hid_t g, WorldState& w) {
   const auto n = h5::readDataset<std::int32_t>(g, "pair_contacts");
   const auto keys = h5::readDataset<double>(g, "contact_key");
   const auto springs = readVectors(g, "contact_spring");
+  const auto energy = h5::readDataset<double>(g, "contact_energy");
   const auto fA = readVectors(g, "pair_force_a"), tA = readVectors(g, "pair_torque_a");
   const auto fB = readVectors(g, "pair_force_b"), tB = readVectors(g, "pair_torque_b");
   const auto elastic = h5::readDataset<double>(g, "pair_elastic"), depth = h5::readDataset<double>(g, "pair_max_depth");
@@ -157,7 +161,8 @@ void readWorld(hid_t g, WorldState& w) {
     PairContacts pair;
     pair.a = a[p];
     pair.b = b[p];
-    for (int c = 0; c < n[p]; ++c, ++next) pair.contacts.push_back({static_cast<std::uint32_t>(keys[next]), springs[next]});
+    for (int c = 0; c < n[p]; ++c, ++next)
+      pair.contacts.push_back({static_cast<std::uint32_t>(keys[next]), springs[next], energy[next]});
     pair.forceA = fA[p];
     pair.torqueA = tA[p];
     pair.forceB = fB[p];
@@ -184,6 +189,7 @@ void readWorld(hid_t g, WorldState& w) {
   w.friction = h5::readDoubleAttribute(g, "friction_dissipated");
   w.damping = h5::readDoubleAttribute(g, "damping_dissipated");
   w.retiredKinetic = h5::readDoubleAttribute(g, "retired_kinetic");
+  w.ended = h5::readDoubleAttribute(g, "ended_contacts_energy");
   w.mostSupplied = h5::readDoubleAttribute(g, "most_supplied");
   w.time = h5::readDoubleAttribute(g, "time");
   w.steps = h5::readIntAttribute(g, "steps");

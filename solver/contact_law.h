@@ -18,14 +18,18 @@ struct NodeContactInput {
 /// What the node contacts of a pair add up to over one step (docs/physics.md, "Energy balance").
 struct ContactTally {
   double elastic = 0.0;   ///< J, stored: 1/2 k_n a d^2 + 1/2 k_t a |u|^2
-  double friction = 0.0;  ///< J, dissipated by sliding this step: |f_t| |u_trial - u| (spring cut back to the cap)
+  double friction = 0.0;  ///< J, dissipated by sliding this step (the spring cut back to the Coulomb cap)
   double viscous = 0.0;   ///< J, dissipated by the normal viscosity this step: (k_n a d - f_n) v_n dt
+  /// J, stored energy of node contacts that ended while still loaded: a node whose contact normal
+  /// turns away from it (the other body's nearest face switches at an edge: docs/physics.md,
+  /// "Energy balance") leaves with its energy, which no force gave back.
+  double ended = 0.0;
   int sliding = 0;        ///< node contacts at the Coulomb cap
 };
 
 /// Force (N, world) on the node's body from one node contact, and the update of its tangential
-/// spring (m, the elastic tangential displacement, carried from step to step). Adds the contact's
-/// stored and dissipated energy (J) to `tally`. Equations (docs/physics.md, "Contact law"):
+/// spring (m, the elastic tangential displacement, carried from step to step). Sets `stored` to
+/// the contact's stored energy and adds it, and what it dissipated, to `tally` (J). Equations (docs/physics.md, "Contact law"):
 ///   f_n = k_n a d - eta_n a v_n, clipped at 0             (traction-based normal force)
 ///   u  <- u projected on the tangent plane, length kept   (history follows the contact frame)
 ///   u  <- u + v_t dt;  f_t = -k_t a u;  |f_t| <= mu f_n    (elastic spring capped by Coulomb; on
@@ -33,7 +37,7 @@ struct ContactTally {
 /// With a per-node stiffness k (perNodeStiffness > 0) the products k_n a and k_t a become k and
 /// (k_t/k_n) k.
 inline Eigen::Vector3d contactForce(const ContactParameters& p, double kn, double kt, const NodeContactInput& c,
-                                    Eigen::Vector3d& spring, double dt, ContactTally& tally) {
+                                    Eigen::Vector3d& spring, double& stored, double dt, ContactTally& tally) {
   const Eigen::Vector3d& n = c.normal;
   const double normalStiffness = p.perNodeStiffness > 0 ? p.perNodeStiffness : kn * c.area;
   const double tangentStiffness = p.perNodeStiffness > 0 ? p.tangentialRatio * p.perNodeStiffness : kt * c.area;
@@ -50,22 +54,25 @@ inline Eigen::Vector3d contactForce(const ContactParameters& p, double kn, doubl
     const double projected2 = u.squaredNorm();
     if (projected2 > 0) u *= std::sqrt(length2 / projected2);
   }
-  u += (c.relativeVelocity - vn * n) * dt;
+  const Eigen::Vector3d turned = u, increment = (c.relativeVelocity - vn * n) * dt;
+  u += increment;
   Eigen::Vector3d ft = -tangentStiffness * u;
   const double cap = p.friction * fn, ft2 = ft.squaredNorm();
   if (ft2 > cap * cap) {
-    // Sliding: f_t and u scaled back to the Coulomb cap (u = -f_t / k_t).
-    // The slip u_trial - u = (1 - scale) u_trial happens against the capped force.
-    const double ftTrial = std::sqrt(ft2), scale = cap / ftTrial;
-    tally.friction += cap * (1 - scale) * ftTrial / tangentStiffness;
-    ++tally.sliding;
+    // Sliding: f_t and u scaled back to the Coulomb cap (u = -f_t / k_t). Dissipated: the work
+    // put into the spring over the increment (trapezoidal, as a sticking spring stores it
+    // exactly) less what it now stores: k_t (u_0 + u) / 2 . du - k_t (|u|^2 - |u_0|^2) / 2.
+    const double scale = cap / std::sqrt(ft2);
     ft *= scale;
     u *= scale;
+    tally.friction += tangentStiffness * (0.5 * (turned + u).dot(increment) - 0.5 * (u.squaredNorm() - turned.squaredNorm()));
+    ++tally.sliding;
   }
   spring = u;
   // The non-elastic part of the normal force, f_n - k_n a d, does the work (f_n - k_n a d) v_n dt.
   tally.viscous += (elastic - fn) * vn * dt;
-  tally.elastic += 0.5 * elastic * c.depth + 0.5 * tangentStiffness * u.squaredNorm();
+  stored = 0.5 * elastic * c.depth + 0.5 * tangentStiffness * u.squaredNorm();
+  tally.elastic += stored;
   return fn * n + ft;
 }
 

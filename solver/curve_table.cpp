@@ -26,6 +26,7 @@ const std::vector<CurveColumn>& curveColumns() {
       {"damping_dissipated", "J", &CurveSample::damping},
       {"gravity_work", "J", &CurveSample::gravityWork},
       {"retired_kinetic", "J", &CurveSample::retiredKinetic},
+      {"ended_contacts_energy", "J", &CurveSample::ended},
       {"energy_residual", "J", &CurveSample::residual},
   };
   return columns;

@@ -171,6 +171,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     s.damping = e.damping;
     s.gravityWork = e.gravityWork;
     s.retiredKinetic = e.retiredKinetic;
+    s.ended = e.ended;
     s.residual = e.residual();
     record.curve.push_back(s);
   };

@@ -28,6 +28,7 @@ struct CurveSample {
   double damping = 0;             ///< J, dissipated by damping
   double gravityWork = 0;         ///< J, work done by gravity
   double retiredKinetic = 0;      ///< J, carried off by retired bodies
+  double ended = 0;               ///< J, stored in node contacts that ended while loaded
   double residual = 0;            ///< J, EnergyBudget::residual
 };
 

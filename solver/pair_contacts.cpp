@@ -31,13 +31,18 @@ Motion motionOf(const RigidBodies& bodies, int i) {
 }
 
 // Merge cursor over the previous step's contacts (sorted by key): the spring of a node that was
-// in contact, or zero.
+// in contact, or zero. The contacts it passes over have ended: their stored energy goes to `ended`.
 struct History {
   const std::vector<NodeContact>& previous;
+  double& ended;
   std::size_t next = 0;
   Eigen::Vector3d springFor(std::uint32_t key) {
-    while (next < previous.size() && previous[next].key < key) ++next;
-    return next < previous.size() && previous[next].key == key ? previous[next].spring : Eigen::Vector3d::Zero();
+    endBefore(key);
+    if (next < previous.size() && previous[next].key == key) return previous[next++].spring;
+    return Eigen::Vector3d::Zero();
+  }
+  void endBefore(std::uint64_t key) {
+    for (; next < previous.size() && previous[next].key < key; ++next) ended += previous[next].energy;
   }
 };
 
@@ -61,9 +66,9 @@ struct Accumulator {
     if (projection <= 0) return;
     const NodeContactInput input{normal, depth, area * projection, node.velocityAt(x) - other.velocityAt(x)};
     Eigen::Vector3d spring = history.springFor(key);
-    const Eigen::Vector3d f =
-        contactForce(scene.parameters, kn, kt, input, spring, scene.dt, pair.tally);
-    pair.contacts.push_back({key, spring});
+    double stored;
+    const Eigen::Vector3d f = contactForce(scene.parameters, kn, kt, input, spring, stored, scene.dt, pair.tally);
+    pair.contacts.push_back({key, spring, stored});
     pair.maxDepth = std::max(pair.maxDepth, depth);
     const double normalForce = f.dot(normal);  // f_n: the tangential part is normal to n
     pair.forcePoint += normalForce * x;
@@ -75,6 +80,7 @@ struct Accumulator {
 
   // Newton's third law: on b, -F_A at the same points: tau_B = -(tau_A + (c_A - c_B) x F_A).
   void finish() {
+    history.endBefore(std::uint64_t{1} << 32);  // every contact not continued has ended
     pair.forceB = -pair.forceA;
     if (pair.b >= 0) pair.torqueB = -(pair.torqueA + (centreA - scene.bodies->position[pair.b]).cross(pair.forceA));
     if (weight > 0) pair.forcePoint /= weight;
@@ -143,7 +149,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = !pair.candidatesValid;
   if (rebuild) pair.candidates.clear();
   pair.candidatesValid = true;
-  Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a], scene.kn, scene.kt};
+  Accumulator acc{scene, pair, History{pair.previous, pair.tally.ended}, scene.bodies->position[pair.a], scene.kn, scene.kt};
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
 

@@ -41,6 +41,7 @@ struct ShapeModel {
 struct NodeContact {
   std::uint32_t key;
   Eigen::Vector3d spring;  ///< m
+  double energy;           ///< J, stored in this node contact
 };
 
 /// One candidate pair and its contact state. `b` >= 0 is a body; `b` < 0 an obstacle: sphere

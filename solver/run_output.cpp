@@ -192,6 +192,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
           {"damping_mJ", end.damping * 1e3},
           {"gravity_mJ", end.gravityWork * 1e3},
           {"retired_kinetic_mJ", end.retiredKinetic * 1e3},
+          {"ended_contacts_mJ", end.ended * 1e3},
           {"residual_mJ", end.residual * 1e3}}},
         {"quasi_static_ratio", response.quasiStaticRatio},
         {"peak_load_normalised", response.peakLoadNormalised},

@@ -126,6 +126,7 @@ WorldState World::state() const {
   s.friction = friction_;
   s.damping = damping_;
   s.retiredKinetic = retiredKinetic_;
+  s.ended = ended_;
   s.mostSupplied = mostSupplied_;
   s.time = time_;
   s.steps = steps_;
@@ -157,6 +158,7 @@ void World::restore(const WorldState& s) {
   friction_ = s.friction;
   damping_ = s.damping;
   retiredKinetic_ = s.retiredKinetic;
+  ended_ = s.ended;
   mostSupplied_ = s.mostSupplied;
   time_ = s.time;
   steps_ = s.steps;
@@ -278,6 +280,7 @@ void World::evaluateForces() {
   for (const PairContacts& pair : pairs_) {
     friction_ += pair.tally.friction;
     damping_ += pair.tally.viscous;
+    ended_ += pair.tally.ended;
     contactForce_[pair.a] += pair.forceA;
     contactTorque_[pair.a] += pair.torqueA;
     if (pair.b >= 0) {
@@ -367,6 +370,7 @@ EnergyBudget World::energy() const {
   e.friction = friction_;
   e.damping = damping_;
   e.retiredKinetic = retiredKinetic_;
+  e.ended = ended_;
   return e;
 }
 

@@ -70,10 +70,11 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
   std::printf("\n  load drops         %zu after the peak", r.drops.size());
   for (const LoadDrop& d : r.drops) std::printf(" [%.3g mm: %.4g -> %.4g N]", d.delta * 1e3, d.before, d.after);
   const CurveSample& e = r.end;
-  std::printf("\n  energy (mJ)        work %.4g = elastic %.4g + kinetic %.3g + friction %.4g + damping %.4g - gravity %.3g"
-              " + retired %.3g; residual %.3g (%.2g %% of the work)\n",
-              e.externalWork * 1e3, e.elastic * 1e3, e.kinetic * 1e3, e.friction * 1e3, e.damping * 1e3, e.gravityWork * 1e3,
-              e.retiredKinetic * 1e3, e.residual * 1e3, e.externalWork > 0 ? 100 * std::abs(e.residual) / e.externalWork : 0.0);
+  std::printf("\n  energy (mJ)        work %.4g + gravity %.3g = elastic %.4g + kinetic %.3g + friction %.4g + damping %.4g"
+              " + retired %.3g + ended contacts %.3g; residual %.3g (%.2g %% of the work)\n",
+              e.externalWork * 1e3, e.gravityWork * 1e3, e.elastic * 1e3, e.kinetic * 1e3, e.friction * 1e3, e.damping * 1e3,
+              e.retiredKinetic * 1e3, e.ended * 1e3, e.residual * 1e3,
+              e.externalWork > 0 ? 100 * std::abs(e.residual) / e.externalWork : 0.0);
   std::printf("  quasi-static check max KE / W before the peak = %.2e\n", r.quasiStaticRatio);
   std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
   std::printf("written to %s (results.h5, curve.csv, summary.json, curve.png, paraview/slab.pvd, checkpoint.h5)\n",

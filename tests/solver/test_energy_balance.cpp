@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 
 using namespace tessera;
 
@@ -35,3 +36,26 @@ TEST_CASE("energy: a block sliding to rest on a fixed block dissipates its kinet
   REQUIRE(friction == Approx(0.5 * m * v0 * v0).epsilon(0.02));
   REQUIRE(std::abs(after.residual()) < 0.01 * after.initial);
 }
+
+TEST_CASE("energy: an indenter pressing a block onto a fixed block stores its work elastically") {
+  for (double friction : {0.0, 0.5}) {
+    ContactParameters p;
+    p.friction = friction;
+    const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
+    SolverSettings s;
+    s.localDamping = 0.3;
+    World world(bundle, p, s);
+    SphereObstacle indenter;
+    indenter.radius = 2.5e-3;
+    indenter.center = world.bodies().position[1] + Eigen::Vector3d(1e-3, 0.5e-3, 0.5 * kH + indenter.radius);
+    indenter.velocity = Eigen::Vector3d(0, 0, -0.01);
+    world.addSphere(indenter);
+    while (world.sphere(0).center.z() - indenter.center.z() > -0.2e-3) world.step();
+    const EnergyBudget e = world.energy();
+    INFO("mu " << friction << ": work " << e.obstacleWork << " J, elastic " << e.elastic << ", friction " << e.friction
+               << ", damping " << e.damping << ", residual " << e.residual());
+    REQUIRE(e.obstacleWork > 0);
+    CHECK(std::abs(e.residual()) < 0.01 * e.obstacleWork);
+  }
+}
+
