@@ -46,6 +46,18 @@ bool canRetire(const World& world, int i, const std::vector<char>& touching, con
   return true;
 }
 
+bool pushedThrough(const World& world, int i, const std::vector<Eigen::Vector3d>& settledPosition) {
+  const auto drop = [&](int j) { return settledPosition[j].z() - world.bodies().position[j].z(); };
+  double sum = 0;
+  int touching = 0;
+  for (const PairContacts& p : world.pairs())
+    if (p.b >= 0 && !p.contacts.empty() && (p.a == i || p.b == i)) {
+      sum += drop(p.a == i ? p.b : p.a);
+      ++touching;
+    }
+  return touching > 0 && !world.isSupport(i) && drop(i) - sum / touching > world.bodySize(i);
+}
+
 ContactCounts countContacts(const World& world, int loaded) {
   ContactCounts c;
   for (const PairContacts& p : world.pairs()) {

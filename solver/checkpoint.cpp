@@ -77,7 +77,7 @@ void writeWorld(hid_t g, const WorldState& w) {
   writeDoubles(g, "sphere_stiffness_factor", factor);
 
   std::vector<std::int32_t> a, b, n;
-  std::vector<double> keys, energy, elastic, depth;
+  std::vector<double> keys, energy, area, elastic, depth;
   std::vector<Eigen::Vector3d> springs, fA, tA, fB, tB;
   for (const PairContacts& p : w.pairs) {
     a.push_back(p.a);
@@ -87,6 +87,7 @@ void writeWorld(hid_t g, const WorldState& w) {
       keys.push_back(static_cast<double>(c.key));
       springs.push_back(c.spring);
       energy.push_back(c.energy);
+      area.push_back(c.area);
     }
     fA.push_back(p.forceA);
     tA.push_back(p.torqueA);
@@ -101,6 +102,7 @@ void writeWorld(hid_t g, const WorldState& w) {
   writeDoubles(g, "contact_key", keys);
   writeVectors(g, "contact_spring", springs);
   writeDoubles(g, "contact_energy", energy);
+  writeDoubles(g, "contact_area", area);
   writeVectors(g, "pair_force_a", fA);
   writeVectors(g, "pair_torque_a", tA);
   writeVectors(g, "pair_force_b", fB);
@@ -126,7 +128,7 @@ void writeWorld(hid_t g, const WorldState& w) {
   h5::writeAttribute(g, "friction_dissipated", w.friction);
   h5::writeAttribute(g, "damping_dissipated", w.damping);
   h5::writeAttribute(g, "retired_kinetic", w.retiredKinetic);
-  h5::writeAttribute(g, "ended_contacts_energy", w.ended);
+  h5::writeAttribute(g, "projection_energy", w.projection);
   h5::writeAttribute(g, "most_supplied", w.mostSupplied);
   h5::writeAttribute(g, "time", w.time);
   h5::writeAttribute(g, "steps", std::int64_t{w.steps});
@@ -152,6 +154,7 @@ void readWorld(hid_t g, WorldState& w) {
   const auto keys = h5::readDataset<double>(g, "contact_key");
   const auto springs = readVectors(g, "contact_spring");
   const auto energy = h5::readDataset<double>(g, "contact_energy");
+  const auto area = h5::readDataset<double>(g, "contact_area");
   const auto fA = readVectors(g, "pair_force_a"), tA = readVectors(g, "pair_torque_a");
   const auto fB = readVectors(g, "pair_force_b"), tB = readVectors(g, "pair_torque_b");
   const auto elastic = h5::readDataset<double>(g, "pair_elastic"), depth = h5::readDataset<double>(g, "pair_max_depth");
@@ -162,7 +165,7 @@ void readWorld(hid_t g, WorldState& w) {
     pair.a = a[p];
     pair.b = b[p];
     for (int c = 0; c < n[p]; ++c, ++next)
-      pair.contacts.push_back({static_cast<std::uint32_t>(keys[next]), springs[next], energy[next]});
+      pair.contacts.push_back({static_cast<std::uint32_t>(keys[next]), springs[next], energy[next], area[next]});
     pair.forceA = fA[p];
     pair.torqueA = tA[p];
     pair.forceB = fB[p];
@@ -189,7 +192,7 @@ void readWorld(hid_t g, WorldState& w) {
   w.friction = h5::readDoubleAttribute(g, "friction_dissipated");
   w.damping = h5::readDoubleAttribute(g, "damping_dissipated");
   w.retiredKinetic = h5::readDoubleAttribute(g, "retired_kinetic");
-  w.ended = h5::readDoubleAttribute(g, "ended_contacts_energy");
+  w.projection = h5::readDoubleAttribute(g, "projection_energy");
   w.mostSupplied = h5::readDoubleAttribute(g, "most_supplied");
   w.time = h5::readDoubleAttribute(g, "time");
   w.steps = h5::readIntAttribute(g, "steps");
@@ -205,7 +208,7 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
   h5::writeAttribute(g, "next_snapshot", s.nextSnapshot);
   h5::writeAttribute(g, "quiet_from", s.quietFrom);
   writeVectors(g, "settled_position", s.settledPosition);
-  writeDoubles(g, "lost_support_at", s.lostSupportAt);
+  writeDoubles(g, "out_at", s.outAt);
 
   h5::writeAttribute(g, "settle_time", r.settleTime);
   h5::writeAttribute(g, "settle_steps", std::int64_t{r.settleSteps});
@@ -246,15 +249,17 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
   writeQuaternions(g, "snapshot_orientation", orientation);
   std::vector<std::string> names;
   std::vector<double> delta;
-  std::vector<char> retired;
+  std::vector<char> retired, touching;
   for (const FallenBody& f : r.fallen) {
     names.push_back(f.name);
     delta.push_back(f.delta);
     retired.push_back(f.retired);
+    touching.push_back(f.touching);
   }
   h5::writeStrings(g, "fallen_names", names);
   writeDoubles(g, "fallen_delta", delta);
   writeFlags(g, "fallen_retired", retired);
+  writeFlags(g, "fallen_touching", touching);
 }
 
 void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t bodies) {
@@ -267,8 +272,8 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   s.nextSnapshot = h5::readDoubleAttribute(g, "next_snapshot");
   s.quietFrom = h5::readDoubleAttribute(g, "quiet_from");
   s.settledPosition = readVectors(g, "settled_position");
-  s.lostSupportAt = h5::readDataset<double>(g, "lost_support_at");
-  if ((s.phase > 0 && s.settledPosition.size() != bodies) || s.lostSupportAt.size() != s.settledPosition.size())
+  s.outAt = h5::readDataset<double>(g, "out_at");
+  if ((s.phase > 0 && s.settledPosition.size() != bodies) || s.outAt.size() != s.settledPosition.size())
     throw std::runtime_error("settled positions for a different number of bodies");
 
   r.settleTime = h5::readDoubleAttribute(g, "settle_time");
@@ -302,10 +307,11 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   }
   const auto names = h5::readStrings(g, "fallen_names");
   const auto delta = h5::readDataset<double>(g, "fallen_delta");
-  const auto retired = readFlags(g, "fallen_retired");
-  if (delta.size() != names.size() || retired.size() != names.size()) throw std::runtime_error("inconsistent fallen records");
+  const auto retired = readFlags(g, "fallen_retired"), touching = readFlags(g, "fallen_touching");
+  if (delta.size() != names.size() || retired.size() != names.size() || touching.size() != names.size())
+    throw std::runtime_error("inconsistent fallen records");
   r.fallen.clear();
-  for (std::size_t i = 0; i < names.size(); ++i) r.fallen.push_back({names[i], delta[i], retired[i] != 0});
+  for (std::size_t i = 0; i < names.size(); ++i) r.fallen.push_back({names[i], delta[i], retired[i] != 0, touching[i] != 0});
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ const std::vector<CurveColumn>& curveColumns() {
       {"damping_dissipated", "J", &CurveSample::damping},
       {"gravity_work", "J", &CurveSample::gravityWork},
       {"retired_kinetic", "J", &CurveSample::retiredKinetic},
-      {"ended_contacts_energy", "J", &CurveSample::ended},
+      {"projection_energy", "J", &CurveSample::projection},
       {"energy_residual", "J", &CurveSample::residual},
   };
   return columns;

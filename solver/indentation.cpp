@@ -66,7 +66,7 @@ void startLoading(World& world, const Bundle& bundle, const Scene& scene, Indent
   indenter.stiffnessFactor = scene.indenter.stiffnessFactor;
   state.sphere = world.addSphere(indenter);
   state.settledPosition = bodies.position;
-  state.lostSupportAt.assign(bodies.size(), -1.0);
+  state.outAt.assign(bodies.size(), -1.0);
   state.loadStart = world.time();
   state.phase = 1;
 }
@@ -80,16 +80,17 @@ void updateFallen(World& world, const Scene& scene, IndentationRecord& record, I
   for (int i = 0; i < static_cast<int>(bodies.size()); ++i) {
     if (world.isSupport(i)) continue;
     if (world.isRetired(i)) {
-      record.fallen.push_back({bodies.name[i], state.lostSupportAt[i], true});
+      record.fallen.push_back({bodies.name[i], state.outAt[i], true, false});
       continue;
     }
-    if (supported[i]) state.lostSupportAt[i] = -1.0;
-    else if (state.lostSupportAt[i] < 0) state.lostSupportAt[i] = delta;
+    const bool through = touching[i] && pushedThrough(world, i, state.settledPosition);
+    if (supported[i] && !through) state.outAt[i] = -1.0;
+    else if (state.outAt[i] < 0) state.outAt[i] = delta;
     if (canRetire(world, i, touching, supported, state.settledPosition[i], rule)) {
       world.retireBody(i);
-      record.fallen.push_back({bodies.name[i], state.lostSupportAt[i], true});
-    } else if (hasFallen(world, i, supported, state.settledPosition[i], rule)) {
-      record.fallen.push_back({bodies.name[i], state.lostSupportAt[i], false});
+      record.fallen.push_back({bodies.name[i], state.outAt[i], true, false});
+    } else if (through || hasFallen(world, i, supported, state.settledPosition[i], rule)) {
+      record.fallen.push_back({bodies.name[i], state.outAt[i], false, through});
     }
   }
 }
@@ -171,7 +172,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     s.damping = e.damping;
     s.gravityWork = e.gravityWork;
     s.retiredKinetic = e.retiredKinetic;
-    s.ended = e.ended;
+    s.projection = e.projection;
     s.residual = e.residual();
     record.curve.push_back(s);
   };

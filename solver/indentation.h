@@ -28,7 +28,7 @@ struct CurveSample {
   double damping = 0;             ///< J, dissipated by damping
   double gravityWork = 0;         ///< J, work done by gravity
   double retiredKinetic = 0;      ///< J, carried off by retired bodies
-  double ended = 0;               ///< J, stored in node contacts that ended while loaded
+  double projection = 0;          ///< J, removed by changes of projected contact areas
   double residual = 0;            ///< J, EnergyBudget::residual
 };
 
@@ -48,11 +48,13 @@ struct Snapshot {
   std::vector<ForceLink> forces;
 };
 
-/// A block that has fallen (assembly_state.h): no chain of block contacts holds it to a support.
+/// A block out of the slab (assembly_state.h): fallen (no chain of block contacts holds it to a
+/// support) or pushed through (still touching, but moved past its neighbours by its own size).
 struct FallenBody {
   std::string name;
-  double delta = 0;      ///< m, when it lost its last contact path to a support (a lone block: its last block contact)
+  double delta = 0;      ///< m, when it left: lost its last contact path to a support, or was pushed through
   bool retired = false;  ///< taken out of the computation, having left the assembly
+  bool touching = false; ///< pushed through: still in contact with blocks
 };
 
 /// What a run produced.
@@ -90,7 +92,7 @@ struct IndentationState {
   double nextSample = 0, nextSnapshot = 0;  ///< m of delta
   double quietFrom = -1;     ///< m of delta since which the load has stayed below 1 % of the peak (< 0: it has not)
   std::vector<Eigen::Vector3d> settledPosition;
-  std::vector<double> lostSupportAt;  ///< m of delta per body: when it lost its last contact path to a support (< 0: held)
+  std::vector<double> outAt;  ///< m of delta per body: when it lost its last contact path to a support or was pushed through (< 0: in)
 };
 
 /// What the caller hears while the test runs.

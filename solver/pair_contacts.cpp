@@ -30,16 +30,15 @@ Motion motionOf(const RigidBodies& bodies, int i) {
   return {bodies.position[i], bodies.velocity[i], bodies.angularVelocity(i)};
 }
 
-// Merge cursor over the previous step's contacts (sorted by key): the spring of a node that was
-// in contact, or zero. The contacts it passes over have ended: their stored energy goes to `ended`.
+// Merge cursor over the previous step's contacts (sorted by key): the contact of a node that was
+// in contact, or none. The contacts it passes over have ended: their stored energy goes to `ended`.
 struct History {
   const std::vector<NodeContact>& previous;
   double& ended;
   std::size_t next = 0;
-  Eigen::Vector3d springFor(std::uint32_t key) {
+  const NodeContact* find(std::uint32_t key) {
     endBefore(key);
-    if (next < previous.size() && previous[next].key == key) return previous[next++].spring;
-    return Eigen::Vector3d::Zero();
+    return next < previous.size() && previous[next].key == key ? &previous[next++] : nullptr;
   }
   void endBefore(std::uint64_t key) {
     for (; next < previous.size() && previous[next].key < key; ++next) ended += previous[next].energy;
@@ -65,10 +64,13 @@ struct Accumulator {
     const double projection = -nodeNormal.dot(normal);
     if (projection <= 0) return;
     const NodeContactInput input{normal, depth, area * projection, node.velocityAt(x) - other.velocityAt(x)};
-    Eigen::Vector3d spring = history.springFor(key);
+    const NodeContact* before = history.find(key);
+    Eigen::Vector3d spring = before ? before->spring : Eigen::Vector3d::Zero();
     double stored;
     const Eigen::Vector3d f = contactForce(scene.parameters, kn, kt, input, spring, stored, scene.dt, pair.tally);
-    pair.contacts.push_back({key, spring, stored});
+    // Stored energy is proportional to the area: what the change of area alone removed.
+    if (before && scene.parameters.perNodeStiffness <= 0) pair.tally.projection += stored * (before->area / input.area - 1);
+    pair.contacts.push_back({key, spring, stored, input.area});
     pair.maxDepth = std::max(pair.maxDepth, depth);
     const double normalForce = f.dot(normal);  // f_n: the tangential part is normal to n
     pair.forcePoint += normalForce * x;
@@ -149,7 +151,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = !pair.candidatesValid;
   if (rebuild) pair.candidates.clear();
   pair.candidatesValid = true;
-  Accumulator acc{scene, pair, History{pair.previous, pair.tally.ended}, scene.bodies->position[pair.a], scene.kn, scene.kt};
+  Accumulator acc{scene, pair, History{pair.previous, pair.tally.projection}, scene.bodies->position[pair.a], scene.kn, scene.kt};
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
 

@@ -42,6 +42,7 @@ struct NodeContact {
   std::uint32_t key;
   Eigen::Vector3d spring;  ///< m
   double energy;           ///< J, stored in this node contact
+  double area;             ///< m^2, its effective (projected) area
 };
 
 /// One candidate pair and its contact state. `b` >= 0 is a body; `b` < 0 an obstacle: sphere

@@ -89,15 +89,17 @@ void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bund
   h5::Handle fallen = h5::createGroup(f.get(), "fallen");
   std::vector<std::string> fallenNames;
   std::vector<double> fallenDelta;
-  std::vector<std::uint8_t> fallenRetired;
+  std::vector<std::uint8_t> fallenRetired, fallenTouching;
   for (const FallenBody& b : record.fallen) {
     fallenNames.push_back(b.name);
     fallenDelta.push_back(b.delta);
     fallenRetired.push_back(b.retired);
+    fallenTouching.push_back(b.touching);
   }
   h5::writeStrings(fallen.get(), "names", fallenNames);
   h5::writeDataset(fallen.get(), "delta", fallenDelta, {fallenDelta.size()});
   h5::writeDataset(fallen.get(), "retired", fallenRetired, {fallenRetired.size()});
+  h5::writeDataset(fallen.get(), "touching", fallenTouching, {fallenTouching.size()});
 }
 
 }  // namespace
@@ -148,7 +150,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
 
   nlohmann::json fallen = nlohmann::json::array();
   for (const FallenBody& b : record.fallen)
-    fallen.push_back({{"name", b.name}, {"delta_mm", b.delta * 1e3}, {"retired", b.retired}});
+    fallen.push_back({{"name", b.name}, {"delta_mm", b.delta * 1e3}, {"retired", b.retired}, {"touching", b.touching}});
   nlohmann::json drops = nlohmann::json::array();
   for (const LoadDrop& d : response.drops)
     drops.push_back({{"delta_mm", d.delta * 1e3}, {"load_before_N", d.before}, {"load_after_N", d.after}});
@@ -192,7 +194,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
           {"damping_mJ", end.damping * 1e3},
           {"gravity_mJ", end.gravityWork * 1e3},
           {"retired_kinetic_mJ", end.retiredKinetic * 1e3},
-          {"ended_contacts_mJ", end.ended * 1e3},
+          {"projection_mJ", end.projection * 1e3},
           {"residual_mJ", end.residual * 1e3}}},
         {"quasi_static_ratio", response.quasiStaticRatio},
         {"peak_load_normalised", response.peakLoadNormalised},

@@ -126,7 +126,7 @@ WorldState World::state() const {
   s.friction = friction_;
   s.damping = damping_;
   s.retiredKinetic = retiredKinetic_;
-  s.ended = ended_;
+  s.projection = projection_;
   s.mostSupplied = mostSupplied_;
   s.time = time_;
   s.steps = steps_;
@@ -158,7 +158,7 @@ void World::restore(const WorldState& s) {
   friction_ = s.friction;
   damping_ = s.damping;
   retiredKinetic_ = s.retiredKinetic;
-  ended_ = s.ended;
+  projection_ = s.projection;
   mostSupplied_ = s.mostSupplied;
   time_ = s.time;
   steps_ = s.steps;
@@ -280,7 +280,7 @@ void World::evaluateForces() {
   for (const PairContacts& pair : pairs_) {
     friction_ += pair.tally.friction;
     damping_ += pair.tally.viscous;
-    ended_ += pair.tally.ended;
+    projection_ += pair.tally.projection;
     contactForce_[pair.a] += pair.forceA;
     contactTorque_[pair.a] += pair.torqueA;
     if (pair.b >= 0) {
@@ -370,7 +370,7 @@ EnergyBudget World::energy() const {
   e.friction = friction_;
   e.damping = damping_;
   e.retiredKinetic = retiredKinetic_;
-  e.ended = ended_;
+  e.projection = projection_;
   return e;
 }
 

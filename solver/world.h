@@ -30,11 +30,11 @@ struct EnergyBudget {
   double friction = 0.0;        ///< dissipated by sliding at the Coulomb cap
   double damping = 0.0;         ///< dissipated by local and viscous damping and the normal viscosity
   double retiredKinetic = 0.0;  ///< carried off by bodies taken out of the computation (retired)
-  double ended = 0.0;           ///< stored in node contacts that ended while loaded (ContactTally::ended)
+  double projection = 0.0;      ///< removed by changes of projected contact areas (ContactTally::projection)
   /// What went in minus what is stored, dissipated or carried off: zero but for the integrator's
   /// error (a time-step quantity: it shrinks with dt^2).
   double residual() const {
-    return initial + gravityWork + obstacleWork - (kinetic + elastic + friction + damping + retiredKinetic + ended);
+    return initial + gravityWork + obstacleWork - (kinetic + elastic + friction + damping + retiredKinetic + projection);
   }
 };
 
@@ -51,7 +51,7 @@ struct WorldState {
   std::vector<Eigen::Vector3d> force, torque, contactForce, contactTorque, sphereReaction, dampingForce, dampingTorque;
   bool forcesValid = false;
   std::vector<Eigen::Vector3d> startPosition;
-  double initialEnergy = 0, obstacleWork = 0, friction = 0, damping = 0, retiredKinetic = 0, ended = 0, mostSupplied = 0,
+  double initialEnergy = 0, obstacleWork = 0, friction = 0, damping = 0, retiredKinetic = 0, projection = 0, mostSupplied = 0,
          time = 0;
   long steps = 0;
 };
@@ -140,7 +140,7 @@ private:
   std::vector<Eigen::Vector3d> startPosition_;
   double initialEnergy_ = 0.0;
   double obstacleWork_ = 0.0;
-  double friction_ = 0.0, damping_ = 0.0, retiredKinetic_ = 0.0, ended_ = 0.0;  // J, dissipated / carried off so far
+  double friction_ = 0.0, damping_ = 0.0, retiredKinetic_ = 0.0, projection_ = 0.0;  // J, dissipated / carried off so far
   double mostSupplied_ = 0.0;  // the largest energy put in so far (J), for the blow-up check
   double penetrationLimit_ = 0.0;
   double dt_ = 0.0, automaticDt_ = 0.0, time_ = 0.0;

@@ -66,14 +66,15 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
               r.energyToEnd * 1e3, r.end.delta * 1e3);
   std::printf("  failure            %s", r.failureMode.c_str());
   for (const FallenBody& f : record.fallen)
-    std::printf(" [%s lost its support at %.3g mm%s]", f.name.c_str(), f.delta * 1e3, f.retired ? ", retired" : "");
+    std::printf(" [%s out at %.3g mm%s]", f.name.c_str(), f.delta * 1e3,
+                f.retired ? ", retired" : f.touching ? ", pushed through, still touching" : "");
   std::printf("\n  load drops         %zu after the peak", r.drops.size());
   for (const LoadDrop& d : r.drops) std::printf(" [%.3g mm: %.4g -> %.4g N]", d.delta * 1e3, d.before, d.after);
   const CurveSample& e = r.end;
   std::printf("\n  energy (mJ)        work %.4g + gravity %.3g = elastic %.4g + kinetic %.3g + friction %.4g + damping %.4g"
-              " + retired %.3g + ended contacts %.3g; residual %.3g (%.2g %% of the work)\n",
+              " + retired %.3g + projection %.3g; residual %.3g (%.2g %% of the work)\n",
               e.externalWork * 1e3, e.gravityWork * 1e3, e.elastic * 1e3, e.kinetic * 1e3, e.friction * 1e3, e.damping * 1e3,
-              e.retiredKinetic * 1e3, e.ended * 1e3, e.residual * 1e3,
+              e.retiredKinetic * 1e3, e.projection * 1e3, e.residual * 1e3,
               e.externalWork > 0 ? 100 * std::abs(e.residual) / e.externalWork : 0.0);
   std::printf("  quasi-static check max KE / W before the peak = %.2e\n", r.quasiStaticRatio);
   std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
