@@ -20,10 +20,10 @@ struct ContactTally {
   double elastic = 0.0;   ///< J, stored: 1/2 k_n a d^2 + 1/2 k_t a |u|^2
   double friction = 0.0;  ///< J, dissipated by sliding this step (the spring cut back to the Coulomb cap)
   double viscous = 0.0;   ///< J, dissipated by the normal viscosity this step: (k_n a d - f_n) v_n dt
-  /// J, stored energy removed (negative: added) by changes of the nodes' projected areas a (n_i . n),
-  /// which the forces do not derive from: the contact normal turning relative to the node, at
-  /// most where the other body's nearest face switches at an edge; a contact that ends while
-  /// loaded gives up all of its energy (docs/physics.md, "Energy balance").
+  /// J, stored energy removed (negative: added) by changes of the nodes' projected areas
+  /// a max(0, -n_i . n), which the forces do not derive from: the contact normal turning relative
+  /// to the node, most where the other body's nearest face switches at an edge and the projection
+  /// drops to zero with the node still inside (docs/physics.md, "Energy balance").
   double projection = 0.0;
   int sliding = 0;        ///< node contacts at the Coulomb cap
 };

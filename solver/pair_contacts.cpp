@@ -31,17 +31,13 @@ Motion motionOf(const RigidBodies& bodies, int i) {
 }
 
 // Merge cursor over the previous step's contacts (sorted by key): the contact of a node that was
-// in contact, or none. The contacts it passes over have ended: their stored energy goes to `ended`.
+// in contact, or none.
 struct History {
   const std::vector<NodeContact>& previous;
-  double& ended;
   std::size_t next = 0;
   const NodeContact* find(std::uint32_t key) {
-    endBefore(key);
-    return next < previous.size() && previous[next].key == key ? &previous[next++] : nullptr;
-  }
-  void endBefore(std::uint64_t key) {
-    for (; next < previous.size() && previous[next].key < key; ++next) ended += previous[next].energy;
+    while (next < previous.size() && previous[next].key < key) ++next;
+    return next < previous.size() && previous[next].key == key ? &previous[next] : nullptr;
   }
 };
 
@@ -62,14 +58,22 @@ struct Accumulator {
            const Eigen::Vector3d& normal, double depth, const Motion& node, const Motion& other, bool nodeBodyIsA) {
     // Effective area: the node's area projected on the contact plane (docs/physics.md).
     const double projection = -nodeNormal.dot(normal);
-    if (projection <= 0) return;
-    const NodeContactInput input{normal, depth, area * projection, node.velocityAt(x) - other.velocityAt(x)};
     const NodeContact* before = history.find(key);
+    if (projection <= 0) {
+      // Inside, but facing away from the contact normal: no force. Kept with zero area, so that
+      // the energy this cut takes (and a return gives back) is booked below.
+      if (before) pair.tally.projection += before->energy;
+      pair.contacts.push_back({key, Eigen::Vector3d::Zero(), 0.0, 0.0});
+      return;
+    }
+    const NodeContactInput input{normal, depth, area * projection, node.velocityAt(x) - other.velocityAt(x)};
     Eigen::Vector3d spring = before ? before->spring : Eigen::Vector3d::Zero();
     double stored;
     const Eigen::Vector3d f = contactForce(scene.parameters, kn, kt, input, spring, stored, scene.dt, pair.tally);
-    // Stored energy is proportional to the area: what the change of area alone removed.
-    if (before && scene.parameters.perNodeStiffness <= 0) pair.tally.projection += stored * (before->area / input.area - 1);
+    // Stored energy is proportional to the area: what the change of area alone removed (a contact
+    // coming back from a cut, area 0, brings all of its energy back).
+    if (before && before->area == 0) pair.tally.projection -= stored;
+    else if (before && scene.parameters.perNodeStiffness <= 0) pair.tally.projection += stored * (before->area / input.area - 1);
     pair.contacts.push_back({key, spring, stored, input.area});
     pair.maxDepth = std::max(pair.maxDepth, depth);
     const double normalForce = f.dot(normal);  // f_n: the tangential part is normal to n
@@ -82,7 +86,6 @@ struct Accumulator {
 
   // Newton's third law: on b, -F_A at the same points: tau_B = -(tau_A + (c_A - c_B) x F_A).
   void finish() {
-    history.endBefore(std::uint64_t{1} << 32);  // every contact not continued has ended
     pair.forceB = -pair.forceA;
     if (pair.b >= 0) pair.torqueB = -(pair.torqueA + (centreA - scene.bodies->position[pair.b]).cross(pair.forceA));
     if (weight > 0) pair.forcePoint /= weight;
@@ -151,7 +154,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = !pair.candidatesValid;
   if (rebuild) pair.candidates.clear();
   pair.candidatesValid = true;
-  Accumulator acc{scene, pair, History{pair.previous, pair.tally.projection}, scene.bodies->position[pair.a], scene.kn, scene.kt};
+  Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a], scene.kn, scene.kt};
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
 

@@ -43,7 +43,8 @@ gravity = [0.0, 0.0, 0.0]
   REQUIRE(s.solver.localDamping == 0.2);
   REQUIRE(s.solver.threads == 2);
   REQUIRE(s.solver.gravity.norm() == 0.0);
-  REQUIRE(s.protocol.deltaMax == 6e-3);  // default
+  REQUIRE(s.protocol.deltaMax == 0);  // default: 2 h of the loaded block
+  REQUIRE(s.protocol.deltaMaxRatio == 2.0);
 }
 
 TEST_CASE("the shipped default scene reads") {

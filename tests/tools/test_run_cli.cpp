@@ -50,7 +50,10 @@ TEST_CASE("run indents a small slab and writes the curve, the response and the P
   REQUIRE(summary["stop_reason"] == "delta_max");
   REQUIRE(summary["response"]["peak_load_N"].get<double>() > 0);
   REQUIRE(summary["response"]["stiffness_N_per_mm"].get<double>() > 0);
-  REQUIRE(summary["response"]["failure_mode"] == "no failure by delta_max");
+  REQUIRE(summary["response"]["failure_mode"] == "no failure");
+  REQUIRE(summary["response"]["failure_deflection_mm"].is_null());
+  for (const char* term : {"work_mJ", "elastic_mJ", "kinetic_mJ", "friction_mJ", "damping_mJ", "gravity_mJ", "residual_mJ"})
+    REQUIRE(summary["response"]["energy"].contains(term));
   REQUIRE(summary["response"]["quasi_static_ratio"].get<double>() < 0.01);
   REQUIRE(summary["material"]["span_interfaces"] == 2);  // 3 x 3 slab: M = 2, L = 10 mm
   // The curve rises with delta.
@@ -148,8 +151,36 @@ TEST_CASE("sweep regression: P_max scales with E (gravity off) and a high-fricti
   INFO(mu.err);
   REQUIRE(mu.status == 0);
   const auto summary = readJson(dir / "mu/summary.json");
-  REQUIRE(summary["response"]["failure_mode"] == "central block out");
+  REQUIRE(summary["response"]["failure_mode"] == "loaded block out");
   REQUIRE(summary["response"]["fallen"][0]["name"] == "r3c3");
+}
+
+TEST_CASE("default run: the natural failure, after the loaded block has moved a thickness, and a closed energy balance") {
+  test::TempDir dir;
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) +
+                           " --unit mm --grid 7x7 --pitch 10 --fix perimeter --voxel 0.25 --spacing 0.6 -o " +
+                           quoted(dir / "slab"))
+              .status == 0);
+  const test::CliResult r = test::runTessera("run " + quoted(std::string(TESSERA_ASSETS) + "/scenes/default.toml") +
+                                             " --bundle " + quoted(dir / "slab") + " --no-plot -o " + quoted(dir / "out"));
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  const auto summary = readJson(dir / "out/summary.json");
+  const auto& response = summary["response"];
+  // Not the old retirement at one thickness of sinking (3.31 mm): the load falls below 10 % of
+  // P_max only once the loaded block has moved beyond h = 3.18 mm.
+  REQUIRE(response["failure_deflection_mm"].get<double>() > 3.6);
+  REQUIRE(response["block_displacement_at_failure_mm"].get<double>() > 3.18);
+  REQUIRE(response["failure_mode"] == "loaded block out");
+  REQUIRE(response["fallen"].size() == 1);
+  REQUIRE(response["fallen"][0]["name"] == "r3c3");
+  REQUIRE(response["loading_energy_to_end_mJ"].get<double>() >= response["loading_energy_mJ"].get<double>());
+  REQUIRE(response["delta_max_mm"].get<double>() == Approx(2 * 3.18).epsilon(1e-3));
+  // Energy: everything the indenter and gravity put in is stored, dissipated or booked.
+  const auto& e = response["energy"];
+  REQUIRE(e["friction_mJ"].get<double>() > 0);
+  REQUIRE(e["damping_mJ"].get<double>() > 0);
+  REQUIRE(std::abs(e["residual_mJ"].get<double>()) < 0.01 * e["work_mJ"].get<double>());
 }
 
 TEST_CASE("run with a preset uses its keys, kept as OUT/scene.toml, and refuses an unknown preset") {
