@@ -46,16 +46,25 @@ bool canRetire(const World& world, int i, const std::vector<char>& touching, con
   return true;
 }
 
-bool pushedThrough(const World& world, int i, const std::vector<Eigen::Vector3d>& settledPosition) {
+std::vector<char> pushedThroughBodies(const World& world, const std::vector<Eigen::Vector3d>& settledPosition) {
+  const std::size_t n = world.bodies().size();
   const auto drop = [&](int j) { return settledPosition[j].z() - world.bodies().position[j].z(); };
-  double sum = 0;
-  int touching = 0;
+  // One pass over the pairs: the summed drop of each body's touching neighbours, and their count.
+  std::vector<double> sum(n, 0.0);
+  std::vector<int> touching(n, 0);
   for (const PairContacts& p : world.pairs())
-    if (p.b >= 0 && !p.contacts.empty() && (p.a == i || p.b == i)) {
-      sum += drop(p.a == i ? p.b : p.a);
-      ++touching;
+    if (p.b >= 0 && !p.contacts.empty()) {
+      sum[p.a] += drop(p.b);
+      sum[p.b] += drop(p.a);
+      ++touching[p.a];
+      ++touching[p.b];
     }
-  return touching > 0 && !world.isSupport(i) && drop(i) - sum / touching > world.bodySize(i);
+  std::vector<char> through(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int b = static_cast<int>(i);
+    through[i] = touching[i] > 0 && !world.isSupport(b) && drop(b) - sum[i] / touching[i] > world.bodySize(b);
+  }
+  return through;
 }
 
 ContactCounts countContacts(const World& world, int loaded) {

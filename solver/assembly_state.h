@@ -36,9 +36,9 @@ bool hasFallen(const World& world, int i, const std::vector<char>& supported, co
 bool canRetire(const World& world, int i, const std::vector<char>& touching, const std::vector<char>& supported,
                const Eigen::Vector3d& settledPosition, const FallenRule& rule);
 
-/// Still touching blocks, but moved down more than its own size h_i past the mean of the blocks
-/// it touches: out of the slab's plane (a block jammed on its way out), not a dished slab.
-bool pushedThrough(const World& world, int i, const std::vector<Eigen::Vector3d>& settledPosition);
+/// For each body: still touching blocks, but moved down more than its own size h_i past the mean
+/// of the blocks it touches: out of the slab's plane (a block jammed on its way out), not a dished slab.
+std::vector<char> pushedThroughBodies(const World& world, const std::vector<Eigen::Vector3d>& settledPosition);
 
 /// Node contacts of the last evaluation, as a curve sample records them.
 struct ContactCounts {

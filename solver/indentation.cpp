@@ -72,35 +72,35 @@ void startLoading(World& world, const Bundle& bundle, const Scene& scene, Indent
 }
 
 // At a sample: who is held, who has fallen (and since when), who has left and is retired.
-void updateFallen(World& world, const Scene& scene, IndentationRecord& record, IndentationState& state, double delta) {
+// Returns, for each body, whether it is out (listed in record.fallen).
+std::vector<char> updateFallen(World& world, const Scene& scene, IndentationRecord& record, IndentationState& state,
+                               double delta) {
   const FallenRule rule{scene.protocol.fallenClearance};
-  const std::vector<char> supported = supportedBodies(world), touching = touchingBlocks(world);
+  const std::vector<char> supported = supportedBodies(world), touching = touchingBlocks(world),
+                          pushed = pushedThroughBodies(world, state.settledPosition);
   const RigidBodies& bodies = world.bodies();
+  std::vector<char> out(bodies.size(), 0);
   record.fallen.clear();
   for (int i = 0; i < static_cast<int>(bodies.size()); ++i) {
     if (world.isSupport(i)) continue;
     if (world.isRetired(i)) {
       record.fallen.push_back({bodies.name[i], state.outAt[i], true, false});
+      out[i] = 1;
       continue;
     }
-    const bool through = touching[i] && pushedThrough(world, i, state.settledPosition);
+    const bool through = pushed[i];
     if (supported[i] && !through) state.outAt[i] = -1.0;
     else if (state.outAt[i] < 0) state.outAt[i] = delta;
     if (canRetire(world, i, touching, supported, state.settledPosition[i], rule)) {
       world.retireBody(i);
       record.fallen.push_back({bodies.name[i], state.outAt[i], true, false});
+      out[i] = 1;
     } else if (through || hasFallen(world, i, supported, state.settledPosition[i], rule)) {
       record.fallen.push_back({bodies.name[i], state.outAt[i], false, through});
+      out[i] = 1;
     }
   }
-}
-
-bool allAtRestOrFallen(const World& world, const Scene& scene, const IndentationRecord& record) {
-  std::vector<char> fallen(world.bodies().size(), 0);
-  for (const FallenBody& f : record.fallen)
-    for (std::size_t i = 0; i < fallen.size(); ++i)
-      if (world.bodies().name[i] == f.name) fallen[i] = 1;
-  return restingBodies(world, fallen, scene.protocol.restSpeedRatio * scene.indenter.speed);
+  return out;
 }
 
 }  // namespace
@@ -150,8 +150,9 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
   RigidBodies& bodies = world.bodies();
   const double speed = scene.indenter.speed;
   const double travelMax = record.deltaMax + scene.indenter.clearance + scene.indenter.radius;
+  std::vector<char> out;  // bodies out at the last sample
   const auto sample = [&](double delta, double load) {
-    updateFallen(world, scene, record, state, delta);
+    out = updateFallen(world, scene, record, state, delta);
     const EnergyBudget e = world.energy();
     const ContactCounts c = countContacts(world, record.target);
     CurveSample s;
@@ -216,7 +217,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
                             travel > travelMax + record.deltaMax;  // the latter: never touched anything
     const bool failed = scene.protocol.stopOnFailure && sampled && state.quietFrom >= 0 &&
                         delta - state.quietFrom >= scene.protocol.quietTravel * record.thickness &&
-                        allAtRestOrFallen(world, scene, record);
+                        restingBodies(world, out, scene.protocol.restSpeedRatio * scene.indenter.speed);
     if (reachedMax || failed) {
       record.stopReason = failed ? "failure" : "delta_max";
       // The state at the stop closes the curve.

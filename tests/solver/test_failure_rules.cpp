@@ -79,14 +79,14 @@ TEST_CASE("failure rules: support runs through chains of contacts; a block pushe
   for (std::size_t i = 0; i < supported.size(); ++i) REQUIRE(supported[i]);
   const int centre = 4;
   const std::vector<Eigen::Vector3d> settled = world.bodies().position;
-  REQUIRE_FALSE(pushedThrough(world, centre, settled));
+  REQUIRE_FALSE(pushedThroughBodies(world, settled)[centre]);
   // The same contacts with the centre's settled place 1.2 h higher: it has moved past its
   // neighbours by more than its thickness while still touching them.
   std::vector<Eigen::Vector3d> higher = settled;
   higher[centre].z() += 1.2 * kH;
   REQUIRE(touchingBlocks(world)[centre]);
-  REQUIRE(pushedThrough(world, centre, higher));
+  REQUIRE(pushedThroughBodies(world, higher)[centre]);
   // A dished slab: every body "sank" together by 1.2 h: not pushed through.
   for (auto& p : higher) p.z() = p.z() + (&p == &higher[centre] ? 0.0 : 1.2 * kH);
-  REQUIRE_FALSE(pushedThrough(world, centre, higher));
+  REQUIRE_FALSE(pushedThroughBodies(world, higher)[centre]);
 }
