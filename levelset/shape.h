@@ -1,5 +1,6 @@
 #pragma once
 #include "geometry/mass_properties.h"
+#include "geometry/paper_block.h"
 #include "geometry/surface_nodes.h"
 #include "geometry/triangle_mesh.h"
 #include "levelset/dense_sdf.h"
@@ -15,12 +16,23 @@ struct ShapeSource {
   double metresPerUnit = 1.0;  ///< m per file unit
 };
 
-/// The resolution a shape was prepared at.
+/// The resolution a shape was prepared at. Zero lengths are relative to the shape: the ratio x its
+/// thinnest extent t (its body-frame box), the paper's 0.25 mm and 0.6 mm on its 3.18 mm block.
 struct ShapeResolution {
-  double voxelSize = 0.25e-3;    ///< m, signed-distance grid spacing
-  double nodeSpacing = 0.6e-3;   ///< m, target surface node spacing
+  double voxelSize = 0.0;    ///< m, signed-distance grid spacing (0: voxelRatio x t)
+  double nodeSpacing = 0.0;  ///< m, target surface node spacing (0: nodeSpacingRatio x t)
+  double voxelRatio = 0.25e-3 / kPaperThickness;        ///< t / 12.7
+  double nodeSpacingRatio = 0.6e-3 / kPaperThickness;   ///< t / 5.3
   double featureAngle = 0.5236;  ///< rad, edges bending more than this are sharp
   int exteriorBandVoxels = 3;    ///< exact distances (and grid padding) outside the surface, voxels
+
+  /// This resolution with its zero lengths made absolute for a shape of thinnest extent t (m).
+  ShapeResolution resolvedFor(double t) const {
+    ShapeResolution r = *this;
+    if (r.voxelSize == 0) r.voxelSize = voxelRatio * t;
+    if (r.nodeSpacing == 0) r.nodeSpacing = nodeSpacingRatio * t;
+    return r;
+  }
 };
 
 /// One distinct block shape, solver-ready. Everything but `mass` is in the body frame: the

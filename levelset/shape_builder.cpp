@@ -39,7 +39,32 @@ std::string shapeNameFromPath(const std::string& path) {
   return name.empty() ? "shape" : name.substr(0, 64);
 }
 
-void checkResolution(const Eigen::Vector3d& extents, double surfaceArea, const ShapeResolution& resolution,
+std::string ShapeEstimate::text() const {
+  char buffer[200];
+  std::snprintf(buffer, sizeof buffer, "grid %lld x %lld x %lld (%.3g M nodes), about %.0f surface nodes, %.3g MB, %.2g s",
+                grid[0], grid[1], grid[2], gridNodes * 1e-6, surfaceNodes, bytes * 1e-6, seconds);
+  return buffer;
+}
+
+ShapeEstimate estimateShape(const Eigen::Vector3d& extents, double surfaceArea, const ShapeResolution& resolution) {
+  ShapeEstimate e;
+  // As buildSignedDistance lays the grid out: the box in whole voxels, padded by the band.
+  e.gridNodes = 1;
+  for (int k = 0; k < 3; ++k) {
+    e.grid[k] = static_cast<long long>(std::ceil(extents[k] / resolution.voxelSize)) + 2 * resolution.exteriorBandVoxels + 1;
+    e.gridNodes *= static_cast<double>(e.grid[k]);
+  }
+  e.surfaceNodes = surfaceArea / (resolution.nodeSpacing * resolution.nodeSpacing);
+  // Measured with `tessera prep` (/usr/bin/time -v) on the default block at fine voxels and at fine
+  // spacings, and on a 180 mm assembly part: 5-25 bytes and 0.4-2 us per grid node (the dense
+  // copy, the OpenVDB grid, more for meshes of many triangles); 4.5 kB and 140 us per surface node
+  // (the area quadrature). The larger figures are used: an estimate to within a factor of 2-3.
+  e.bytes = 16.0 * e.gridNodes + 4500.0 * e.surfaceNodes;
+  e.seconds = 1e-6 * e.gridNodes + 140e-6 * e.surfaceNodes;
+  return e;
+}
+
+void checkResolution(const Eigen::Vector3d& extents, const ShapeResolution& resolution,
                      const std::string& label, PrepLog& log) {
   const double voxel = resolution.voxelSize, spacing = resolution.nodeSpacing;
   if (!(voxel > 0) || !std::isfinite(voxel))
@@ -49,6 +74,10 @@ void checkResolution(const Eigen::Vector3d& extents, double surfaceArea, const S
   if (resolution.exteriorBandVoxels < 1 || resolution.exteriorBandVoxels > 64)
     throw InputError(label + ": exterior band must be 1-64 voxels");
 
+  // OpenVDB's linear transform refuses scales whose cube is below its tolerance (1e-15 m^3).
+  if (voxel < 1e-5)
+    throw InputError(label + ": voxel size " + formatLength(voxel) + " is below 0.01 mm, the finest the OpenVDB grid "
+                     "(in metres) holds; coarsen --voxel, or check --unit");
   const double thinnest = extents.minCoeff();
   const double across = thinnest / voxel;
   if (across < 3)
@@ -63,25 +92,11 @@ void checkResolution(const Eigen::Vector3d& extents, double surfaceArea, const S
     log.warnings.push_back("coarse nodes: the thinnest dimension (" + formatLength(thinnest) +
                            ") spans fewer than 2 node spacings; use a spacing below " + formatLength(thinnest / 2));
 
-  const double pad = 2.0 * resolution.exteriorBandVoxels + 3;
-  const double gridNodes = (extents.x() / voxel + pad) * (extents.y() / voxel + pad) * (extents.z() / voxel + pad);
-  if (gridNodes > 2e8)
-    throw InputError(label + ": the grid would have " + std::to_string(static_cast<long long>(gridNodes)) +
-                     " nodes (limit 2e8); raise the voxel size or check --unit");
-  const double quadrature = 4.0 * surfaceArea / (spacing * spacing) * 144.0;
-  if (quadrature > 2e8)
-    throw InputError(label + ": node spacing " + formatLength(spacing) + " is too fine for a surface of " +
-                     std::to_string(surfaceArea * 1e6) + " mm^2 (about " +
-                     std::to_string(static_cast<long long>(surfaceArea / (spacing * spacing))) +
-                     " nodes); raise the spacing or check --unit");
-  const double largest = extents.maxCoeff();
-  if (largest > 10.0 || largest < 1e-4)
-    log.warnings.push_back("the shape is " + formatLength(largest) +
-                           " across, unusual for a block; check that --unit states the file's unit");
 }
 
 Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& source,
-                 const ShapeResolution& resolution, const std::string& label, PrepLog& log) {
+                 const ShapeResolution& resolution, const std::string& label, PrepLog& log,
+                 const ShapeLimits& limits) {
   if (!isValidShapeName(name))
     throw InputError(label + ": shape name '" + name + "' is not valid; use 1-64 characters from A-Z a-z 0-9 _ . -");
   if (validateSolidMesh(mesh, label).reoriented)
@@ -90,27 +105,46 @@ Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& 
   Shape shape;
   shape.name = name;
   shape.source = source;
-  shape.resolution = resolution;
   shape.mass = computeMassProperties(mesh);
   shape.mesh = toBodyFrame(mesh, shape.mass);
-  const Eigen::AlignedBox3d box = boundingBox(shape.mesh.vertices);
-  checkResolution(box.sizes(), shape.mass.surfaceArea, resolution, label, log);
+  const Eigen::Vector3d extents = boundingBox(shape.mesh.vertices).sizes();
+  const double largest = extents.maxCoeff();
+  if (!limits.anySize && (largest < limits.smallest || largest > limits.largest))
+    throw InputError(label + ": the block is " + formatLength(largest) + " across read as " + source.unit +
+                     ", outside " + formatLength(limits.smallest) + " to " + formatLength(limits.largest) +
+                     ": check --unit (mesh files carry no unit), or pass --any-size if that size is meant");
+  const ShapeResolution resolved = resolution.resolvedFor(extents.minCoeff());
+  shape.resolution = resolved;
+  checkResolution(extents, resolved, label, log);
+  const ShapeEstimate estimate = estimateShape(extents, shape.mass.surfaceArea, resolved);
+  if (estimate.bytes > limits.maxMemoryBytes) {
+    char budget[160];
+    std::snprintf(budget, sizeof budget, "needs about %.3g GB, above the budget of %.3g GB", estimate.bytes * 1e-9,
+                  limits.maxMemoryBytes * 1e-9);
+    throw InputError(label + ": voxel " + formatLength(resolved.voxelSize) + " and spacing " +
+                     formatLength(resolved.nodeSpacing) + " on a block " + formatLength(largest) + " across " + budget +
+                     " (" + estimate.text() + "); coarsen --voxel/--spacing (default: relative to the block), "
+                     "check --unit, or raise --max-memory");
+  }
+  if (log.now)
+    log.now("voxel " + formatLength(resolved.voxelSize) + ", spacing " + formatLength(resolved.nodeSpacing) +
+            "; estimate: " + estimate.text());
 
   const MeshFeatures features = findFeatures(shape.mesh, resolution.featureAngle);
   SurfaceNodeOptions nodeOptions;
-  nodeOptions.spacing = resolution.nodeSpacing;
-  nodeOptions.featureAngle = resolution.featureAngle;
+  nodeOptions.spacing = resolved.nodeSpacing;
+  nodeOptions.featureAngle = resolved.featureAngle;
   shape.nodes = sampleSurfaceNodes(shape.mesh, features, nodeOptions);
 
   SignedDistanceOptions sdfOptions;
-  sdfOptions.voxelSize = resolution.voxelSize;
-  sdfOptions.exteriorBandVoxels = resolution.exteriorBandVoxels;
+  sdfOptions.voxelSize = resolved.voxelSize;
+  sdfOptions.exteriorBandVoxels = resolved.exteriorBandVoxels;
   shape.sdf = buildSignedDistance(shape.mesh, sdfOptions);
   return shape;
 }
 
 Shape prepareShapeFromFile(const std::string& path, const std::string& unitName, const std::string& name,
-                           const ShapeResolution& resolution, PrepLog& log) {
+                           const ShapeResolution& resolution, PrepLog& log, const ShapeLimits& limits) {
   const LengthUnit unit = parseLengthUnit(unitName);
   MeshImportOptions importOptions;
   importOptions.metresPerUnit = unit.metres;
@@ -121,7 +155,8 @@ Shape prepareShapeFromFile(const std::string& path, const std::string& unitName,
   if (imported.weld.collapsedTriangles > 0)
     log.notes.push_back("dropped " + std::to_string(imported.weld.collapsedTriangles) +
                         " triangles that collapsed when vertices were welded");
-  return buildShape(name, std::move(imported.mesh), ShapeSource{path, unit.name, unit.metres}, resolution, path, log);
+  return buildShape(name, std::move(imported.mesh), ShapeSource{path, unit.name, unit.metres}, resolution, path, log,
+                    limits);
 }
 
 }  // namespace tessera

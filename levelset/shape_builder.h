@@ -2,6 +2,7 @@
 #include "geometry/triangle_mesh.h"
 #include "levelset/shape.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -9,8 +10,30 @@ namespace tessera {
 
 /// Messages for the user collected while preparing a shape (printed by the tools).
 struct PrepLog {
+  std::function<void(const std::string&)> now;  ///< if set, hears the estimate at once, before the heavy work
   std::vector<std::string> notes;     ///< what was done (welded, re-oriented)
   std::vector<std::string> warnings;  ///< results that are usable but suspect (under-resolved, odd size)
+};
+
+/// What preparing a shape will cost, estimated before the work (prep prints it, and refuses above
+/// ShapeLimits::maxMemoryBytes). Rates measured by bench_prep (docs/performance.md).
+struct ShapeEstimate {
+  long long grid[3] = {0, 0, 0};  ///< grid nodes along x, y, z
+  double gridNodes = 0;
+  double surfaceNodes = 0;
+  double bytes = 0;     ///< peak memory
+  double seconds = 0;   ///< on one core
+  std::string text() const;  ///< "grid 45 x 45 x 16 (32 k nodes), about 1 900 surface nodes, 4 MB, 0.3 s"
+};
+ShapeEstimate estimateShape(const Eigen::Vector3d& extents, double surfaceArea, const ShapeResolution& resolution);
+
+/// What a shape may cost, and which sizes are plausible for a block (anything else is most likely
+/// a mesh read in the wrong unit).
+struct ShapeLimits {
+  double maxMemoryBytes = 4e9;   ///< refuse a shape whose estimate needs more
+  double smallest = 1e-3;        ///< m: a block's largest extent below this is refused ...
+  double largest = 10.0;         ///< m: ... and above this
+  bool anySize = false;          ///< accept any size (micro-scale or architectural blocks)
 };
 
 /// Checks a resolution against a shape of the given body-frame extents (m). Throws InputError for
@@ -18,19 +41,21 @@ struct PrepLog {
 ///  - voxel and spacing must be positive and finite;
 ///  - error if the thinnest dimension spans fewer than 3 voxels, warning below 10 (DESIGN §4);
 ///  - warning if the thinnest dimension spans fewer than 2 node spacings;
-///  - error if the grid or the area quadrature would exceed memory limits (wrong unit?).
-void checkResolution(const Eigen::Vector3d& extents, double surfaceArea, const ShapeResolution& resolution,
+void checkResolution(const Eigen::Vector3d& extents, const ShapeResolution& resolution,
                      const std::string& label, PrepLog& log);
 
 /// Builds a shape from a mesh in metres: validates it (re-orienting an inverted one), computes
 /// mass properties, moves it to the body frame, samples surface nodes and the signed distance.
 /// `label` names the input in messages. Throws InputError for meshes or resolutions it refuses.
+/// Zero lengths of `resolution` are relative to the shape (ShapeResolution::resolvedFor); the shape
+/// keeps the absolute values it was built at. Prints nothing; the estimate goes to log.notes.
 Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& source,
-                 const ShapeResolution& resolution, const std::string& label, PrepLog& log);
+                 const ShapeResolution& resolution, const std::string& label, PrepLog& log,
+                 const ShapeLimits& limits = {});
 
 /// Imports a mesh file (STL/OBJ) in the given unit and builds its shape (see buildShape).
 Shape prepareShapeFromFile(const std::string& path, const std::string& unit, const std::string& name,
-                           const ShapeResolution& resolution, PrepLog& log);
+                           const ShapeResolution& resolution, PrepLog& log, const ShapeLimits& limits = {});
 
 /// A valid shape name: 1-64 characters from [A-Za-z0-9_.-], not starting with '.'.
 bool isValidShapeName(const std::string& name);

@@ -13,6 +13,7 @@ namespace tessera {
 /// and one body per placement, posed by placeBody. Throws InputError for a placement naming an
 /// unknown shape or a shape that cannot be prepared.
 Bundle tileAssembly(const std::vector<LayoutShape>& shapes, const std::vector<Placement>& placements,
-                    const std::string& meshUnit, const ShapeResolution& resolution, PrepLog& log);
+                    const std::string& meshUnit, const ShapeResolution& resolution, PrepLog& log,
+                    const ShapeLimits& limits = {});
 
 }  // namespace tessera

@@ -26,6 +26,23 @@ int centralFreeBody(const World& world) {
   return best;
 }
 
+double settleThreshold(const World& world, const ProtocolSettings& protocol) {
+  if (protocol.settleKinetic > 0) return protocol.settleKinetic;
+  const RigidBodies& b = world.bodies();
+  const double g = world.settings().gravity.norm();
+  double scale = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (!b.fixed[i]) scale += b.mass[i] * g * world.bodySize(static_cast<int>(i));
+  return protocol.settleKineticRatio * scale;
+}
+
+double indenterSpeed(const World& world, const IndenterSettings& indenter, double thickness) {
+  if (indenter.speed > 0) return indenter.speed;
+  const ContactParameters& p = world.parameters();
+  const double slenderness = thickness / p.spanLength;
+  return indenter.speedRatio * std::sqrt(p.youngsModulus / world.settings().density) * slenderness * slenderness;
+}
+
 namespace {
 
 Snapshot snapshotOf(const World& world, double delta, double load) {
@@ -59,10 +76,10 @@ void startLoading(World& world, const Bundle& bundle, const Scene& scene, Indent
   record.thickness = top - bottom;
   record.deltaMax = scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * record.thickness;
   SphereObstacle indenter;
-  indenter.radius = scene.indenter.radius;
+  indenter.radius = scene.indenter.radius > 0 ? scene.indenter.radius : scene.indenter.radiusRatio * record.thickness;
   indenter.center = bodies.position[record.target];
-  indenter.center.z() = top + scene.indenter.radius + scene.indenter.clearance;
-  indenter.velocity = Eigen::Vector3d(0, 0, -scene.indenter.speed);
+  indenter.center.z() = top + indenter.radius + scene.indenter.clearance;
+  indenter.velocity = Eigen::Vector3d(0, 0, -indenterSpeed(world, scene.indenter, record.thickness));
   indenter.stiffnessFactor = scene.indenter.stiffnessFactor;
   state.sphere = world.addSphere(indenter);
   state.settledPosition = bodies.position;
@@ -112,7 +129,15 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
   const double wallBefore = record.wallSeconds;
   const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   record.timeStep = world.timeStep();
+  record.settleKinetic = settleThreshold(world, scene.protocol);
+  const long stepsBefore = world.stepCount();
   double lastProgress = wall(), lastCheckpoint = wall();
+  // ETA: the steps left at this session's rate. While settling, the loading's steps from the
+  // would-be target's size (settling's own end is not known beforehand).
+  const auto eta = [&](double travelLeft, double speed) {
+    const double rate = (world.stepCount() - stepsBefore) / std::max(wall(), 1e-9);
+    return travelLeft / (speed * world.timeStep()) / std::max(rate, 1e-9);
+  };
   const auto finishSession = [&] {
     record.steps = world.stepCount();
     record.wallSeconds = wallBefore + wall();
@@ -134,9 +159,19 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     }
     if (world.time() >= scene.protocol.settleMaxTime) break;
     world.step();
-    if (world.stepCount() % 100 == 0 && world.stepCount() >= 1000 && world.energy().kinetic < scene.protocol.settleKinetic) {
+    if (world.stepCount() % 100 == 0 && world.stepCount() >= 1000 && world.energy().kinetic < record.settleKinetic) {
       record.settled = true;
       break;
+    }
+    if (hooks.progress && wall() - lastProgress >= scene.output.progressSeconds) {
+      lastProgress = wall();
+      const int target = centralFreeBody(world);
+      const double h = target >= 0 ? world.bodySize(target) : 0.0;
+      const double travel = scene.indenter.clearance +
+                            (scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * h);
+      const EnergyBudget e = world.energy();
+      hooks.progress({0.0, 0.0, e.kinetic, e.obstacleWork, 0, world.stepCount(),
+                      world.stepCount() / (wallBefore + wall()), eta(travel, indenterSpeed(world, scene.indenter, h)), true});
     }
     checkpointDue();
   }
@@ -148,8 +183,11 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
 
   // 2. Push at constant speed.
   RigidBodies& bodies = world.bodies();
-  const double speed = scene.indenter.speed;
-  const double travelMax = record.deltaMax + scene.indenter.clearance + scene.indenter.radius;
+  const double speed = -world.sphere(state.sphere).velocity.z();
+  record.indenterSpeed = speed;
+  record.indenterRadius = world.sphere(state.sphere).radius;
+  const double travelMax = record.deltaMax + scene.indenter.clearance + record.indenterRadius;
+  bool warnedQuasiStatic = false;
   std::vector<char> out;  // bodies out at the last sample
   const auto sample = [&](double delta, double load) {
     out = updateFallen(world, scene, record, state, delta);
@@ -193,6 +231,16 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     if (state.contactTravel >= 0 && delta >= state.nextSample) {
       sample(delta, load);
       sampled = true;
+      // Quasi-static check while loading up to the peak (past the first 5 % of h of contact).
+      const CurveSample& last = record.curve.back();
+      if (!warnedQuasiStatic && load >= state.peak && delta > 0.05 * record.thickness && last.externalWork > 0 &&
+          last.kinetic > scene.protocol.quasiStaticLimit * last.externalWork) {
+        warnedQuasiStatic = true;
+        if (hooks.warning)
+          hooks.warning("loading too fast: kinetic energy " + std::to_string(last.kinetic / last.externalWork).substr(0, 6) +
+                        " x the indenter's work at delta = " + std::to_string(delta * 1e3).substr(0, 5) +
+                        " mm (limit protocol.quasi_static_limit); lower indenter.speed or indenter.speed_ratio");
+      }
       state.nextSample += scene.output.sampleEvery;
       // The load gone: below 1 % of the peak since quietFrom.
       if (state.peak > 0 && load < 0.01 * state.peak) {
@@ -208,16 +256,18 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
 
     if (hooks.progress && wall() - lastProgress >= scene.output.progressSeconds) {
       lastProgress = wall();
-      const double done = std::max(travel / travelMax, 1e-9);
+      // Travel left: to first contact (the clearance) and on to delta_max.
+      const double left = state.contactTravel < 0 ? scene.indenter.clearance - travel + record.deltaMax
+                                                  : record.deltaMax - delta;
       const EnergyBudget e = world.energy();
       hooks.progress({delta, load, e.kinetic, e.obstacleWork, static_cast<long>(countContacts(world, record.target).all),
-                      world.stepCount(), world.stepCount() / (wallBefore + wall()), (wallBefore + wall()) * (1 - done) / done});
+                      world.stepCount(), world.stepCount() / (wallBefore + wall()), eta(std::max(left, 0.0), speed), false});
     }
     const bool reachedMax = (state.contactTravel >= 0 && delta >= record.deltaMax) ||
                             travel > travelMax + record.deltaMax;  // the latter: never touched anything
     const bool failed = scene.protocol.stopOnFailure && sampled && state.quietFrom >= 0 &&
                         delta - state.quietFrom >= scene.protocol.quietTravel * record.thickness &&
-                        restingBodies(world, out, scene.protocol.restSpeedRatio * scene.indenter.speed);
+                        restingBodies(world, out, scene.protocol.restSpeedRatio * speed);
     if (reachedMax || failed) {
       record.stopReason = failed ? "failure" : "delta_max";
       // The state at the stop closes the curve.

@@ -66,6 +66,10 @@ struct IndentationRecord {
   std::string targetName;
   double thickness = 0;    ///< m, h: the loaded block's extent along the loading direction
   double deltaMax = 0;     ///< m, where the run stops at the latest
+  // As resolved from the scene's ratios (docs/scene.md); set by runIndentation, not stored.
+  double indenterRadius = 0;  ///< m
+  double indenterSpeed = 0;   ///< m/s
+  double settleKinetic = 0;   ///< J, the settle threshold
   std::vector<CurveSample> curve;
   std::vector<Snapshot> snapshots;
   std::vector<FallenBody> fallen;  ///< as of the last sample
@@ -80,6 +84,7 @@ struct Progress {
   double delta, load, kinetic, externalWork;
   long contacts, steps;
   double stepsPerSecond, etaSeconds;
+  bool settling;  ///< still settling: no load yet, the ETA counts the loading to come
 };
 
 /// Where the protocol is: enough, with the World's state and the record, to resume it exactly.
@@ -100,6 +105,7 @@ struct RunHooks {
   std::function<void(const Progress&)> progress;
   std::function<bool()> interrupted;           ///< true: stop now (the record stays valid)
   std::function<void(const IndentationState&)> checkpoint;  ///< every checkpointSeconds of wall time and at the stop
+  std::function<void(const std::string&)> warning;          ///< once per session and kind (e.g. loading too fast)
   double checkpointSeconds = 30.0;
 };
 
@@ -117,5 +123,14 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
 
 /// The free body nearest the bodies' centre in x and y (the default target).
 int centralFreeBody(const World& world);
+
+/// The settle threshold, J: protocol.settleKinetic, or settleKineticRatio x sum over free bodies of
+/// m_i |g| h_i (h_i the body's size, World::bodySize): a fraction of the energy of lifting every
+/// block by its own thickness, so the criterion is the same at any scale and weight.
+double settleThreshold(const World& world, const ProtocolSettings& protocol);
+
+/// The indenter's speed, m/s: indenter.speed, or speedRatio x c (h / L)^2 with c = sqrt(E / rho)
+/// and L the span (scene.h, kPaperSpeedRatio): the same quasi-static ratio on any slab at any scale.
+double indenterSpeed(const World& world, const IndenterSettings& indenter, double thickness);
 
 }  // namespace tessera

@@ -59,7 +59,7 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
 
   // K: least squares P = K delta + b over the fit window.
   r.fitFrom = 0.0;
-  r.fitTo = std::min(0.4e-3, 0.5 * r.deltaAtPeak);
+  r.fitTo = std::min(settings.stiffnessFitRatio * record.thickness, 0.5 * r.deltaAtPeak);
   double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (const CurveSample& s : c)
     if (s.delta >= r.fitFrom && s.delta <= r.fitTo) {
@@ -100,6 +100,7 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   for (std::size_t i = 0; i <= peak; ++i)
     if (c[i].externalWork > 0.01 * c[peak].externalWork)
       r.quasiStaticRatio = std::max(r.quasiStaticRatio, c[i].kinetic / c[i].externalWork);
+  r.quasiStatic = r.quasiStaticRatio <= settings.quasiStaticLimit;
 
   // Failure mode from the final state.
   const int fallen = static_cast<int>(record.fallen.size());

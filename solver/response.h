@@ -12,6 +12,8 @@ struct ResponseSettings {
   double spanLength = 0;           ///< m
   double failureLoadFraction = 0.1;  ///< failure: the load first below this x P_max after the peak
   int freeBodies = 0;              ///< free bodies of the slab ("collapse": all of them fell)
+  double stiffnessFitRatio = 0.4e-3 / kPaperThickness;  ///< K's fit window ends at this x h (or at delta_peak / 2)
+  double quasiStaticLimit = 1e-2;  ///< quasiStatic is false above this KE / W before the peak
 };
 
 /// A sudden fall of the load after the peak: by at least 10 % of P_max within 0.05 h of travel.
@@ -45,12 +47,14 @@ struct ResponseParameters {
   ContactState atPeak, atFailure; ///< atFailure: at the failure deflection (or the end)
   CurveSample end;                ///< the last sample: energies at the end of the run
   double quasiStaticRatio = 0;    ///< max kinetic energy / external work before the peak (once 1 % of that work is done)
+  bool quasiStatic = true;        ///< quasiStaticRatio is within ResponseSettings::quasiStaticLimit
   double thickness = 0;           ///< m, h of the loaded block
   /// Normalised (the paper's upper-bound comparison): P* = P / (E L^2), delta* = delta / h.
   double peakLoadNormalised = 0, deltaAtPeakNormalised = 0;
 };
 
-/// Fit window for K: [0, min(0.4 mm, delta at the peak / 2)] (the paper's phase I ends near 0.4 mm).
+/// Fit window for K: [0, min(stiffnessFitRatio x h, delta at the peak / 2)] (the paper's phase I
+/// ends near 0.4 mm = 0.126 h on its block).
 ResponseParameters analyseResponse(const IndentationRecord& record, const ResponseSettings& settings);
 
 }  // namespace tessera

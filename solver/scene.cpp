@@ -144,15 +144,18 @@ Scene readScene(const std::string& path) {
   span.finish();
 
   Table indenter(path, "indenter", root["indenter"].as_table());
-  indenter.number("radius", scene.indenter.radius, 1e-6, 10, "m");
-  indenter.number("speed", scene.indenter.speed, 1e-9, 100, "m/s");
+  indenter.number("radius", scene.indenter.radius, 0, 10, "m; 0 = radius_ratio x the loaded block's thickness");
+  indenter.number("radius_ratio", scene.indenter.radiusRatio, 1e-3, 100, "of the loaded block's thickness");
+  indenter.number("speed", scene.indenter.speed, 0, 100, "m/s; 0 = speed_ratio x sqrt(E / density) x (h / L)^2");
+  indenter.number("speed_ratio", scene.indenter.speedRatio, 1e-9, 1, "of sqrt(E / density) x (h / L)^2");
   indenter.text("target", scene.indenter.target);
   indenter.number("clearance", scene.indenter.clearance, 0, 1, "m");
   indenter.number("stiffness_factor", scene.indenter.stiffnessFactor, 1e-3, 10, "x the blocks' k_n and k_t");
   indenter.finish();
 
   Table protocol(path, "protocol", root["protocol"].as_table());
-  protocol.number("settle_kinetic", scene.protocol.settleKinetic, 0, 1e6, "J");
+  protocol.number("settle_kinetic", scene.protocol.settleKinetic, 0, 1e6, "J; 0 = settle_kinetic_ratio x sum m g h");
+  protocol.number("settle_kinetic_ratio", scene.protocol.settleKineticRatio, 1e-15, 1, "of the free bodies' sum m g h");
   protocol.number("settle_max_time", scene.protocol.settleMaxTime, 0, 1e3, "s");
   protocol.number("delta_max", scene.protocol.deltaMax, 0, 10, "m; 0 = delta_max_ratio x the loaded block's thickness");
   protocol.number("delta_max_ratio", scene.protocol.deltaMaxRatio, 1e-3, 100, "of the loaded block's thickness");
@@ -161,6 +164,8 @@ Scene readScene(const std::string& path) {
   protocol.number("quiet_travel", scene.protocol.quietTravel, 0, 100, "of the loaded block's thickness");
   protocol.number("rest_speed_ratio", scene.protocol.restSpeedRatio, 0, 1, "of the indenter's speed");
   protocol.number("fallen_clearance", scene.protocol.fallenClearance, 1e-3, 10, "of each body's size");
+  protocol.number("stiffness_fit_ratio", scene.protocol.stiffnessFitRatio, 1e-3, 10, "of the loaded block's thickness");
+  protocol.number("quasi_static_limit", scene.protocol.quasiStaticLimit, 1e-9, 1, "kinetic energy / indenter work");
   if (root["protocol"]["fallen_distance"])
     throw InputError(path + ": protocol.fallen_distance is gone: a body now falls when no block contact holds it "
                             "(docs/physics.md, \"Failure\"); remove the key, or tune protocol.fallen_clearance (a ratio)");
@@ -177,12 +182,16 @@ Scene readScene(const std::string& path) {
   solver.integer("threads", scene.solver.threads, 0, 1024);
   solver.vector3("gravity", scene.solver.gravity, "m/s^2");
   solver.number("max_penetration", scene.solver.maxPenetration, 0, 1, "m; 0 = a quarter of the thinnest block");
+  solver.number("broad_phase_margin", scene.solver.broadPhaseMargin, 0, 1, "m; 0 = 0.157 x the thinnest block");
   solver.boolean("exact_convex_level_sets", scene.solver.exactConvexLevelSets);
   solver.finish();
 
   Table resolution(path, "resolution", root["resolution"].as_table());
   resolution.number("node_spacing", scene.resolution.nodeSpacing, 0, 1, "m; 0 = the bundle's");
   resolution.number("voxel", scene.resolution.voxelSize, 0, 1, "m; 0 = the bundle's");
+  resolution.number("node_spacing_ratio", scene.resolution.nodeSpacingRatio, 0, 10,
+                    "of each shape's thinnest extent; 0 = the bundle's");
+  resolution.number("voxel_ratio", scene.resolution.voxelRatio, 0, 10, "of each shape's thinnest extent; 0 = the bundle's");
   resolution.finish();
 
   Table output(path, "output", root["output"].as_table());

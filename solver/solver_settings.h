@@ -1,7 +1,10 @@
 #pragma once
+#include "geometry/paper_block.h"
+
 #include <Eigen/Core>
 
 namespace tessera {
+
 
 /// How the solver integrates (docs/physics.md). Units in the comments.
 struct SolverSettings {
@@ -19,7 +22,10 @@ struct SolverSettings {
   double localDamping = 0.0;                    ///< alpha in [0, 1): Cundall's local non-viscous damping
   double viscousDamping = 0.0;                  ///< c, 1/s: global viscous damping F -= c m v, tau -= c I omega
   int threads = 0;                              ///< 0 = all cores
-  double broadPhaseMargin = 0.5e-3;             ///< m: bounding boxes are enlarged by this; rebuilt when a body moves 0.4 of it
+  /// m: bounding boxes are enlarged by this; rebuilt when a body moves 0.4 of it.
+  /// 0 = broadPhaseMarginRatio x the thinnest block (0.5 mm on the paper's block).
+  double broadPhaseMargin = 0.0;
+  double broadPhaseMarginRatio = 0.5e-3 / kPaperThickness;
   double maxPenetration = 0.0;                  ///< m; 0 = a quarter of the thinnest block. Deeper stops the run
   double energyGrowthLimit = 10.0;              ///< stop when kinetic energy exceeds this x the energy supplied
   /// Convex polyhedral shapes (the planar and hex TIS blocks) use their face planes as an exact,

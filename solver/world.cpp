@@ -89,6 +89,7 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
                                        "for this assembly and material; use a smaller time step, or 0 (automatic)",
                                        dt_, limit));
   penetrationLimit_ = settings.maxPenetration > 0 ? settings.maxPenetration : 0.25 * thinnest;
+  if (!(settings_.broadPhaseMargin > 0)) settings_.broadPhaseMargin = settings.broadPhaseMarginRatio * thinnest;
 
   const std::size_t n = bodies_.size();
   force_.assign(n, Eigen::Vector3d::Zero());

@@ -78,6 +78,9 @@ public:
   double time() const { return time_; }
   long stepCount() const { return steps_; }
   double timeStep() const { return dt_; }
+  /// The contact law's parameters and the settings, as resolved (broadPhaseMargin > 0).
+  const ContactParameters& parameters() const { return parameters_; }
+  const SolverSettings& settings() const { return settings_; }
   /// timeStepFactor x 2 / omega_max, omega_max an upper estimate of the fastest mode of any free
   /// body: its whole surface in sticking contact with bodies like itself moving the other way.
   double automaticTimeStep() const { return automaticDt_; }

@@ -4,6 +4,7 @@
 #include "levelset/bundle.h"
 #include "levelset/shape_builder.h"
 #include "tools/commands.h"
+#include "tools/resolution_options.h"
 
 #include <chrono>
 #include <cmath>
@@ -23,8 +24,10 @@ struct PrepArguments {
   std::string unit;
   std::string output;
   std::string name;
-  std::optional<double> voxel;    // in --unit; default 0.25 mm
-  std::optional<double> spacing;  // in --unit; default 0.6 mm
+  std::optional<double> voxel;    // in --unit; default relative to the shape
+  std::optional<double> spacing;  // in --unit; default relative to the shape
+  double maxMemory = 4;           // GB
+  bool anySize = false;
   double featureAngle = 30;  // deg
   int band = 3;              // voxels
   bool replace = false;
@@ -38,9 +41,9 @@ void runPrep(const PrepArguments& a) {
   if (a.spacing) resolution.nodeSpacing = *a.spacing * unit.metres;
   resolution.featureAngle = a.featureAngle * M_PI / 180.0;
   resolution.exteriorBandVoxels = a.band;
-  if (!(resolution.voxelSize > 0))
+  if (a.voxel && !(resolution.voxelSize > 0))
     throw InputError(a.mesh + ": --voxel must be positive (got " + std::to_string(*a.voxel) + " " + unit.name + ")");
-  if (!(resolution.nodeSpacing > 0))
+  if (a.spacing && !(resolution.nodeSpacing > 0))
     throw InputError(a.mesh + ": --spacing must be positive (got " + std::to_string(*a.spacing) + " " + unit.name + ")");
   if (!(a.featureAngle > 0 && a.featureAngle < 180)) throw InputError("--feature-angle must be between 0 and 180 degrees");
 
@@ -56,8 +59,9 @@ void runPrep(const PrepArguments& a) {
     throw InputError(a.output + ": already holds a shape named '" + name + "'; choose another --name or pass --replace");
 
   PrepLog log;
+  log.now = [](const std::string& m) { std::cerr << "prep: " << m << "\n"; };
   std::cerr << "prep: reading " << a.mesh << " (unit " << unit.name << ")\n";
-  Shape shape = prepareShapeFromFile(a.mesh, a.unit, name, resolution, log);
+  Shape shape = prepareShapeFromFile(a.mesh, a.unit, name, resolution, log, shapeLimits(a.maxMemory, a.anySize));
   for (const auto& note : log.notes) std::cerr << "prep: note: " << note << "\n";
   for (const auto& warning : log.warnings) std::cerr << "prep: warning: " << warning << "\n";
 
@@ -87,8 +91,7 @@ void addPrepCommand(CLI::App& app) {
   cmd->add_option("--unit", args->unit, "Length unit of the mesh file: m, cm, mm, um, in, ft (files carry none)")
       ->required();
   cmd->add_option("-o,--output", args->output, "Bundle directory to create or add to (bundle.h5 + <name>.vdb)")->required();
-  cmd->add_option("--voxel", args->voxel, "Signed-distance voxel size, in --unit [default: 0.25 mm, the paper's]");
-  cmd->add_option("--spacing", args->spacing, "Surface node spacing, in --unit [default: 0.6 mm, the paper's]");
+  addResolutionOptions(*cmd, args->voxel, args->spacing, args->maxMemory, args->anySize);
   cmd->add_option("--feature-angle", args->featureAngle,
                   "Edges whose faces bend more than this are sharp and get edge nodes, degrees")
       ->capture_default_str();
@@ -96,7 +99,7 @@ void addPrepCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--name", args->name, "Shape name in the bundle [default: the mesh file name without extension]");
   cmd->add_flag("--replace", args->replace, "Replace a shape of the same name already in the bundle");
-  cmd->footer("Example: tessera prep block.stl --unit mm --voxel 0.25 --spacing 0.6 -o out/slab\n"
+  cmd->footer("Example: tessera prep block.stl --unit mm -o out/slab\n"
               "Refuses open, non-manifold, self-intersecting or flat meshes with the reason; re-orients inside-out ones.");
   cmd->callback([args] { runPrep(*args); });
 }

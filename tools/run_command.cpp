@@ -76,7 +76,10 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
               e.externalWork * 1e3, e.gravityWork * 1e3, e.elastic * 1e3, e.kinetic * 1e3, e.friction * 1e3, e.damping * 1e3,
               e.retiredKinetic * 1e3, e.projection * 1e3, e.residual * 1e3,
               e.externalWork > 0 ? 100 * std::abs(e.residual) / e.externalWork : 0.0);
-  std::printf("  quasi-static check max KE / W before the peak = %.2e\n", r.quasiStaticRatio);
+  std::printf("  quasi-static check max KE / W before the peak = %.2e%s\n", r.quasiStaticRatio,
+              r.quasiStatic ? "" : " (above the limit: loading too fast, lower indenter.speed)");
+  std::printf("  indenter           radius %.4g mm at %.4g mm/s; h = %.4g mm\n", record.indenterRadius * 1e3,
+              record.indenterSpeed * 1e3, record.thickness * 1e3);
   std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
   std::printf("written to %s (results.h5, curve.csv, summary.json, curve.png, paraview/slab.pvd, checkpoint.h5)\n",
               out.c_str());
@@ -128,14 +131,23 @@ int runTest(const RunArguments& a) {
     source = {fs::absolute(scene.path).string(), fs::absolute(scene.bundle).string(), scene.solver.threads};
   }
   Bundle bundle = readBundle(scene.bundle);
-  if (scene.resolution.nodeSpacing > 0 || scene.resolution.voxelSize > 0) {
+  if (scene.resolution.any()) {
     // Each shape again from its (body-frame) mesh: the body frame, and so every pose, is unchanged.
+    const ResolutionOverride& o = scene.resolution;
     for (Shape& shape : bundle.shapes) {
       ShapeResolution r = shape.resolution;
-      if (scene.resolution.nodeSpacing > 0) r.nodeSpacing = scene.resolution.nodeSpacing;
-      if (scene.resolution.voxelSize > 0) r.voxelSize = scene.resolution.voxelSize;
+      if (o.nodeSpacing > 0 || o.nodeSpacingRatio > 0) {
+        r.nodeSpacing = o.nodeSpacing;
+        r.nodeSpacingRatio = o.nodeSpacingRatio;
+      }
+      if (o.voxelSize > 0 || o.voxelRatio > 0) {
+        r.voxelSize = o.voxelSize;
+        r.voxelRatio = o.voxelRatio;
+      }
       PrepLog log;
-      shape = buildShape(shape.name, shape.mesh, shape.source, r, scene.path, log);
+      ShapeLimits limits;
+      limits.anySize = true;  // the bundle's shapes were accepted when they were prepared
+      shape = buildShape(shape.name, shape.mesh, shape.source, r, scene.path, log, limits);
       for (const auto& w : log.warnings) std::cerr << "run: warning: shape '" << shape.name << "': " << w << "\n";
     }
     std::fprintf(stderr, "run: shapes re-prepared at node spacing %.4g mm, voxel %.4g mm\n",
@@ -175,15 +187,22 @@ int runTest(const RunArguments& a) {
 
   int freeBodies = 0;
   for (const Body& b : bundle.bodies) freeBodies += b.fixed ? 0 : 1;
-  const ResponseSettings analysis{contact.youngsModulus, contact.spanLength, scene.protocol.failureLoadFraction, freeBodies};
+  const ResponseSettings analysis{contact.youngsModulus, contact.spanLength, scene.protocol.failureLoadFraction, freeBodies,
+                                  scene.protocol.stiffnessFitRatio, scene.protocol.quasiStaticLimit};
   const auto response = [&] { return analyseResponse(record, analysis); };
   RunHooks hooks;
   hooks.progress = [](const Progress& p) {
+    if (p.settling) {
+      std::fprintf(stderr, "run: settling  KE %.3e J  step %9ld  %6.0f steps/s  ETA %.0f s + settling\n", p.kinetic, p.steps,
+                   p.stepsPerSecond, p.etaSeconds);
+      return;
+    }
     std::fprintf(stderr, "run: delta %7.3f mm  P %9.3f N  KE/W %.2e  contacts %7ld  step %9ld  %6.0f steps/s  ETA %.0f s\n",
                  p.delta * 1e3, p.load, p.externalWork > 0 ? p.kinetic / p.externalWork : 0.0, p.contacts, p.steps,
                  p.stepsPerSecond, p.etaSeconds);
   };
   hooks.interrupted = [] { return stopRequested.load(); };
+  hooks.warning = [](const std::string& w) { std::cerr << "run: warning: " << w << "\n"; };
   hooks.checkpointSeconds = scene.output.checkpointSeconds;
   const auto keepPresetScene = [&] {
     fs::create_directories(out);
@@ -209,7 +228,7 @@ int runTest(const RunArguments& a) {
   }
   if (!record.settled && record.stopReason != "interrupted")
     std::fprintf(stderr, "run: warning: the slab had not settled after %.3g s (kinetic energy above %.3g J)\n",
-                 record.settleTime, scene.protocol.settleKinetic);
+                 record.settleTime, record.settleKinetic);
   if (!a.noPlot && !record.curve.empty()) {
     drawPicture("plot_curve.py", out, "curve.png");
     drawPicture("render_snapshots.py", out, "snapshots.png");

@@ -4,6 +4,7 @@
 #include "levelset/assembly.h"
 #include "levelset/tiler.h"
 #include "tools/commands.h"
+#include "tools/resolution_options.h"
 
 #include <chrono>
 #include <cmath>
@@ -27,6 +28,8 @@ struct TileArguments {
   std::optional<double> voxel;
   std::optional<double> spacing;
   std::optional<double> overlapTolerance;
+  double maxMemory = 4;  // GB per shape
+  bool anySize = false;
   std::string output;
 };
 
@@ -89,11 +92,12 @@ void runTile(const TileArguments& a) {
   ShapeResolution resolution;
   if (a.voxel) resolution.voxelSize = *a.voxel * unit.metres;
   if (a.spacing) resolution.nodeSpacing = *a.spacing * unit.metres;
-  if (!(resolution.voxelSize > 0)) throw InputError("--voxel must be positive");
-  if (!(resolution.nodeSpacing > 0)) throw InputError("--spacing must be positive");
+  if (a.voxel && !(resolution.voxelSize > 0)) throw InputError("--voxel must be positive");
+  if (a.spacing && !(resolution.nodeSpacing > 0)) throw InputError("--spacing must be positive");
 
   PrepLog log;
-  Bundle bundle = tileAssembly(shapes, placements, unitName, resolution, log);
+  log.now = [](const std::string& m) { std::cerr << "tile: " << m << "\n"; };
+  Bundle bundle = tileAssembly(shapes, placements, unitName, resolution, log, shapeLimits(a.maxMemory, a.anySize));
   bundle.spanLength = spanLength;
   bundle.spanInterfaces = spanInterfaces;
   for (const auto& note : log.notes) std::cerr << "tile: note: " << note << "\n";
@@ -158,8 +162,7 @@ void addTileCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-alternate", args->noAlternate, "Do not turn every other block by 90 degrees (checkerboard)");
   cmd->add_option("--gap", args->gap, "Clearance added between neighbouring blocks, in --unit")->capture_default_str();
-  cmd->add_option("--voxel", args->voxel, "Signed-distance voxel size, in --unit [default: 0.25 mm]");
-  cmd->add_option("--spacing", args->spacing, "Surface node spacing, in --unit [default: 0.6 mm]");
+  addResolutionOptions(*cmd, args->voxel, args->spacing, args->maxMemory, args->anySize);
   cmd->add_option("--overlap-tolerance", args->overlapTolerance,
                   "Initial overlap accepted between bodies, in --unit [default: 0.1 voxel]");
   cmd->add_option("-o,--output", args->output, "Bundle directory to write (bundle.h5 + one .vdb per shape)")->required();

@@ -42,13 +42,19 @@ TEST_CASE("a shape is expressed in its body frame") {
 TEST_CASE("resolution checks: errors for meaningless values, warnings for under-resolved ones") {
   const TriangleMesh block = makePlanarBlock(10e-3, 3.18e-3, 5 * M_PI / 180);
   PrepLog log;
-  REQUIRE_THROWS_WITH(buildShape("b", block, {}, resolution(0.0, 0.6e-3), "b.stl", log),
+  REQUIRE_THROWS_WITH(buildShape("b", block, {}, resolution(-1.0, 0.6e-3), "b.stl", log),
                       Contains("b.stl") && Contains("voxel size must be positive"));
   REQUIRE_THROWS_WITH(buildShape("b", block, {}, resolution(0.25e-3, -1.0), "b.stl", log),
                       Contains("node spacing must be positive"));
   REQUIRE_THROWS_WITH(buildShape("b", block, {}, resolution(1.5e-3, 0.6e-3), "b.stl", log),
                       Contains("too coarse") && Contains("3.18 mm"));
-  REQUIRE_THROWS_WITH(buildShape("b", block, {}, resolution(1e-7, 0.6e-3), "b.stl", log), Contains("check --unit"));
+  REQUIRE_THROWS_WITH(buildShape("b", block, {}, resolution(1e-6, 0.6e-3), "b.stl", log),
+                      Contains("b.stl") && Contains("below 0.01 mm") && Contains("check --unit"));
+  // A metre-scale block at the paper's absolute voxel: hundreds of GB, refused before any work.
+  REQUIRE_THROWS_WITH(buildShape("b", makePlanarBlock(1.0, 0.318, 5 * M_PI / 180), {}, resolution(0.25e-3, 0.6e-3),
+                                 "big.stl", log),
+                      Contains("big.stl") && Contains("above the budget of 4 GB") && Contains("check --unit") &&
+                          Contains("--max-memory"));
   REQUIRE_THROWS_WITH(buildShape("b/../x", block, {}, resolution(0.25e-3, 0.6e-3), "b.stl", log),
                       Contains("not valid"));
 
@@ -82,4 +88,45 @@ TEST_CASE("STL (ASCII, binary) and OBJ, in mm or in m, give the same SI shape") 
       REQUIRE(s.sdf.values[i] == Approx(ref.sdf.values[i]).margin(exact ? 0.0 : 1e-9));
     if (exact) REQUIRE(s.nodes.positions == ref.nodes.positions);
   }
+}
+
+TEST_CASE("default resolution is relative to the shape: the paper's 0.25 / 0.6 mm on its block, the same grid at any scale") {
+  PrepLog log;
+  std::string estimate;
+  log.now = [&](const std::string& m) { estimate = m; };
+  const Shape paper = buildShape("b", makePlanarBlock(10e-3, 3.18e-3, 5 * M_PI / 180), {}, ShapeResolution{}, "b", log);
+  REQUIRE(paper.resolution.voxelSize == Approx(0.25e-3).epsilon(1e-12));
+  REQUIRE(paper.resolution.nodeSpacing == Approx(0.6e-3).epsilon(1e-12));
+  REQUIRE_THAT(estimate, Contains("voxel 0.25 mm, spacing 0.6 mm") && Contains("grid"));
+  // A 100 x larger block (metre scale): the same grid and the same nodes, in proportion.
+  const Shape large = buildShape("b", makePlanarBlock(1.0, 0.318, 5 * M_PI / 180), {}, ShapeResolution{}, "b", log);
+  REQUIRE(large.resolution.voxelSize == Approx(25e-3).epsilon(1e-12));
+  REQUIRE(large.sdf.dims == paper.sdf.dims);
+  REQUIRE(large.nodes.size() == paper.nodes.size());
+  // The estimate is close to what was built.
+  const ShapeEstimate e = estimateShape(boundingBox(paper.mesh.vertices).sizes(), paper.mass.surfaceArea, paper.resolution);
+  REQUIRE(e.gridNodes == Approx(static_cast<double>(paper.sdf.values.size())).epsilon(0.05));
+  REQUIRE(e.surfaceNodes == Approx(static_cast<double>(paper.nodes.size())).epsilon(0.5));
+}
+
+TEST_CASE("a block of implausible size for its unit is refused with a hint to check --unit, unless any size is allowed") {
+  PrepLog log;
+  ShapeSource asMetres{"block.obj", "m", 1.0};
+  // The paper's block written in mm but read as m: 10.5 m across.
+  REQUIRE_THROWS_WITH(buildShape("b", makePlanarBlock(10.0, 3.18, 5 * M_PI / 180), asMetres, resolution(0.25, 0.6),
+                                 "block.obj", log),
+                      Contains("block.obj") && Contains("read as m") && Contains("check --unit") && Contains("--any-size"));
+  // A 180 mm block written in m but read as mm: 0.18 mm across.
+  ShapeSource asMillimetres{"part.obj", "mm", 1e-3};
+  REQUIRE_THROWS_WITH(buildShape("b", makePlanarBlock(0.18e-3, 0.06e-3, 5 * M_PI / 180), asMillimetres, ShapeResolution{},
+                                 "part.obj", log),
+                      Contains("0.18") && Contains("read as mm") && Contains("check --unit"));
+  ShapeLimits any;
+  any.anySize = true;
+  REQUIRE_THROWS_WITH(buildShape("b", makePlanarBlock(0.8e-3, 0.25e-3, 5 * M_PI / 180), asMillimetres, ShapeResolution{},
+                                 "part.obj", log),
+                      Contains("0.8") && Contains("check --unit"));
+  const Shape tiny = buildShape("b", makePlanarBlock(0.8e-3, 0.25e-3, 5 * M_PI / 180), asMillimetres, ShapeResolution{},
+                                "part.obj", log, any);
+  REQUIRE(tiny.resolution.voxelSize == Approx(0.25e-3 * 0.25 / 3.18).epsilon(1e-9));
 }

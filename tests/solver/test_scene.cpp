@@ -38,7 +38,8 @@ gravity = [0.0, 0.0, 0.0]
   REQUIRE(s.contact.friction == 0.5);
   REQUIRE(s.contact.spanInterfaces == 6);
   REQUIRE(s.indenter.speed == 0.01);
-  REQUIRE(s.indenter.radius == 2.5e-3);  // default
+  REQUIRE(s.indenter.radius == 0);  // default: radius_ratio x h, 2.5 mm on the paper's block
+  REQUIRE(s.indenter.radiusRatio * 3.18e-3 == Approx(2.5e-3).epsilon(1e-12));
   REQUIRE(s.indenter.target == "r3c3");
   REQUIRE(s.solver.localDamping == 0.2);
   REQUIRE(s.solver.threads == 2);

@@ -99,7 +99,7 @@ TEST_CASE("candidate node lists: a band four times wider visits more nodes and g
   s.localDamping = 0.3;
   s.threads = 1;
   SolverSettings wide = s;
-  wide.broadPhaseMargin = 4 * s.broadPhaseMargin;
+  wide.broadPhaseMarginRatio = 4 * s.broadPhaseMarginRatio;
   World narrow(slab, ContactParameters{}, s), broad(slab, ContactParameters{}, wide);
   for (World* w : {&narrow, &broad}) {
     SphereObstacle indenter;

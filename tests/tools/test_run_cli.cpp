@@ -193,7 +193,8 @@ TEST_CASE("run with a preset uses its keys, kept as OUT/scene.toml, and refuses 
   std::ifstream in(dir / "out/scene.toml");
   std::stringstream text;
   text << in.rdbuf();
-  REQUIRE_THAT(text.str(), Contains("--preset fast") && Contains("speed = 0.12") && Contains("node_spacing = 0.0011999"));  // toml++ writes 17 digits
+  // Ratios (scale-aware): 1.2 mm / 3.18 mm of each shape's thinnest extent, 20 x the paper's speed ratio.
+  REQUIRE_THAT(text.str(), Contains("--preset fast") && Contains("speed_ratio = 0.0228") && Contains("node_spacing_ratio = 0.3773"));
   REQUIRE_THAT(text.str(), Contains("delta_max = 0.000299999"));  // the scene's own keys stay
 
   const test::CliResult bad = test::runTessera("run " + quoted(scene) + " --preset turbo -o " + quoted(dir / "none"));
