@@ -77,6 +77,7 @@ void writeShape(hid_t shapes, const Shape& s, std::int64_t index) {
   h5::writeAttribute(g.get(), "volume", s.mass.volume);
   h5::writeAttribute(g.get(), "surface_area", s.mass.surfaceArea);
   h5::writeAttribute(g.get(), "vdb_file", s.name + ".vdb");
+  h5::writeAttribute(g.get(), "level_set", levelSetPath(s));  // for readers; recomputed from the mesh on reading
   h5::writeDataset(g.get(), "centroid", flatten(s.mass.centroid), {3});
   h5::writeDataset(g.get(), "inertia", flatten(s.mass.inertia), {3, 3});
   h5::writeDataset(g.get(), "principal_moments", flatten(s.mass.principalMoments), {3});
@@ -202,6 +203,7 @@ Shape readShape(hid_t shapes, const std::string& name) {
   if (dims.size() != 3 || dims[0] < 2 || dims[1] < 2 || dims[2] < 2 || !(s.sdf.voxelSize > 0))
     throw std::runtime_error(where + "/sdf is not a 3-D grid of at least 2 nodes per axis with a positive voxel size");
   for (int a = 0; a < 3; ++a) s.sdf.dims[a] = static_cast<int>(dims[a]);
+  s.convex = fitConvexPolyhedron(s.mesh);
   return s;
 }
 

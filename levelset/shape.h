@@ -1,10 +1,12 @@
 #pragma once
+#include "geometry/convex_planes.h"
 #include "geometry/mass_properties.h"
 #include "geometry/paper_block.h"
 #include "geometry/surface_nodes.h"
 #include "geometry/triangle_mesh.h"
 #include "levelset/dense_sdf.h"
 
+#include <optional>
 #include <string>
 
 namespace tessera {
@@ -46,6 +48,13 @@ struct Shape {
   TriangleMesh mesh;     ///< body frame, m
   SurfaceNodes nodes;    ///< body frame
   DenseSdf sdf;          ///< body frame
+  /// Body frame: the face planes when the mesh is convex to within the data's precision
+  /// (fitConvexPolyhedron); the solver then uses them as an exact level set instead of the grid.
+  std::optional<ConvexFit> convex;
 };
+
+/// The level-set path a shape takes in the solver, as printed and stored: "exact planes (6 faces,
+/// convex to 2e-06 mm)" or "grid (not convex)"; "grid (planes off)" when exact planes are disabled.
+std::string levelSetPath(const Shape& shape, bool exactConvexLevelSets = true);
 
 }  // namespace tessera

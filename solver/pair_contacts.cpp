@@ -116,7 +116,7 @@ constexpr std::uint32_t kRankMask = (1u << 31) - 1;
 // arrays: phi(p) = max_f (n_f . p - d_f), the exact level set of a convex polyhedron (1-Lipschitz),
 // evaluated without transforming p.
 struct PlanesInFrame {
-  static constexpr int kMax = 64;  // convexPolyhedronPlanes' default limit
+  static constexpr int kMax = 64;  // ConvexFitOptions::maxPlanes' default
   std::array<Eigen::Vector3d, kMax> normal;
   std::array<double, kMax> offset;
   int count = 0;

@@ -151,6 +151,13 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   nlohmann::json fallen = nlohmann::json::array();
   for (const FallenBody& b : record.fallen)
     fallen.push_back({{"name", b.name}, {"delta_mm", b.delta * 1e3}, {"retired", b.retired}, {"touching", b.touching}});
+  nlohmann::json shapes = nlohmann::json::array();
+  for (const Shape& shape : bundle.shapes)
+    shapes.push_back({{"name", shape.name},
+                      {"level_set", levelSetPath(shape, scene.solver.exactConvexLevelSets)},
+                      {"voxel_mm", shape.resolution.voxelSize * 1e3},
+                      {"node_spacing_mm", shape.resolution.nodeSpacing * 1e3},
+                      {"nodes", shape.nodes.size()}});
   nlohmann::json drops = nlohmann::json::array();
   for (const LoadDrop& d : response.drops)
     drops.push_back({{"delta_mm", d.delta * 1e3}, {"load_before_N", d.before}, {"load_after_N", d.after}});
@@ -212,6 +219,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
         {"indenter_speed_mm_per_s", record.indenterSpeed * 1e3},
         {"span_length_mm", contact.spanLength * 1e3},
         {"span_interfaces", contact.spanInterfaces}}},
+      {"shapes", shapes},
       {"run",
        {{"time_step_s", record.timeStep},
         {"steps", record.steps},

@@ -24,8 +24,7 @@ ShapeModel makeShapeModel(const Shape& shape, bool exactConvex) {
   ShapeModel m;
   m.nodes = makeNodeBins(shape.nodes);
   m.sdf = shape.sdf;
-  if (exactConvex)
-    if (auto planes = convexPolyhedronPlanes(shape.mesh)) m.planes = std::move(*planes);
+  if (exactConvex && shape.convex) m.planes = shape.convex->planes;
   for (const auto& x : shape.nodes.positions) m.radius = std::max(m.radius, x.norm());
   return m;
 }

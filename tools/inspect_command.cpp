@@ -57,6 +57,8 @@ nlohmann::json describeShape(const Shape& s) {
         {"origin_m", toJson(s.sdf.origin)},
         {"exterior_band_voxels", s.resolution.exteriorBandVoxels},
         {"vdb_file", s.name + ".vdb"}}},
+      {"level_set", levelSetPath(s)},
+      {"convex_deviation_m", s.convex ? nlohmann::json(s.convex->deviation) : nlohmann::json(nullptr)},
   };
 }
 
@@ -97,6 +99,7 @@ void printShapeText(const nlohmann::json& j, double unit, const std::string& uni
   std::printf("  grid                %d x %d x %d, voxel %.4g %s, band %d voxels, file %s\n", g["dims"][0].get<int>(),
               g["dims"][1].get<int>(), g["dims"][2].get<int>(), len(g["voxel_size_m"]), unitName.c_str(),
               g["exterior_band_voxels"].get<int>(), g["vdb_file"].get<std::string>().c_str());
+  std::printf("  level set           %s\n", j["level_set"].get<std::string>().c_str());
 }
 
 Eigen::Vector3d parsePoint(const std::string& text, double unit) {

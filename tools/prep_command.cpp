@@ -78,6 +78,7 @@ void runPrep(const PrepArguments& a) {
   std::printf("  nodes         %zu (spacing %.4g mm)\n", s.nodes.size(), s.resolution.nodeSpacing * 1e3);
   std::printf("  grid          %d x %d x %d (voxel %.4g mm)\n", s.sdf.dims[0], s.sdf.dims[1], s.sdf.dims[2],
               s.sdf.voxelSize * 1e3);
+  std::printf("  level set     %s\n", levelSetPath(s).c_str());
   std::printf("written to %s (%s, %s.vdb) in %.2f s\n", a.output.c_str(), kBundleFileName, s.name.c_str(), seconds);
 }
 

@@ -184,6 +184,9 @@ int runTest(const RunArguments& a) {
   std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, dt = %.3g s (automatic %.3g s)\n",
                bundle.bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
                world.timeStep(), world.automaticTimeStep());
+  for (const Shape& shape : bundle.shapes)
+    std::fprintf(stderr, "run: shape '%s': %s\n", shape.name.c_str(),
+                 levelSetPath(shape, scene.solver.exactConvexLevelSets).c_str());
 
   int freeBodies = 0;
   for (const Body& b : bundle.bodies) freeBodies += b.fixed ? 0 : 1;
