@@ -29,7 +29,8 @@ int centralFreeBody(const World& world) {
 double settleThreshold(const World& world, const ProtocolSettings& protocol) {
   if (protocol.settleKinetic > 0) return protocol.settleKinetic;
   const RigidBodies& b = world.bodies();
-  const double g = world.settings().gravity.norm();
+  // Without gravity, standard gravity sets the scale (the criterion stays that of the same slab).
+  const double g = world.settings().gravity.norm() > 0 ? world.settings().gravity.norm() : 9.80665;
   double scale = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
     if (!b.fixed[i]) scale += b.mass[i] * g * world.bodySize(static_cast<int>(i));

@@ -125,7 +125,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
 int centralFreeBody(const World& world);
 
 /// The settle threshold, J: protocol.settleKinetic, or settleKineticRatio x sum over free bodies of
-/// m_i |g| h_i (h_i the body's size, World::bodySize): a fraction of the energy of lifting every
+/// m_i |g| h_i (standard gravity when gravity is off) (h_i the body's size, World::bodySize): a fraction of the energy of lifting every
 /// block by its own thickness, so the criterion is the same at any scale and weight.
 double settleThreshold(const World& world, const ProtocolSettings& protocol);
 

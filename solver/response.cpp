@@ -19,18 +19,19 @@ double areaUpTo(const std::vector<CurveSample>& c, std::size_t last) {
   return w;
 }
 
-// Sudden drops after the peak: the load falls by at least `fraction` x P_max within a travel
-// `window`; one drop per such fall (the search restarts after it).
-std::vector<LoadDrop> loadDrops(const std::vector<CurveSample>& c, std::size_t peak, double fraction, double window) {
+// Sudden drops after the peak (slip events): within a travel `window`, the load falls by at least
+// `fraction` of its value where the fall starts, and by at least `floor` x P_max (so that the
+// noise of a near-zero load is not one); one drop per such fall (the search restarts after it).
+std::vector<LoadDrop> loadDrops(const std::vector<CurveSample>& c, std::size_t peak, double fraction, double floor,
+                                double window) {
   std::vector<LoadDrop> drops;
-  const double size = fraction * c[peak].load;
   std::size_t from = peak;
   for (std::size_t i = peak + 1; i < c.size(); ++i) {
     while (c[i].delta - c[from].delta > window) ++from;
     std::size_t top = from;
     for (std::size_t k = from; k <= i; ++k)
       if (c[k].load > c[top].load) top = k;
-    if (c[top].load - c[i].load < size) continue;
+    if (c[top].load - c[i].load < std::max(fraction * c[top].load, floor * c[peak].load)) continue;
     // Follow the fall to its bottom, then look for the next one from there.
     while (i + 1 < c.size() && c[i + 1].load < c[i].load) ++i;
     drops.push_back({c[top].delta, c[top].load, c[i].load});
@@ -92,7 +93,7 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
 
   r.energy = areaUpTo(c, failure);
   r.energyToEnd = areaUpTo(c, c.size() - 1);
-  r.drops = loadDrops(c, peak, 0.1, 0.05 * record.thickness);
+  r.drops = loadDrops(c, peak, 0.1, 0.02, 0.05 * record.thickness);
   r.end = c.back();
 
   // Quasi-static check before the peak, once the indenter has done 1 % of its work up to the peak

@@ -16,7 +16,8 @@ struct ResponseSettings {
   double quasiStaticLimit = 1e-2;  ///< quasiStatic is false above this KE / W before the peak
 };
 
-/// A sudden fall of the load after the peak: by at least 10 % of P_max within 0.05 h of travel.
+/// A sudden fall of the load after the peak (a slip event): within 0.05 h of travel, by at least
+/// 10 % of the load where it starts and at least 2 % of P_max.
 struct LoadDrop {
   double delta = 0;             ///< m, where the load began to fall
   double before = 0, after = 0; ///< N

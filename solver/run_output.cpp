@@ -193,6 +193,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
         {"load_drops", drops},
         {"at_peak", contactState(response.atPeak)},
         {"at_failure", failed ? contactState(response.atFailure) : nlohmann::json(nullptr)},
+        {"end", {{"delta_mm", end.delta * 1e3}, {"load_N", end.load}, {"block_displacement_mm", end.blockDisplacement * 1e3}}},
         {"energy",
          {{"work_mJ", end.externalWork * 1e3},
           {"elastic_mJ", end.elastic * 1e3},

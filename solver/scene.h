@@ -37,7 +37,7 @@ struct ProtocolSettings {
   /// J: settled when the kinetic energy is below this (0: settleKineticRatio x the free bodies'
   /// potential energy scale sum m_i |g| h_i) ...
   double settleKinetic = 0.0;
-  double settleKineticRatio = 1e-6;
+  double settleKineticRatio = 1e-9;
   double settleMaxTime = 0.05;    ///< s: ... or after this much simulated time (with a warning)
   double deltaMax = 0.0;          ///< m: stop at this deflection (0: deltaMaxRatio x h)
   double deltaMaxRatio = 2.0;     ///< delta_max / h when deltaMax is 0 (the paper's snapshots reach 1.5 h)

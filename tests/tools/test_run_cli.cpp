@@ -183,6 +183,52 @@ TEST_CASE("default run: the natural failure, after the loaded block has moved a 
   REQUIRE(std::abs(e["residual_mJ"].get<double>()) < 0.01 * e["work_mJ"].get<double>());
 }
 
+TEST_CASE("a 15 x 15 slab dishes past one thickness without failure: its loaded block still carries the load") {
+  // The rule this replaces retired the loaded block once it had sunk h (at 3.21 mm here) while it
+  // still carried about 70 % of P_max. Here nothing is out, and no failure is reported, while the
+  // loaded block is held by its neighbours (1.2 mm nodes, 60 mm/s, to 1.15 h).
+  test::TempDir dir;
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 15x15 --pitch 10 --spacing 1.2 -o " +
+                           quoted(dir / "slab"))
+              .status == 0);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[indenter]\nradius = 2.5e-3\nspeed = 0.06\n"
+                                      "[protocol]\ndelta_max_ratio = 1.15\n[damping]\nlocal = 0.3\n");
+  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "out"));
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  const auto response = readJson(dir / "out/summary.json")["response"];
+  REQUIRE(response["failure_mode"] == "no failure");
+  REQUIRE(response["fallen"].empty());
+  REQUIRE(response["failure_deflection_mm"].is_null());
+  // The loaded block has moved more than its thickness, and still carries most of the peak load.
+  const double h = response["thickness_mm"].get<double>();
+  REQUIRE(response["end"]["block_displacement_mm"].get<double>() > h);
+  REQUIRE(response["end"]["load_N"].get<double>() > 0.5 * response["peak_load_N"].get<double>());
+}
+
+TEST_CASE("mu = 9 to 6 mm: the main drop, then a staircase of slips") {
+  // At the paper's resolution the loaded block wedges until it has moved about 1.2 h, then the load
+  // falls to about a third of P_max and steps down in slips to delta = 6 mm.
+  test::TempDir dir;
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 7x7 --pitch 10 -o " +
+                           quoted(dir / "slab"))
+              .status == 0);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[material]\nfriction = 9.0\n[indenter]\nradius = 2.5e-3\n"
+                                      "speed = 0.06\n[protocol]\ndelta_max = 6e-3\nstop_on_failure = false\n"
+                                      "[damping]\nlocal = 0.3\n");
+  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "out"));
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  const auto response = readJson(dir / "out/summary.json")["response"];
+  const auto& drops = response["load_drops"];
+  std::size_t main = 0;
+  const auto fall = [&](std::size_t k) { return drops[k]["load_before_N"].get<double>() - drops[k]["load_after_N"].get<double>(); };
+  for (std::size_t k = 1; k < drops.size(); ++k)
+    if (fall(k) > fall(main)) main = k;
+  REQUIRE(drops.size() >= main + 3);  // at least two after the main one
+  REQUIRE(fall(main) > 0.5 * response["peak_load_N"].get<double>());
+}
+
 TEST_CASE("run with a preset uses its keys, kept as OUT/scene.toml, and refuses an unknown preset") {
   test::TempDir dir;
   const std::string scene = smallRun(dir);
