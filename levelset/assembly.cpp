@@ -43,7 +43,9 @@ double nodesInLevelSet(const Bundle& bundle, int a, int b, const Eigen::Vector3d
   // x_B = qB^-1 (qA x_A + pA + shift - pB)
   const Eigen::Matrix3d rotation = (B.orientation.conjugate() * A.orientation).toRotationMatrix();
   const Eigen::Vector3d offset = B.orientation.conjugate() * (A.position + shift - B.position);
-  double smallest = std::numeric_limits<double>::infinity();
+  // A's centroid too: two bodies that coincide have every surface node on the other's surface
+  // (phi = 0), but each centroid deep inside the other.
+  double smallest = shapeB.sdf.sample(offset).phi;
   for (const auto& x : shapeA.nodes.positions) smallest = std::min(smallest, shapeB.sdf.sample(rotation * x + offset).phi);
   return smallest;
 }

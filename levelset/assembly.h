@@ -15,8 +15,8 @@ Body placeBody(const Shape& shape, int shapeIndex, const Placement& placement);
 /// The inverse of placeBody: the mesh-frame placement of a body.
 Placement placementOf(const Body& body, const Shape& shape);
 
-/// Signed separation of two bodies (m): the smallest level-set value of any surface node of one
-/// body in the other's level set, both ways; negative = overlap by that depth.
+/// Signed separation of two bodies (m): the smallest level-set value of any surface node (or the
+/// centroid) of one body in the other's level set, both ways; negative = overlap by that depth.
 /// `shiftA` translates body a (world, m) before measuring.
 double separation(const Bundle& bundle, int a, int b, const Eigen::Vector3d& shiftA = Eigen::Vector3d::Zero());
 

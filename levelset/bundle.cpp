@@ -129,6 +129,7 @@ void writeBodies(hid_t file, const Bundle& bundle) {
   h5::writeDataset(g.get(), "fixed", fixed, {n});
   h5::writeAttribute(g.get(), "span_length", bundle.spanLength);
   h5::writeAttribute(g.get(), "span_interfaces", static_cast<std::int64_t>(bundle.spanInterfaces));
+  h5::writeAttribute(g.get(), "source_up", bundle.sourceUp);
 }
 
 // ---- reading ----
@@ -211,6 +212,7 @@ void readBodies(hid_t file, Bundle& bundle) {
   Handle g = h5::openGroup(file, "bodies");
   bundle.spanLength = h5::readDoubleAttribute(g.get(), "span_length");
   bundle.spanInterfaces = static_cast<int>(h5::readIntAttribute(g.get(), "span_interfaces"));
+  if (H5Aexists(g.get(), "source_up") > 0) bundle.sourceUp = h5::readStringAttribute(g.get(), "source_up");
   const auto names = h5::readStrings(g.get(), "names");
   const auto shape = readRows<std::int32_t>(g.get(), "shape", 0, "bodies");
   const auto position = readRows<double>(g.get(), "position", 3, "bodies");

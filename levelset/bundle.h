@@ -31,6 +31,9 @@ struct Bundle {
   /// Feldfogel et al.): L, the free span (m), and M, the interfaces across it; 0 when unknown.
   double spanLength = 0.0;
   int spanInterfaces = 0;
+  /// The up axis of the files the bundle was built from ("x", "y", "z"); the bundle itself is
+  /// always z-up (gravity along -z, the indenter moving down): other axes were turned into +z.
+  std::string sourceUp = "z";
 
   /// Index of the shape with this name, or -1.
   int findShape(const std::string& name) const;

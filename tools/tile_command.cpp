@@ -3,6 +3,7 @@
 #include "geometry/length_unit.h"
 #include "levelset/assembly.h"
 #include "levelset/tiler.h"
+#include "tools/assembly_checks.h"
 #include "tools/commands.h"
 #include "tools/resolution_options.h"
 
@@ -40,12 +41,6 @@ std::pair<int, int> parseGrid(const std::string& text) {
       columns < 1 || rows < 1)
     throw InputError("--grid '" + text + "': give columns x rows, e.g. --grid 7x7");
   return {columns, rows};
-}
-
-std::string mm(double metres) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g mm", metres * 1e3);
-  return buffer;
 }
 
 void runTile(const TileArguments& a) {
@@ -104,47 +99,14 @@ void runTile(const TileArguments& a) {
   for (const auto& warning : log.warnings) std::cerr << "tile: warning: " << warning << "\n";
 
   // Check the assembly before anything is written.
-  double finestVoxel = 1e300;
-  for (const Shape& s : bundle.shapes) finestVoxel = std::min(finestVoxel, s.sdf.voxelSize);
-  const double tolerance = a.overlapTolerance ? *a.overlapTolerance * unit.metres : 0.1 * finestVoxel;
-  const double touch = a.gap * unit.metres + 0.5 * finestVoxel;
-  const AssemblyCheck check = checkAssembly(bundle, tolerance, touch);
-  if (!check.overlaps.empty()) {
-    const BodyPair& worst = check.overlaps.front();
-    throw InputError("bodies '" + bundle.bodies[worst.a].name + "' and '" + bundle.bodies[worst.b].name +
-                     "' overlap by " + mm(-worst.separation) + " (tolerance " + mm(tolerance) + "; " +
-                     std::to_string(check.overlaps.size()) +
-                     " overlapping pair(s) in all); check --pitch or the layout positions, or add --gap");
-  }
-  for (int i : check.isolated)
-    std::cerr << "tile: warning: body '" << bundle.bodies[i].name << "' touches no other body (nothing within "
-              << mm(touch) << ")\n";
-
-  const std::vector<VerticalLock> locks = verticalLocks(bundle, 0.5 * finestVoxel);
-  int locked = 0;
-  for (const VerticalLock& l : locks) {
-    const double threshold = 0.01 * 0.5 * finestVoxel;
-    if (l.upDepth > threshold && l.downDepth > threshold) ++locked;
-    else
-      std::cerr << "tile: note: free body '" << bundle.bodies[l.body].name << "' is not held "
-                << (l.upDepth > threshold ? "downward" : l.downDepth > threshold ? "upward" : "up or down")
-                << " by its neighbours\n";
-  }
+  const AssemblySummary summary =
+      checkAssemblyBeforeWriting(bundle, a.overlapTolerance ? std::optional<double>(*a.overlapTolerance * unit.metres) : std::nullopt,
+                                 a.gap * unit.metres, "tile", "check --pitch or the layout positions, or add --gap");
 
   writeBundle(a.output, bundle);
 
-  int fixedCount = 0;
-  for (const Body& b : bundle.bodies) fixedCount += b.fixed;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("slab: %zu bodies (%d fixed, %zu free), %zu distinct shape(s)\n", bundle.bodies.size(), fixedCount,
-              bundle.bodies.size() - fixedCount, bundle.shapes.size());
-  double deepest = 0.0;
-  for (const BodyPair& c : check.contacts) deepest = std::max(deepest, -c.separation);
-  std::printf("  contacts      %zu touching pairs, deepest initial overlap %s\n", check.contacts.size(), mm(deepest).c_str());
-  std::printf("  interlocking  %d of %zu free bodies held both up and down by their neighbours\n", locked, locks.size());
-  if (bundle.spanInterfaces > 0)
-    std::printf("  span          L = %s free span, M = %d interfaces across it (k_n = E M / L)\n",
-                mm(bundle.spanLength).c_str(), bundle.spanInterfaces);
+  printAssemblySummary(bundle, summary);
   std::printf("written to %s in %.2f s\n", a.output.c_str(), seconds);
 }
 

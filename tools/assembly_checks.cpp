@@ -1,0 +1,66 @@
+#include "tools/assembly_checks.h"
+
+#include "geometry/input_error.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+namespace tessera::tools {
+
+namespace {
+
+std::string mm(double metres) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g mm", metres * 1e3);
+  return buffer;
+}
+
+}  // namespace
+
+AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
+                                           const std::string& command, const std::string& fix) {
+  double finestVoxel = 1e300;
+  for (const Shape& s : bundle.shapes) finestVoxel = std::min(finestVoxel, s.sdf.voxelSize);
+  const double tolerance = overlapTolerance ? *overlapTolerance : 0.1 * finestVoxel;
+  const double touch = gap + 0.5 * finestVoxel;
+  AssemblySummary summary;
+  summary.check = checkAssembly(bundle, tolerance, touch);
+  if (!summary.check.overlaps.empty()) {
+    const BodyPair& worst = summary.check.overlaps.front();
+    throw InputError("bodies '" + bundle.bodies[worst.a].name + "' and '" + bundle.bodies[worst.b].name +
+                     "' overlap by " + mm(-worst.separation) + " (tolerance " + mm(tolerance) + "; " +
+                     std::to_string(summary.check.overlaps.size()) + " overlapping pair(s) in all); " + fix);
+  }
+  for (int i : summary.check.isolated)
+    std::cerr << command << ": warning: body '" << bundle.bodies[i].name << "' touches no other body (nothing within "
+              << mm(touch) << ")\n";
+  const double threshold = 0.01 * 0.5 * finestVoxel;
+  for (const VerticalLock& l : verticalLocks(bundle, 0.5 * finestVoxel)) {
+    ++summary.free;
+    if (l.upDepth > threshold && l.downDepth > threshold) ++summary.locked;
+    else
+      std::cerr << command << ": note: free body '" << bundle.bodies[l.body].name << "' is not held "
+                << (l.upDepth > threshold ? "downward" : l.downDepth > threshold ? "upward" : "up or down")
+                << " by its neighbours\n";
+  }
+  return summary;
+}
+
+void printAssemblySummary(const Bundle& bundle, const AssemblySummary& summary) {
+  int fixedCount = 0;
+  for (const Body& b : bundle.bodies) fixedCount += b.fixed;
+  std::printf("slab: %zu bodies (%d fixed, %zu free), %zu distinct shape(s)\n", bundle.bodies.size(), fixedCount,
+              bundle.bodies.size() - fixedCount, bundle.shapes.size());
+  double deepest = 0.0;
+  for (const BodyPair& c : summary.check.contacts) deepest = std::max(deepest, -c.separation);
+  std::printf("  contacts      %zu touching pairs, deepest initial overlap %s\n", summary.check.contacts.size(),
+              mm(deepest).c_str());
+  std::printf("  interlocking  %d of %zu free bodies held both up and down by their neighbours\n", summary.locked,
+              summary.free);
+  if (bundle.spanInterfaces > 0)
+    std::printf("  span          L = %s free span, M = %d interfaces across it (k_n = E M / L)\n",
+                mm(bundle.spanLength).c_str(), bundle.spanInterfaces);
+}
+
+}  // namespace tessera::tools

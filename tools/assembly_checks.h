@@ -1,0 +1,27 @@
+#pragma once
+#include "levelset/assembly.h"
+#include "levelset/bundle.h"
+
+#include <optional>
+#include <string>
+
+namespace tessera::tools {
+
+/// What the checks of a new assembly found (tile, assemble).
+struct AssemblySummary {
+  AssemblyCheck check;
+  int locked = 0;  ///< free bodies held both up and down by their neighbours
+  std::size_t free = 0;
+};
+
+/// The checks made before an assembly is written: an overlap deeper than the tolerance (default
+/// 0.1 of the finest voxel; coincident bodies included) is an InputError naming the two bodies and
+/// the fix; a body touching nothing is warned about, a free body not held up and down noted
+/// (stderr, prefixed with `command`). `gap`: clearance the layout left between neighbours, m.
+AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
+                                           const std::string& command, const std::string& fix);
+
+/// The summary lines printed after writing (bodies, contacts, interlocking, span).
+void printAssemblySummary(const Bundle& bundle, const AssemblySummary& summary);
+
+}  // namespace tessera::tools
