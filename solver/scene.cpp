@@ -59,16 +59,19 @@ public:
     value = *node->value<std::string>();
   }
 
-  void vector3(const std::string& key, Eigen::Vector3d& value, const std::string& unit) {
+  template <int N>
+  bool vector(const std::string& key, Eigen::Matrix<double, N, 1>& value, const std::string& unit) {
     const toml::node* node = find(key);
-    if (!node) return;
+    if (!node) return false;
+    const std::string what = "must be an array of " + std::to_string(N) + " numbers" + suffix(unit);
     const toml::array* a = node->as_array();
-    if (!a || a->size() != 3) fail(key, "must be an array of 3 numbers" + suffix(unit));
-    for (int k = 0; k < 3; ++k) {
+    if (!a || a->size() != N) fail(key, what);
+    for (int k = 0; k < N; ++k) {
       const std::optional<double> v = (*a)[k].value<double>();
-      if (!v || !std::isfinite(*v)) fail(key, "must be an array of 3 numbers" + suffix(unit));
+      if (!v || !std::isfinite(*v)) fail(key, what);
       value[k] = *v;
     }
+    return true;
   }
 
   /// Every key of the table must have been read.
@@ -149,6 +152,10 @@ Scene readScene(const std::string& path) {
   indenter.number("speed", scene.indenter.speed, 0, 100, "m/s; 0 = speed_ratio x sqrt(E / density) x (h / L)^2");
   indenter.number("speed_ratio", scene.indenter.speedRatio, 1e-9, 1, "of sqrt(E / density) x (h / L)^2");
   indenter.text("target", scene.indenter.target);
+  indenter.vector<2>("offset", scene.indenter.offset, "m, in plan from the target's centroid");
+  scene.indenter.atPoint = indenter.vector<2>("point", scene.indenter.point, "m, x and y on the slab's upper surface");
+  if (scene.indenter.atPoint && (!scene.indenter.target.empty() || root["indenter"]["offset"]))
+    throw InputError(path + ": give indenter.point (x, y) or indenter.target with indenter.offset, not both");
   indenter.number("clearance", scene.indenter.clearance, 0, 1, "m");
   indenter.number("stiffness_factor", scene.indenter.stiffnessFactor, 1e-3, 10, "x the blocks' k_n and k_t");
   indenter.finish();
@@ -180,7 +187,7 @@ Scene readScene(const std::string& path) {
   solver.number("time_step", scene.solver.timeStep, 0, 1, "s; 0 = automatic");
   solver.number("time_step_factor", scene.solver.timeStepFactor, 1e-4, 1, "of the stability limit");
   solver.integer("threads", scene.solver.threads, 0, 1024);
-  solver.vector3("gravity", scene.solver.gravity, "m/s^2");
+  solver.vector<3>("gravity", scene.solver.gravity, "m/s^2");
   solver.number("max_penetration", scene.solver.maxPenetration, 0, 1, "m; 0 = a quarter of the thinnest block");
   solver.number("broad_phase_margin", scene.solver.broadPhaseMargin, 0, 1, "m; 0 = 0.157 x the thinnest block");
   solver.boolean("exact_convex_level_sets", scene.solver.exactConvexLevelSets);

@@ -2,6 +2,8 @@
 #include "solver/contact_parameters.h"
 #include "solver/solver_settings.h"
 
+#include <Eigen/Core>
+
 #include <cmath>
 #include <string>
 #include <utility>
@@ -27,6 +29,9 @@ struct IndenterSettings {
   double speed = 0.0;
   double speedRatio = kDefaultSpeedRatio;
   std::string target;       ///< body to load; empty: the free body nearest the slab's centre (x, y)
+  Eigen::Vector2d offset{0, 0};  ///< m, where to load in plan, from the target's centroid
+  bool atPoint = false;          ///< load at `point` instead: the topmost free body under it
+  Eigen::Vector2d point{0, 0};   ///< m, (x, y) on the slab's upper surface
   double clearance = 1e-6;  ///< m, start this far above the target's top
   double stiffnessFactor = 1.0;  ///< its contact stiffnesses are this x the blocks' k_n and k_t
 };

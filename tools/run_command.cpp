@@ -173,6 +173,11 @@ int runTest(const RunArguments& a) {
     }
   };
   World world = makeWorld();
+  try {
+    chooseLoadPoint(world, bundle, scene.indenter);  // where it will load: checked before any work
+  } catch (const std::invalid_argument& e) {
+    throw InputError(scene.path + ": " + e.what());
+  }
   IndentationRecord record;
   IndentationState state;
   if (resume) {

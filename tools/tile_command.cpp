@@ -1,6 +1,7 @@
 // tessera tile: blocks + a tessellation (built-in square grid or a layout file) -> a slab bundle.
 #include "geometry/input_error.h"
 #include "geometry/length_unit.h"
+#include "geometry/mesh_import.h"
 #include "levelset/assembly.h"
 #include "levelset/tiler.h"
 #include "tools/assembly_checks.h"
@@ -70,6 +71,17 @@ void runTile(const TileArguments& a) {
     shape.mesh = a.block;
     shapes.push_back(shape);
     placements = squareGrid(grid, shape.key);
+    // Blocks are laid out (and turned) about the centre of their plan bounding box, wherever the
+    // mesh has its origin: a block with its origin at a corner still gives a centred slab.
+    MeshImportOptions import;
+    import.metresPerUnit = m;
+    const Eigen::AlignedBox3d box = boundingBox(importMesh(a.block, import).mesh.vertices);
+    const Eigen::Vector3d centre(box.center().x(), box.center().y(), 0.0);
+    if (centre.norm() > 1e-9 * box.diagonal().norm()) {
+      for (Placement& p : placements) p.translation -= p.rotation * centre;
+      std::cerr << "tile: note: the block mesh is centred at (" << centre.x() / m << ", " << centre.y() / m << ") "
+                << unitName << " in plan, not at its origin; blocks are placed by that centre\n";
+    }
     const InterlockingSpan span = squareGridSpan(grid);
     spanLength = span.length;
     spanInterfaces = span.interfaces;
@@ -95,6 +107,7 @@ void runTile(const TileArguments& a) {
   Bundle bundle = tileAssembly(shapes, placements, unitName, resolution, log, shapeLimits(a.maxMemory, a.anySize));
   bundle.spanLength = spanLength;
   bundle.spanInterfaces = spanInterfaces;
+
   for (const auto& note : log.notes) std::cerr << "tile: note: " << note << "\n";
   for (const auto& warning : log.warnings) std::cerr << "tile: warning: " << warning << "\n";
 

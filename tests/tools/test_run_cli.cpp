@@ -88,6 +88,10 @@ TEST_CASE("bad scenes give one clear error and write nothing") {
   refused("bundle = \"slab\"\n[material]\nfriction = -1\n", "friction must be in");
   refused("bundle = \"missing\"\n", "no such bundle");
   refused("bundle = \"slab\"\n[solver]\ntime_step = 1e-3\n", "above the stability estimate");
+  refused("bundle = \"slab\"\n[indenter]\npoint = [0.1, 0.1]\n", "indenter.point (100, 100) mm lies on no body");
+  refused("bundle = \"slab\"\n[indenter]\npoint = [0.01, 0.0]\n", "lies on the fixed body 'r1c2'");
+  refused("bundle = \"slab\"\n[indenter]\ntarget = \"r1c1\"\noffset = [0.009, 0.0]\n", "off the body 'r1c1'");
+  refused("bundle = \"slab\"\n[indenter]\npoint = [0.0, 0.0]\ntarget = \"r1c1\"\n", "not both");
 
   // A bundle of another format version.
   fs::copy(dir / "slab", dir / "old", fs::copy_options::recursive);

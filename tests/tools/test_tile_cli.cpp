@@ -1,5 +1,6 @@
 // `tessera block`, `tessera tile` and `tessera export` as a user runs them.
 #include "geometry/mass_properties.h"
+#include "geometry/mesh_export.h"
 #include "geometry/mesh_import.h"
 #include "levelset/bundle.h"
 #include "tests/fixtures/temp_dir.h"
@@ -64,6 +65,23 @@ TEST_CASE("tile builds the paper's slab in one command, and inspect lists its bo
   REQUIRE(centre["fixed"] == false);
   REQUIRE(std::abs(centre["position_m"][0].get<double>()) < 1e-15);
   REQUIRE(centre["orientation_wxyz"].size() == 4);
+}
+
+TEST_CASE("a block mesh with its origin at a corner still gives a slab centred on the origin") {
+  test::TempDir dir;
+  MeshImportOptions mm;
+  mm.metresPerUnit = 1e-3;
+  TriangleMesh block = importMesh(kDefaultBlock, mm).mesh;
+  for (auto& v : block.vertices) v += Eigen::Vector3d(5e-3, 5e-3, 0);  // origin at a corner
+  writeMesh(block, dir / "corner.obj", MeshFileFormat::Obj, 1e-3);
+  const test::CliResult r = test::runTessera("tile --block " + quoted(dir / "corner.obj") + " --unit mm --grid 3x3 --pitch 10 -o " +
+                                             quoted(dir / "slab"));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.err, Contains("centred at (5, 5) mm in plan"));
+  const Bundle b = readBundle(dir / "slab");
+  REQUIRE(b.bodies[4].name == "r1c1");
+  REQUIRE(b.bodies[4].position.head<2>().norm() < 1e-12);
 }
 
 TEST_CASE("tile refuses overlapping blocks and bad layouts, writing nothing") {
