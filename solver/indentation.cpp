@@ -106,6 +106,21 @@ double settleThreshold(const World& world, const ProtocolSettings& protocol) {
   return protocol.settleKineticRatio * scale;
 }
 
+double settleTimeLimit(const World& world, const ProtocolSettings& protocol) {
+  if (protocol.settleMaxTime > 0) return protocol.settleMaxTime;
+  std::vector<double> sizes;
+  for (int i = 0; i < static_cast<int>(world.bodies().size()); ++i)
+    if (!world.bodies().fixed[i]) sizes.push_back(world.bodySize(i));
+  if (sizes.empty()) return 0.0;
+  std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+  const double t = sizes[sizes.size() / 2];
+  const ContactParameters& p = world.parameters();
+  const double c = std::sqrt(p.youngsModulus / world.settings().density);
+  const double g = world.settings().gravity.norm() > 0 ? world.settings().gravity.norm() : 9.80665;
+  // The longer of a plate's period scale and twice the time to fall a block's size from rest.
+  return std::max(protocol.settleMaxTimeRatio * p.spanLength * p.spanLength / (c * t), 2 * std::sqrt(2 * t / g));
+}
+
 double indenterSpeed(const World& world, const IndenterSettings& indenter, double thickness) {
   if (indenter.speed > 0) return indenter.speed;
   const ContactParameters& p = world.parameters();
@@ -193,6 +208,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
   const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   record.timeStep = world.timeStep();
   record.settleKinetic = settleThreshold(world, scene.protocol);
+  record.settleMaxTime = settleTimeLimit(world, scene.protocol);
   const long stepsBefore = world.stepCount();
   double lastProgress = wall(), lastCheckpoint = wall();
   // ETA: the steps left at this session's rate. While settling, the loading's steps from the
@@ -220,7 +236,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
       record.stopReason = "interrupted";
       return finishSession();
     }
-    if (world.time() >= scene.protocol.settleMaxTime) break;
+    if (world.time() >= record.settleMaxTime) break;
     world.step();
     if (world.stepCount() % 100 == 0 && world.stepCount() >= 1000 && world.energy().kinetic < record.settleKinetic) {
       record.settled = true;
@@ -241,6 +257,17 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
   if (state.phase == 0) {
     record.settleTime = world.time();
     record.settleSteps = world.stepCount();
+    // An assembly that does not stand under its own weight (supports, friction) is not a test.
+    const RigidBodies& b = world.bodies();
+    const std::vector<Eigen::Vector3d> start = world.state().startPosition;
+    for (int i = 0; i < static_cast<int>(b.size()); ++i)
+      if (!b.fixed[i] && start[i].z() - b.position[i].z() > scene.protocol.fallenClearance * world.bodySize(i))
+        ++record.sunkWhileSettling;
+    if (record.sunkWhileSettling > 0 && hooks.warning)
+      hooks.warning(std::to_string(record.sunkWhileSettling) + " free bodies sank by more than " +
+                    std::to_string(scene.protocol.fallenClearance).substr(0, 4) +
+                    " of their size while settling: the assembly does not stand under its own weight with these "
+                    "supports and this friction; check the fixed bodies and material.friction");
     startLoading(world, bundle, scene, record, state);
   }
 

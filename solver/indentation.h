@@ -70,6 +70,8 @@ struct IndentationRecord {
   double indenterRadius = 0;  ///< m
   double indenterSpeed = 0;   ///< m/s
   double settleKinetic = 0;   ///< J, the settle threshold
+  double settleMaxTime = 0;   ///< s, the longest settling
+  int sunkWhileSettling = 0;  ///< free bodies that moved down by more than fallenClearance x their size while settling
   std::vector<CurveSample> curve;
   std::vector<Snapshot> snapshots;
   std::vector<FallenBody> fallen;  ///< as of the last sample
@@ -138,6 +140,11 @@ LoadPoint chooseLoadPoint(const World& world, const Bundle& bundle, const Indent
 /// m_i |g| h_i (standard gravity when gravity is off) (h_i the body's size, World::bodySize): a fraction of the energy of lifting every
 /// block by its own thickness, so the criterion is the same at any scale and weight.
 double settleThreshold(const World& world, const ProtocolSettings& protocol);
+
+/// The longest settling, s: protocol.settleMaxTime, or the longer of settleMaxTimeRatio x L^2 / (c t)
+/// (a plate's period scale: c = sqrt(E / rho), t the free bodies' median size, L the span) and
+/// 2 sqrt(2 t / g), twice the time to fall t from rest (a block that is not held must get to sink).
+double settleTimeLimit(const World& world, const ProtocolSettings& protocol);
 
 /// The indenter's speed, m/s: indenter.speed, or speedRatio x c (h / L)^2 with c = sqrt(E / rho)
 /// and L the span (scene.h, kPaperSpeedRatio): the same quasi-static ratio on any slab at any scale.

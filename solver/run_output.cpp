@@ -228,6 +228,8 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
         {"settle_steps", record.settleSteps},
         {"settled", record.settled},
         {"settle_kinetic_J", record.settleKinetic},
+        {"settle_max_time_s", record.settleMaxTime},
+        {"sunk_while_settling", record.sunkWhileSettling},
         {"wall_seconds", record.wallSeconds},
         {"samples", record.curve.size()},
         {"snapshots", record.snapshots.size()}}},

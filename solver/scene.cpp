@@ -163,7 +163,8 @@ Scene readScene(const std::string& path) {
   Table protocol(path, "protocol", root["protocol"].as_table());
   protocol.number("settle_kinetic", scene.protocol.settleKinetic, 0, 1e6, "J; 0 = settle_kinetic_ratio x sum m g h");
   protocol.number("settle_kinetic_ratio", scene.protocol.settleKineticRatio, 1e-15, 1, "of the free bodies' sum m g h");
-  protocol.number("settle_max_time", scene.protocol.settleMaxTime, 0, 1e3, "s");
+  protocol.number("settle_max_time", scene.protocol.settleMaxTime, 0, 1e3, "s; 0 = settle_max_time_ratio x L^2 / (c t)");
+  protocol.number("settle_max_time_ratio", scene.protocol.settleMaxTimeRatio, 1e-3, 1e6, "of L^2 / (c t)");
   protocol.number("delta_max", scene.protocol.deltaMax, 0, 10, "m; 0 = delta_max_ratio x the loaded block's thickness");
   protocol.number("delta_max_ratio", scene.protocol.deltaMaxRatio, 1e-3, 100, "of the loaded block's thickness");
   protocol.number("failure_load_fraction", scene.protocol.failureLoadFraction, 1e-3, 0.99, "of P_max");

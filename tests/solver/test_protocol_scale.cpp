@@ -18,6 +18,19 @@ TEST_CASE("settle threshold: 1e-9 of the free bodies' sum m g h, or the absolute
   REQUIRE(settleThreshold(world, protocol) == 1e-12);
 }
 
+TEST_CASE("settle time limit: the longer of a plate's period scale and a block's fall time, or the absolute value given") {
+  const Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
+  ProtocolSettings protocol;
+  // The paper's span: the fall time, 2 sqrt(2 t / g) = 0.0509 s, just above the plate's 0.05 s.
+  const double fall = 2 * std::sqrt(2 * 3.18e-3 / 9.81);
+  REQUIRE(settleTimeLimit(World(slab, ContactParameters{}, SolverSettings{}), protocol) == Approx(fall).epsilon(1e-6));
+  ContactParameters wide;
+  wide.spanLength *= 3;  // 9 x the period scale
+  REQUIRE(settleTimeLimit(World(slab, wide, SolverSettings{}), protocol) == Approx(0.45).epsilon(1e-6));
+  protocol.settleMaxTime = 0.01;
+  REQUIRE(settleTimeLimit(World(slab, ContactParameters{}, SolverSettings{}), protocol) == 0.01);
+}
+
 TEST_CASE("indenter speed: 30 mm/s on the paper's slab, the same at any scale, as sqrt(E) and (h / L)^2") {
   const Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
   ContactParameters paper;  // E = 4.2 GPa, L = 50 mm

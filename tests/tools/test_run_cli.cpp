@@ -233,6 +233,20 @@ TEST_CASE("mu = 9 to 6 mm: the main drop, then a staircase of slips") {
   REQUIRE(fall(main) > 0.5 * response["peak_load_N"].get<double>());
 }
 
+TEST_CASE("a slab that does not stand under its own weight is warned about and counted") {
+  // Square boxes (no inclined faces) hold nothing up: the centre block drops through.
+  test::TempDir dir;
+  REQUIRE(test::runTessera("block box --size 10 --thickness 3.18 --unit mm -o " + quoted(dir / "box.obj")).status == 0);
+  REQUIRE(test::runTessera("tile --block " + quoted(dir / "box.obj") + " --unit mm --grid 3x3 --pitch 10 --spacing 1.0 -o " +
+                           quoted(dir / "slab"))
+              .status == 0);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[protocol]\ndelta_max = 0.2e-3\n[damping]\nlocal = 0.3\n");
+  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "out"));
+  INFO(r.out << r.err);
+  REQUIRE_THAT(r.err, Contains("1 free bodies sank") && Contains("does not stand under its own weight"));
+  REQUIRE(readJson(dir / "out/summary.json")["run"]["sunk_while_settling"] == 1);
+}
+
 TEST_CASE("run with a preset uses its keys, kept as OUT/scene.toml, and refuses an unknown preset") {
   test::TempDir dir;
   const std::string scene = smallRun(dir);
