@@ -1,6 +1,8 @@
 #include "solver/indentation.h"
 
 #include "solver/assembly_state.h"
+#include "solver/load_point.h"
+#include "solver/protocol_scale.h"
 
 #include <algorithm>
 #include <chrono>
@@ -27,105 +29,6 @@ int centralFreeBody(const World& world) {
     }
   }
   return best;
-}
-
-namespace {
-
-// The highest point of body i's surface on the vertical line through (x, y), if the line meets it.
-std::optional<double> topAt(const World& world, const Bundle& bundle, int i, const Eigen::Vector2d& at) {
-  const RigidBodies& b = world.bodies();
-  const TriangleMesh& mesh = bundle.shapes[b.shape[i]].mesh;
-  std::optional<double> top;
-  for (const auto& t : mesh.triangles) {
-    Eigen::Vector3d p[3];
-    for (int k = 0; k < 3; ++k) p[k] = b.orientation[i] * mesh.vertices[t[k]] + b.position[i];
-    // Barycentric coordinates of (x, y) in the triangle's plan projection.
-    const Eigen::Vector2d e1 = (p[1] - p[0]).head<2>(), e2 = (p[2] - p[0]).head<2>(), r = at - p[0].head<2>();
-    const double det = e1.x() * e2.y() - e1.y() * e2.x();
-    if (std::abs(det) < 1e-30) continue;  // a vertical triangle
-    const double u = (r.x() * e2.y() - r.y() * e2.x()) / det, v = (e1.x() * r.y() - e1.y() * r.x()) / det;
-    if (u < 0 || v < 0 || u + v > 1) continue;
-    const double z = p[0].z() + u * (p[1] - p[0]).z() + v * (p[2] - p[0]).z();
-    top = top ? std::max(*top, z) : z;
-  }
-  return top;
-}
-
-std::string planPoint(const Eigen::Vector2d& p) {
-  char buffer[80];
-  std::snprintf(buffer, sizeof buffer, "(%.4g, %.4g) mm", p.x() * 1e3, p.y() * 1e3);
-  return buffer;
-}
-
-}  // namespace
-
-LoadPoint chooseLoadPoint(const World& world, const Bundle& bundle, const IndenterSettings& indenter) {
-  const RigidBodies& bodies = world.bodies();
-  LoadPoint load;
-  Eigen::Vector2d& at = load.at;
-  if (indenter.atPoint) {
-    // The body whose surface is highest on the vertical through the point.
-    at = indenter.point;
-    double highest = -std::numeric_limits<double>::infinity();
-    for (int i = 0; i < static_cast<int>(bodies.size()); ++i)
-      if (const auto top = topAt(world, bundle, i, at); top && *top > highest) {
-        highest = *top;
-        load.body = i;
-      }
-    if (load.body < 0) throw std::invalid_argument("indenter.point " + planPoint(at) + " lies on no body of the slab");
-    if (bodies.fixed[load.body])
-      throw std::invalid_argument("indenter.point " + planPoint(at) + " lies on the fixed body '" + bodies.name[load.body] +
-                                  "'; choose a point on a free body");
-  } else {
-    if (!indenter.target.empty()) {
-      for (std::size_t i = 0; i < bodies.size(); ++i)
-        if (bodies.name[i] == indenter.target) load.body = static_cast<int>(i);
-      if (load.body < 0) throw std::invalid_argument("indenter.target '" + indenter.target + "' is not a body of the bundle");
-      if (bodies.fixed[load.body])
-        throw std::invalid_argument("indenter.target '" + indenter.target + "' is a fixed body; name a free one");
-    } else {
-      load.body = centralFreeBody(world);
-      if (load.body < 0) throw std::invalid_argument("the bundle has no free body to load");
-    }
-    at = bodies.position[load.body].head<2>() + indenter.offset;
-    if (!indenter.offset.isZero() && !topAt(world, bundle, load.body, at))
-      throw std::invalid_argument("indenter.offset puts the indenter at " + planPoint(at) + ", off the body '" +
-                                  bodies.name[load.body] + "'; use a smaller offset");
-  }
-  return load;
-}
-
-double settleThreshold(const World& world, const ProtocolSettings& protocol) {
-  if (protocol.settleKinetic > 0) return protocol.settleKinetic;
-  const RigidBodies& b = world.bodies();
-  // Without gravity, standard gravity sets the scale (the criterion stays that of the same slab).
-  const double g = world.settings().gravity.norm() > 0 ? world.settings().gravity.norm() : 9.80665;
-  double scale = 0;
-  for (std::size_t i = 0; i < b.size(); ++i)
-    if (!b.fixed[i]) scale += b.mass[i] * g * world.bodySize(static_cast<int>(i));
-  return protocol.settleKineticRatio * scale;
-}
-
-double settleTimeLimit(const World& world, const ProtocolSettings& protocol) {
-  if (protocol.settleMaxTime > 0) return protocol.settleMaxTime;
-  std::vector<double> sizes;
-  for (int i = 0; i < static_cast<int>(world.bodies().size()); ++i)
-    if (!world.bodies().fixed[i]) sizes.push_back(world.bodySize(i));
-  if (sizes.empty()) return 0.0;
-  std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
-  const double t = sizes[sizes.size() / 2];
-  const ContactParameters& p = world.parameters();
-  const double c = std::sqrt(p.youngsModulus / world.settings().density);
-  const double g = world.settings().gravity.norm() > 0 ? world.settings().gravity.norm() : 9.80665;
-  // The longer of a plate's period scale and twice the time to fall a block's size from rest.
-  return std::max(protocol.settleMaxTimeRatio * p.spanLength * p.spanLength / (c * t), 2 * std::sqrt(2 * t / g));
-}
-
-double indenterSpeed(const World& world, const IndenterSettings& indenter, double thickness) {
-  if (indenter.speed > 0) return indenter.speed;
-  const ContactParameters& p = world.parameters();
-  const double slenderness = thickness / p.spanLength;
-  return indenter.speedRatio * std::sqrt(p.youngsModulus / world.settings().density) * slenderness * slenderness;
 }
 
 namespace {

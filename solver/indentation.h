@@ -126,28 +126,5 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
 /// The free body nearest the bodies' centre in x and y (the default target).
 int centralFreeBody(const World& world);
 
-/// Where the indenter comes down: the body it loads and the point in plan (x, y). indenter.point:
-/// the body whose surface is highest on the vertical through it; else indenter.target (default:
-/// centralFreeBody) at its centroid plus indenter.offset. Throws std::invalid_argument for an
-/// unknown target, a point on no body or on a fixed one, or an offset off the target.
-struct LoadPoint {
-  int body = -1;
-  Eigen::Vector2d at{0, 0};  ///< m
-};
-LoadPoint chooseLoadPoint(const World& world, const Bundle& bundle, const IndenterSettings& indenter);
-
-/// The settle threshold, J: protocol.settleKinetic, or settleKineticRatio x sum over free bodies of
-/// m_i |g| h_i (standard gravity when gravity is off) (h_i the body's size, World::bodySize): a fraction of the energy of lifting every
-/// block by its own thickness, so the criterion is the same at any scale and weight.
-double settleThreshold(const World& world, const ProtocolSettings& protocol);
-
-/// The longest settling, s: protocol.settleMaxTime, or the longer of settleMaxTimeRatio x L^2 / (c t)
-/// (a plate's period scale: c = sqrt(E / rho), t the free bodies' median size, L the span) and
-/// 2 sqrt(2 t / g), twice the time to fall t from rest (a block that is not held must get to sink).
-double settleTimeLimit(const World& world, const ProtocolSettings& protocol);
-
-/// The indenter's speed, m/s: indenter.speed, or speedRatio x c (h / L)^2 with c = sqrt(E / rho)
-/// and L the span (scene.h, kPaperSpeedRatio): the same quasi-static ratio on any slab at any scale.
-double indenterSpeed(const World& world, const IndenterSettings& indenter, double thickness);
 
 }  // namespace tessera

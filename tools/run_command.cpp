@@ -4,6 +4,7 @@
 #include "levelset/shape_builder.h"
 #include "solver/checkpoint.h"
 #include "solver/indentation.h"
+#include "solver/load_point.h"
 #include "solver/presets.h"
 #include "solver/response.h"
 #include "solver/run_output.h"

@@ -1,6 +1,7 @@
 // The protocol's defaults are ratios (docs/scene.md, "Scale"): the paper's values on its slab, in
 // proportion elsewhere.
-#include "solver/indentation.h"
+#include "solver/load_point.h"
+#include "solver/protocol_scale.h"
 #include "tests/fixtures/scenes.h"
 
 #include <catch2/catch.hpp>

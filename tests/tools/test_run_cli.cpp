@@ -34,6 +34,19 @@ nlohmann::json readJson(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
+// A square slab of the default block (`tile` with `tileOptions`), run with the scene text given;
+// the run must succeed. Returns summary.json.
+nlohmann::json runSlab(const test::TempDir& dir, const std::string& tileOptions, const std::string& scene) {
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --pitch 10 " + tileOptions + " -o " +
+                           quoted(dir / "slab"))
+              .status == 0);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n" + scene);
+  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "out"));
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  return readJson(dir / "out/summary.json");
+}
+
 }  // namespace
 
 TEST_CASE("run indents a small slab and writes the curve, the response and the ParaView series") {
@@ -192,15 +205,9 @@ TEST_CASE("a 15 x 15 slab dishes past one thickness without failure: its loaded 
   // still carried about 70 % of P_max. Here nothing is out, and no failure is reported, while the
   // loaded block is held by its neighbours (1.2 mm nodes, 60 mm/s, to 1.15 h).
   test::TempDir dir;
-  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 15x15 --pitch 10 --spacing 1.2 -o " +
-                           quoted(dir / "slab"))
-              .status == 0);
-  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[indenter]\nradius = 2.5e-3\nspeed = 0.06\n"
-                                      "[protocol]\ndelta_max_ratio = 1.15\n[damping]\nlocal = 0.3\n");
-  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "out"));
-  INFO(r.out << r.err);
-  REQUIRE(r.status == 0);
-  const auto response = readJson(dir / "out/summary.json")["response"];
+  const auto response = runSlab(dir, "--grid 15x15 --spacing 1.2",
+                                "[indenter]\nradius = 2.5e-3\nspeed = 0.06\n[protocol]\ndelta_max_ratio = 1.15\n"
+                                "[damping]\nlocal = 0.3\n")["response"];
   REQUIRE(response["failure_mode"] == "no failure");
   REQUIRE(response["fallen"].empty());
   REQUIRE(response["failure_deflection_mm"].is_null());
@@ -214,16 +221,9 @@ TEST_CASE("mu = 9 to 6 mm: the main drop, then a staircase of slips") {
   // At the paper's resolution the loaded block wedges until it has moved about 1.2 h, then the load
   // falls to about a third of P_max and steps down in slips to delta = 6 mm.
   test::TempDir dir;
-  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 7x7 --pitch 10 -o " +
-                           quoted(dir / "slab"))
-              .status == 0);
-  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[material]\nfriction = 9.0\n[indenter]\nradius = 2.5e-3\n"
-                                      "speed = 0.06\n[protocol]\ndelta_max = 6e-3\nstop_on_failure = false\n"
-                                      "[damping]\nlocal = 0.3\n");
-  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "out"));
-  INFO(r.out << r.err);
-  REQUIRE(r.status == 0);
-  const auto response = readJson(dir / "out/summary.json")["response"];
+  const auto response = runSlab(dir, "--grid 7x7",
+                                "[material]\nfriction = 9.0\n[indenter]\nradius = 2.5e-3\nspeed = 0.06\n"
+                                "[protocol]\ndelta_max = 6e-3\nstop_on_failure = false\n[damping]\nlocal = 0.3\n")["response"];
   const auto& drops = response["load_drops"];
   std::size_t main = 0;
   const auto fall = [&](std::size_t k) { return drops[k]["load_before_N"].get<double>() - drops[k]["load_after_N"].get<double>(); };
