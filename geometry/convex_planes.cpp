@@ -12,7 +12,6 @@ namespace {
 struct FaceCluster {
   FacePlane plane;
   Eigen::Vector3d areaNormal{0, 0, 0};  // sum of area x unit normal
-  double areaOffset = 0;                // sum of area x (unit normal . centroid), refitted below
   std::vector<int> triangles;
 };
 
@@ -48,7 +47,7 @@ std::optional<ConvexFit> fitConvexPolyhedron(const TriangleMesh& mesh, const Con
     }
     if (!home) {
       if (static_cast<int>(faces.size()) == options.maxPlanes) return std::nullopt;
-      faces.push_back({{n, n.dot(c)}, {0, 0, 0}, 0, {}});
+      faces.push_back({{n, n.dot(c)}, {0, 0, 0}, {}});
       home = &faces.back();
     }
     home->areaNormal += area[t] * n;

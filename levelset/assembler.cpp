@@ -108,28 +108,26 @@ double distanceToSegment(const Eigen::Vector2d& x, const Eigen::Vector2d& a, con
   return (a + t * ab - x).norm();
 }
 
-// Distance from each body's centroid to its nearest neighbour's, in plan.
-std::vector<double> nearestNeighbour(const Bundle& bundle) {
-  const std::size_t n = bundle.bodies.size();
+// Distance from each centroid to its nearest neighbour's, in plan.
+std::vector<double> nearestNeighbour(const std::vector<Eigen::Vector2d>& centres) {
+  const std::size_t n = centres.size();
   std::vector<double> d(n, std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j)
-      if (i != j) d[i] = std::min(d[i], (bundle.bodies[i].position - bundle.bodies[j].position).head<2>().norm());
+      if (i != j) d[i] = std::min(d[i], (centres[i] - centres[j]).norm());
   return d;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-}  // namespace
-
-std::vector<int> outerRingBodies(const Bundle& bundle) {
+std::vector<Eigen::Vector2d> planCentres(const Bundle& bundle) {
   std::vector<Eigen::Vector2d> centres;
   for (const Body& b : bundle.bodies) centres.push_back(b.position.head<2>());
+  return centres;
+}
+
+// The outer ring of bodies with these plan centroids (outerRingBodies).
+std::vector<int> outerRing(const std::vector<Eigen::Vector2d>& centres) {
   const std::vector<Eigen::Vector2d> hull = convexHull(centres);
-  const std::vector<double> spacing = nearestNeighbour(bundle);
+  const std::vector<double> spacing = nearestNeighbour(centres);
   std::vector<int> ring;
   for (std::size_t i = 0; i < centres.size(); ++i) {
     double d = std::numeric_limits<double>::infinity();
@@ -139,8 +137,17 @@ std::vector<int> outerRingBodies(const Bundle& bundle) {
   return ring;
 }
 
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+}  // namespace
+
+std::vector<int> outerRingBodies(const Bundle& bundle) { return outerRing(planCentres(bundle)); }
+
 void estimateSpan(const Bundle& bundle, double& length, int& interfaces, std::string& rule) {
-  const double pitch = median(nearestNeighbour(bundle));
+  const double pitch = median(nearestNeighbour(planCentres(bundle)));
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const Body& b : bundle.bodies)
     if (!b.fixed) {
@@ -171,14 +178,31 @@ Bundle assembleParts(const std::vector<std::string>& files, const AssembleOption
   report.pieces = pieces.size();
   if (pieces.empty()) throw InputError("no part files given: list the part meshes (or a folder of them)");
 
+  // Names and supports first: what can be refused is refused before any shape is built.
+  std::vector<Eigen::Vector2d> centres;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j)
+      if (pieces[j].name == pieces[i].name)
+        throw InputError(pieces[i].label + ": a second body named '" + pieces[i].name + "'; rename one of the files");
+    for (const std::string& pattern : options.fixPatterns)
+      if (fnmatch(pattern.c_str(), pieces[i].name.c_str(), 0) == 0) pieces[i].fixed = true;
+    centres.push_back(computeMassProperties(pieces[i].mesh).centroid.head<2>());
+  }
+  if (options.fixOuterRing)
+    for (int i : outerRing(centres)) pieces[i].fixed = true;
+  const auto fixedCount = std::count_if(pieces.begin(), pieces.end(), [](const Piece& p) { return p.fixed; });
+  if (fixedCount == 0)
+    throw InputError("no body is fixed: name the supports with --fix PATTERN, give the frame mesh with --frame FILE, "
+                     "or use --fix-outer-ring");
+  if (fixedCount == static_cast<long>(pieces.size()))
+    throw InputError("every body is fixed (" + std::to_string(fixedCount) + "): nothing can move; check --fix patterns");
+
   Bundle bundle;
   bundle.generator = generatorVersion();
   bundle.sourceUp = options.up;
   std::vector<int> firstPiece;  // per shape: the piece whose mesh is its source
   for (std::size_t i = 0; i < pieces.size(); ++i) {
-    Piece& piece = pieces[i];
-    for (const Body& b : bundle.bodies)
-      if (b.name == piece.name) throw InputError(piece.label + ": a second body named '" + piece.name + "'; rename one of the files");
+    const Piece& piece = pieces[i];
     const double size = boundingBox(piece.mesh.vertices).diagonal().norm();
     std::optional<Placement> placement;
     int shape = -1;
@@ -197,26 +221,22 @@ Bundle assembleParts(const std::vector<std::string>& files, const AssembleOption
     bundle.bodies.push_back(placeBody(bundle.shapes[shape], shape, *placement));
   }
 
-  for (Body& b : bundle.bodies)
-    for (const std::string& pattern : options.fixPatterns)
-      if (fnmatch(pattern.c_str(), b.name.c_str(), 0) == 0) b.fixed = true;
-  if (options.fixOuterRing)
-    for (int i : outerRingBodies(bundle)) bundle.bodies[i].fixed = true;
-  const auto fixedCount = std::count_if(bundle.bodies.begin(), bundle.bodies.end(), [](const Body& b) { return b.fixed; });
-  if (fixedCount == 0)
-    throw InputError("no body is fixed: name the supports with --fix PATTERN, give the frame mesh with --frame FILE, "
-                     "or use --fix-outer-ring");
-  if (fixedCount == static_cast<long>(bundle.bodies.size()))
-    throw InputError("every body is fixed (" + std::to_string(fixedCount) + "): nothing can move; check --fix patterns");
-
   if (options.spanLength > 0 && options.spanInterfaces > 0) {
     bundle.spanLength = options.spanLength;
     bundle.spanInterfaces = options.spanInterfaces;
     report.spanRule = "given";
   } else {
     estimateSpan(bundle, bundle.spanLength, bundle.spanInterfaces, report.spanRule);
-    if (options.spanLength > 0) bundle.spanLength = options.spanLength;
-    if (options.spanInterfaces > 0) bundle.spanInterfaces = options.spanInterfaces;
+    if (options.spanLength > 0) {  // L given: M from it, at the estimated pitch
+      const double pitch = median(nearestNeighbour(planCentres(bundle)));
+      bundle.spanInterfaces = static_cast<int>(std::lround(options.spanLength / pitch)) + 1;
+      bundle.spanLength = options.spanLength;
+      report.spanRule = "L given; M = L / pitch + 1 at the median pitch";
+    }
+    if (options.spanInterfaces > 0) {
+      bundle.spanInterfaces = options.spanInterfaces;
+      report.spanRule = "M given; " + report.spanRule;
+    }
   }
   return bundle;
 }

@@ -21,7 +21,7 @@ struct AssembleOptions {
   ShapeLimits limits;
   /// Parts equal up to a rigid motion share a shape: same triangles, vertices in the same order,
   /// and every vertex within this x the part's size of the rigidly moved other (Kabsch fit).
-  double sameShapeTolerance = 1e-5;
+  double sameShapeTolerance = 1e-4;  // as ConvexFitOptions: covers 6-decimal metre exports
 };
 
 /// What was read, for the report.

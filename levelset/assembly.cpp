@@ -43,9 +43,11 @@ double nodesInLevelSet(const Bundle& bundle, int a, int b, const Eigen::Vector3d
   // x_B = qB^-1 (qA x_A + pA + shift - pB)
   const Eigen::Matrix3d rotation = (B.orientation.conjugate() * A.orientation).toRotationMatrix();
   const Eigen::Vector3d offset = B.orientation.conjugate() * (A.position + shift - B.position);
-  // A's centroid too: two bodies that coincide have every surface node on the other's surface
-  // (phi = 0), but each centroid deep inside the other.
-  double smallest = shapeB.sdf.sample(offset).phi;
+  // A's centroid too, when it lies inside A: two bodies that coincide have every surface node on
+  // the other's surface (phi = 0), but each centroid deep inside the other. (A ring-shaped frame's
+  // centroid lies outside it, in whatever the ring surrounds.)
+  double smallest = shapeA.sdf.sample(Eigen::Vector3d::Zero()).phi < 0 ? shapeB.sdf.sample(offset).phi
+                                                                         : std::numeric_limits<double>::infinity();
   for (const auto& x : shapeA.nodes.positions) smallest = std::min(smallest, shapeB.sdf.sample(rotation * x + offset).phi);
   return smallest;
 }

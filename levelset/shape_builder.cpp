@@ -58,7 +58,7 @@ ShapeEstimate estimateShape(const Eigen::Vector3d& extents, double surfaceArea, 
   // Measured with `tessera prep` (/usr/bin/time -v) on the default block at fine voxels and at fine
   // spacings, and on a 180 mm assembly part: 5-25 bytes and 0.4-2 us per grid node (the dense
   // copy, the OpenVDB grid, more for meshes of many triangles); 4.5 kB and 140 us per surface node
-  // (the area quadrature). The larger figures are used: an estimate to within a factor of 2-3.
+  // (the area quadrature). Middle figures are used: an estimate to within a factor of 2-3.
   e.bytes = 16.0 * e.gridNodes + 4500.0 * e.surfaceNodes;
   e.seconds = 1e-6 * e.gridNodes + 140e-6 * e.surfaceNodes;
   return e;

@@ -48,7 +48,7 @@ void checkResolution(const Eigen::Vector3d& extents, const ShapeResolution& reso
 /// mass properties, moves it to the body frame, samples surface nodes and the signed distance.
 /// `label` names the input in messages. Throws InputError for meshes or resolutions it refuses.
 /// Zero lengths of `resolution` are relative to the shape (ShapeResolution::resolvedFor); the shape
-/// keeps the absolute values it was built at. Prints nothing; the estimate goes to log.notes.
+/// keeps the absolute values it was built at. Prints nothing; the estimate goes to log.now.
 Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& source,
                  const ShapeResolution& resolution, const std::string& label, PrepLog& log,
                  const ShapeLimits& limits = {});

@@ -213,6 +213,7 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
   h5::writeAttribute(g, "settle_time", r.settleTime);
   h5::writeAttribute(g, "settle_steps", std::int64_t{r.settleSteps});
   h5::writeAttribute(g, "settled", std::int64_t{r.settled});
+  h5::writeAttribute(g, "sunk_while_settling", std::int64_t{r.sunkWhileSettling});
   h5::writeAttribute(g, "target", std::int64_t{r.target});
   h5::writeAttribute(g, "target_name", r.targetName);
   h5::writeAttribute(g, "thickness", r.thickness);
@@ -279,6 +280,7 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   r.settleTime = h5::readDoubleAttribute(g, "settle_time");
   r.settleSteps = h5::readIntAttribute(g, "settle_steps");
   r.settled = h5::readIntAttribute(g, "settled") != 0;
+  if (H5Aexists(g, "sunk_while_settling") > 0) r.sunkWhileSettling = static_cast<int>(h5::readIntAttribute(g, "sunk_while_settling"));
   r.target = static_cast<int>(h5::readIntAttribute(g, "target"));
   r.targetName = h5::readStringAttribute(g, "target_name");
   r.thickness = h5::readDoubleAttribute(g, "thickness");

@@ -14,23 +14,6 @@
 
 namespace tessera {
 
-int centralFreeBody(const World& world) {
-  const RigidBodies& b = world.bodies();
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (std::size_t i = 0; i < b.size(); ++i) centre += b.position[i].head<2>() / static_cast<double>(b.size());
-  int best = -1;
-  double bestDistance = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    if (b.fixed[i]) continue;
-    const double d = (b.position[i].head<2>() - centre).norm();
-    if (d < bestDistance - 1e-12) {
-      bestDistance = d;
-      best = static_cast<int>(i);
-    }
-  }
-  return best;
-}
-
 namespace {
 
 Snapshot snapshotOf(const World& world, double delta, double load) {
@@ -44,9 +27,9 @@ Snapshot snapshotOf(const World& world, double delta, double load) {
 void startLoading(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
                   IndentationState& state) {
   RigidBodies& bodies = world.bodies();
-  const LoadPoint load = chooseLoadPoint(world, bundle, scene.indenter);
+  const LoadPoint load = chooseLoadPoint(bundle, scene.indenter);
   record.target = load.body;
-  const Eigen::Vector2d at = load.at;
+  const Eigen::Vector2d at = bodies.position[record.target].head<2>() + load.offset;
   record.targetName = bodies.name[record.target];
   // h: the settled block's extent along the loading direction (z), from its mesh as posed.
   double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
@@ -147,7 +130,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     }
     if (hooks.progress && wall() - lastProgress >= scene.output.progressSeconds) {
       lastProgress = wall();
-      const int target = centralFreeBody(world);
+      const int target = centralFreeBody(bundle);
       const double h = target >= 0 ? world.bodySize(target) : 0.0;
       const double travel = scene.indenter.clearance +
                             (scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * h);
@@ -162,7 +145,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     record.settleSteps = world.stepCount();
     // An assembly that does not stand under its own weight (supports, friction) is not a test.
     const RigidBodies& b = world.bodies();
-    const std::vector<Eigen::Vector3d> start = world.state().startPosition;
+    const std::vector<Eigen::Vector3d>& start = world.startPositions();
     for (int i = 0; i < static_cast<int>(b.size()); ++i)
       if (!b.fixed[i] && start[i].z() - b.position[i].z() > scene.protocol.fallenClearance * world.bodySize(i))
         ++record.sunkWhileSettling;

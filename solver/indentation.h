@@ -123,8 +123,6 @@ struct RunHooks {
 void runIndentation(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
                     IndentationState& state, const RunHooks& hooks);
 
-/// The free body nearest the bodies' centre in x and y (the default target).
-int centralFreeBody(const World& world);
 
 
 }  // namespace tessera

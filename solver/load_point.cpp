@@ -1,8 +1,6 @@
 // Where the indenter comes down (docs/scene.md, [indenter]).
 #include "solver/load_point.h"
 
-#include "solver/indentation.h"
-
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -15,13 +13,13 @@ namespace tessera {
 namespace {
 
 // The highest point of body i's surface on the vertical line through (x, y), if the line meets it.
-std::optional<double> topAt(const World& world, const Bundle& bundle, int i, const Eigen::Vector2d& at) {
-  const RigidBodies& b = world.bodies();
-  const TriangleMesh& mesh = bundle.shapes[b.shape[i]].mesh;
+std::optional<double> topAt(const Bundle& bundle, int i, const Eigen::Vector2d& at) {
+  const Body& body = bundle.bodies[i];
+  const TriangleMesh& mesh = bundle.shapes[body.shape].mesh;
   std::optional<double> top;
   for (const auto& t : mesh.triangles) {
     Eigen::Vector3d p[3];
-    for (int k = 0; k < 3; ++k) p[k] = b.orientation[i] * mesh.vertices[t[k]] + b.position[i];
+    for (int k = 0; k < 3; ++k) p[k] = body.orientation * mesh.vertices[t[k]] + body.position;
     // Barycentric coordinates of (x, y) in the triangle's plan projection.
     const Eigen::Vector2d e1 = (p[1] - p[0]).head<2>(), e2 = (p[2] - p[0]).head<2>(), r = at - p[0].head<2>();
     const double det = e1.x() * e2.y() - e1.y() * e2.x();
@@ -42,39 +40,57 @@ std::string planPoint(const Eigen::Vector2d& p) {
 
 }  // namespace
 
-LoadPoint chooseLoadPoint(const World& world, const Bundle& bundle, const IndenterSettings& indenter) {
-  const RigidBodies& bodies = world.bodies();
+int centralFreeBody(const Bundle& bundle) {
+  const auto& bodies = bundle.bodies;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const Body& b : bodies) centre += b.position.head<2>() / static_cast<double>(bodies.size());
+  int best = -1;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].fixed) continue;
+    const double d = (bodies[i].position.head<2>() - centre).norm();
+    if (d < bestDistance - 1e-12) {
+      bestDistance = d;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+LoadPoint chooseLoadPoint(const Bundle& bundle, const IndenterSettings& indenter) {
+  const auto& bodies = bundle.bodies;
   LoadPoint load;
-  Eigen::Vector2d& at = load.at;
   if (indenter.atPoint) {
     // The body whose surface is highest on the vertical through the point.
-    at = indenter.point;
+    const Eigen::Vector2d& at = indenter.point;
     double highest = -std::numeric_limits<double>::infinity();
     for (int i = 0; i < static_cast<int>(bodies.size()); ++i)
-      if (const auto top = topAt(world, bundle, i, at); top && *top > highest) {
+      if (const auto top = topAt(bundle, i, at); top && *top > highest) {
         highest = *top;
         load.body = i;
       }
     if (load.body < 0) throw std::invalid_argument("indenter.point " + planPoint(at) + " lies on no body of the slab");
-    if (bodies.fixed[load.body])
-      throw std::invalid_argument("indenter.point " + planPoint(at) + " lies on the fixed body '" + bodies.name[load.body] +
+    if (bodies[load.body].fixed)
+      throw std::invalid_argument("indenter.point " + planPoint(at) + " lies on the fixed body '" + bodies[load.body].name +
                                   "'; choose a point on a free body");
-  } else {
-    if (!indenter.target.empty()) {
-      for (std::size_t i = 0; i < bodies.size(); ++i)
-        if (bodies.name[i] == indenter.target) load.body = static_cast<int>(i);
-      if (load.body < 0) throw std::invalid_argument("indenter.target '" + indenter.target + "' is not a body of the bundle");
-      if (bodies.fixed[load.body])
-        throw std::invalid_argument("indenter.target '" + indenter.target + "' is a fixed body; name a free one");
-    } else {
-      load.body = centralFreeBody(world);
-      if (load.body < 0) throw std::invalid_argument("the bundle has no free body to load");
-    }
-    at = bodies.position[load.body].head<2>() + indenter.offset;
-    if (!indenter.offset.isZero() && !topAt(world, bundle, load.body, at))
-      throw std::invalid_argument("indenter.offset puts the indenter at " + planPoint(at) + ", off the body '" +
-                                  bodies.name[load.body] + "'; use a smaller offset");
+    load.offset = at - bodies[load.body].position.head<2>();
+    return load;
   }
+  if (!indenter.target.empty()) {
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      if (bodies[i].name == indenter.target) load.body = static_cast<int>(i);
+    if (load.body < 0) throw std::invalid_argument("indenter.target '" + indenter.target + "' is not a body of the bundle");
+    if (bodies[load.body].fixed)
+      throw std::invalid_argument("indenter.target '" + indenter.target + "' is a fixed body; name a free one");
+  } else {
+    load.body = centralFreeBody(bundle);
+    if (load.body < 0) throw std::invalid_argument("the bundle has no free body to load");
+  }
+  load.offset = indenter.offset;
+  const Eigen::Vector2d at = bodies[load.body].position.head<2>() + load.offset;
+  if (!load.offset.isZero() && !topAt(bundle, load.body, at))
+    throw std::invalid_argument("indenter.offset puts the indenter at " + planPoint(at) + ", off the body '" +
+                                bodies[load.body].name + "'; use a smaller offset");
   return load;
 }
 

@@ -100,6 +100,8 @@ public:
   bool isSupport(int i) const { return bodies_.fixed[i] && !retired_[i]; }
   /// World-aligned box around body i's surface nodes, enlarged by `margin` (m).
   Eigen::AlignedBox3d bodyBox(int i, double margin) const;
+  /// Each body's position when the World was made, m.
+  const std::vector<Eigen::Vector3d>& startPositions() const { return startPosition_; }
   /// The smallest extent of body i's box in its own frame, m (the thickness of a slab block).
   double bodySize(int i) const;
 

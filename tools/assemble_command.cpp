@@ -72,10 +72,11 @@ void runAssemble(const AssembleArguments& a) {
   options.fixPatterns = a.fix;
   options.frameFiles = a.frames;
   options.fixOuterRing = a.fixOuterRing;
+  if (a.spanLength && !(*a.spanLength > 0)) throw InputError("--span-length must be positive (in --unit)");
+  if (a.spanInterfaces < 0) throw InputError("--span-interfaces must be a positive whole number");
   if (a.spanLength) options.spanLength = *a.spanLength * unit.metres;
   options.spanInterfaces = a.spanInterfaces;
-  if (a.voxel) options.resolution.voxelSize = *a.voxel * unit.metres;
-  if (a.spacing) options.resolution.nodeSpacing = *a.spacing * unit.metres;
+  options.resolution = shapeResolution(a.voxel, a.spacing, unit.metres, "assemble");
   options.limits = shapeLimits(a.maxMemory, a.anySize);
 
   PrepLog log;

@@ -36,15 +36,9 @@ struct PrepArguments {
 void runPrep(const PrepArguments& a) {
   const auto start = std::chrono::steady_clock::now();
   const LengthUnit unit = parseLengthUnit(a.unit);
-  ShapeResolution resolution;
-  if (a.voxel) resolution.voxelSize = *a.voxel * unit.metres;
-  if (a.spacing) resolution.nodeSpacing = *a.spacing * unit.metres;
+  ShapeResolution resolution = shapeResolution(a.voxel, a.spacing, unit.metres, a.mesh);
   resolution.featureAngle = a.featureAngle * M_PI / 180.0;
   resolution.exteriorBandVoxels = a.band;
-  if (a.voxel && !(resolution.voxelSize > 0))
-    throw InputError(a.mesh + ": --voxel must be positive (got " + std::to_string(*a.voxel) + " " + unit.name + ")");
-  if (a.spacing && !(resolution.nodeSpacing > 0))
-    throw InputError(a.mesh + ": --spacing must be positive (got " + std::to_string(*a.spacing) + " " + unit.name + ")");
   if (!(a.featureAngle > 0 && a.featureAngle < 180)) throw InputError("--feature-angle must be between 0 and 180 degrees");
 
   const std::string name = a.name.empty() ? shapeNameFromPath(a.mesh) : a.name;

@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <optional>
+#include <string>
 
 namespace tessera::tools {
 
@@ -10,6 +11,11 @@ namespace tessera::tools {
 /// default relative to each shape), --max-memory (GB per shape) and --any-size.
 void addResolutionOptions(CLI::App& cmd, std::optional<double>& voxel, std::optional<double>& spacing,
                           double& maxMemoryGB, bool& anySize);
+
+/// The resolution those options set (absent: relative to each shape); InputError for values that
+/// are not positive, naming `label`.
+ShapeResolution shapeResolution(std::optional<double> voxel, std::optional<double> spacing, double metresPerUnit,
+                                const std::string& label);
 
 /// The limits those options set.
 ShapeLimits shapeLimits(double maxMemoryGB, bool anySize);

@@ -132,6 +132,13 @@ int runTest(const RunArguments& a) {
     source = {fs::absolute(scene.path).string(), fs::absolute(scene.bundle).string(), scene.solver.threads};
   }
   Bundle bundle = readBundle(scene.bundle);
+  if (bundle.bodies.empty())
+    throw InputError(scene.bundle + ": the bundle holds no bodies; build a slab with tessera tile");
+  try {
+    chooseLoadPoint(bundle, scene.indenter);  // where it will load: checked before any work
+  } catch (const std::invalid_argument& e) {
+    throw InputError(scene.path + ": " + e.what());
+  }
   if (scene.resolution.any()) {
     // Each shape again from its (body-frame) mesh: the body frame, and so every pose, is unchanged.
     const ResolutionOverride& o = scene.resolution;
@@ -154,8 +161,6 @@ int runTest(const RunArguments& a) {
     std::fprintf(stderr, "run: shapes re-prepared at node spacing %.4g mm, voxel %.4g mm\n",
                  bundle.shapes[0].resolution.nodeSpacing * 1e3, bundle.shapes[0].resolution.voxelSize * 1e3);
   }
-  if (bundle.bodies.empty())
-    throw InputError(scene.bundle + ": the bundle holds no bodies; build a slab with tessera tile");
 
   ContactParameters contact = scene.contact;
   if (contact.spanLength == 0) contact.spanLength = bundle.spanLength;
@@ -174,11 +179,6 @@ int runTest(const RunArguments& a) {
     }
   };
   World world = makeWorld();
-  try {
-    chooseLoadPoint(world, bundle, scene.indenter);  // where it will load: checked before any work
-  } catch (const std::invalid_argument& e) {
-    throw InputError(scene.path + ": " + e.what());
-  }
   IndentationRecord record;
   IndentationState state;
   if (resume) {

@@ -96,11 +96,7 @@ void runTile(const TileArguments& a) {
     spanInterfaces = layout.spanInterfaces;
   }
   const LengthUnit unit = parseLengthUnit(unitName);
-  ShapeResolution resolution;
-  if (a.voxel) resolution.voxelSize = *a.voxel * unit.metres;
-  if (a.spacing) resolution.nodeSpacing = *a.spacing * unit.metres;
-  if (a.voxel && !(resolution.voxelSize > 0)) throw InputError("--voxel must be positive");
-  if (a.spacing && !(resolution.nodeSpacing > 0)) throw InputError("--spacing must be positive");
+  const ShapeResolution resolution = shapeResolution(a.voxel, a.spacing, unit.metres, a.block.empty() ? a.layout : a.block);
 
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "tile: " << m << "\n"; };

@@ -145,3 +145,22 @@ TEST_CASE("assembly refusals: no unit, no support, every body fixed, a missing f
   options.frameFiles = {dir / "nope.obj"};
   REQUIRE_THROWS_WITH(assembleParts({dir / "a.obj"}, options, log, report), Contains("nope.obj") && Contains("--frame"));
 }
+
+TEST_CASE("solids of one file that meet along an edge stay separate bodies") {
+  // Two boxes touching along a vertical edge: welded, that edge is shared by four triangles.
+  test::TempDir dir;
+  TriangleMesh pair = makeBox(10e-3, 10e-3, 3e-3), second = makeBox(10e-3, 10e-3, 3e-3);
+  const int base = static_cast<int>(pair.vertices.size());
+  for (const auto& v : second.vertices) pair.vertices.push_back(v + Eigen::Vector3d(10e-3, 10e-3, 0));
+  for (const auto& t : second.triangles) pair.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  writeMesh(pair, dir / "pair.obj", MeshFileFormat::Obj, 1.0);
+  AssembleOptions options;
+  options.unit = "m";
+  options.fixPatterns = {"pair_1"};
+  PrepLog log;
+  AssembleReport report;
+  const Bundle b = assembleParts({dir / "pair.obj"}, options, log, report);
+  REQUIRE(report.pieces == 2);
+  REQUIRE(b.bodies.size() == 2);
+  REQUIRE(b.bodies[0].shape == b.bodies[1].shape);  // the same box, moved
+}
