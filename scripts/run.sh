@@ -11,7 +11,7 @@ out=${1:-"$here/out"}
 "$here/scripts/setup.sh"
 tessera="${BUILD_DIR:-$here/build}/tools/tessera"
 "$tessera" tile --block "$here/assets/blocks/planar_a10_h3.18_5deg.obj" --unit mm --grid 7x7 --pitch 10 \
-  --fix perimeter --voxel 0.25 --spacing 0.6 -o "$out/default_slab"
+  --fix perimeter --voxel 0.25 --spacing 0.6 --replace -o "$out/default_slab"  # this script's own slab
 "$tessera" export "$out/default_slab" -o "$out/default_slab/view"
 rm -rf "$out/default_run"  # this script's own previous result: run it again from scratch
 "$tessera" run "$here/assets/scenes/default.toml" --bundle "$out/default_slab" -o "$out/default_run"

@@ -61,10 +61,7 @@ std::vector<std::string> partFiles(const std::vector<std::string>& given, const 
 
 void runAssemble(const AssembleArguments& a) {
   const auto start = std::chrono::steady_clock::now();
-  if (fs::exists(fs::path(a.output) / kBundleFileName) && !a.replace)
-    throw InputError(a.output + ": holds a bundle already; choose another -o or pass --replace");
-  if (fs::exists(a.output) && !fs::is_directory(a.output))
-    throw InputError(a.output + ": exists and is not a directory; give a bundle directory with -o");
+  checkBundleOutput(a.output, a.replace);
   const LengthUnit unit = parseLengthUnit(a.unit);
   AssembleOptions options;
   options.unit = a.unit;

@@ -1,6 +1,9 @@
 #include "tools/assembly_checks.h"
 
 #include "geometry/input_error.h"
+#include "tools/output_directory.h"
+
+#include <filesystem>
 
 #include <algorithm>
 #include <cstdio>
@@ -17,6 +20,15 @@ std::string mm(double metres) {
 }
 
 }  // namespace
+
+void checkBundleOutput(const std::string& directory, bool replace) {
+  namespace fs = std::filesystem;
+  if (fs::exists(directory) && !fs::is_directory(directory))
+    throw InputError(directory + ": exists and is not a directory; give a bundle directory with -o");
+  if (fs::exists(fs::path(directory) / kBundleFileName) && !replace)
+    throw InputError(directory + ": holds a bundle already; choose another -o or pass --replace");
+  requireWritableDirectory(directory);
+}
 
 AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
                                            const std::string& command, const std::string& fix) {

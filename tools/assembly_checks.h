@@ -7,6 +7,10 @@
 
 namespace tessera::tools {
 
+/// The output of tile and assemble, checked before any work: not an existing file, not a bundle
+/// already (unless `replace`), and a directory that can be created and written. InputError otherwise.
+void checkBundleOutput(const std::string& directory, bool replace);
+
 /// What the checks of a new assembly found (tile, assemble).
 struct AssemblySummary {
   AssemblyCheck check;

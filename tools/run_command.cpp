@@ -11,6 +11,7 @@
 #include "solver/scene.h"
 #include "solver/world.h"
 #include "tools/commands.h"
+#include "tools/output_directory.h"
 
 #include <atomic>
 #include <csignal>
@@ -93,6 +94,7 @@ int runTest(const RunArguments& a) {
   const std::string out = resume ? a.resume : a.output;
   if (!resume && out.empty()) throw InputError("-o OUTDIR is required with a scene");
   const std::string checkpointFile = (fs::path(out) / "checkpoint.h5").string();
+  if (a.threads < -1) throw InputError("--threads must be 0 (all cores) or a positive number, got " + std::to_string(a.threads));
 
   Scene scene;
   CheckpointSource source;
@@ -130,6 +132,12 @@ int runTest(const RunArguments& a) {
     if (!a.bundle.empty()) scene.bundle = a.bundle;
     if (a.threads >= 0) scene.solver.threads = a.threads;
     source = {fs::absolute(scene.path).string(), fs::absolute(scene.bundle).string(), scene.solver.threads};
+  }
+  if (!resume) {
+    // Where the results go, checked before any work: writable, and not the bundle itself.
+    if (fs::exists(out) && fs::exists(scene.bundle) && fs::equivalent(out, scene.bundle))
+      throw InputError(out + ": is the bundle's folder; write the results to another -o");
+    requireWritableDirectory(out);
   }
   Bundle bundle = readBundle(scene.bundle);
   if (bundle.bodies.empty())

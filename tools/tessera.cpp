@@ -24,7 +24,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::RuntimeError& e) {  // a command's own exit status (its message is already printed)
     return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; every other parse error is a user mistake: exit 2 (docs: exit codes).
+    const int status = app.exit(e);
+    return status == 0 ? 0 : 2;
   } catch (const tessera::InputError& e) {
     std::cerr << "tessera: error: " << e.what() << "\n";
     return 2;

@@ -32,6 +32,7 @@ struct TileArguments {
   std::optional<double> overlapTolerance;
   double maxMemory = 4;  // GB per shape
   bool anySize = false;
+  bool replace = false;
   std::string output;
 };
 
@@ -48,6 +49,7 @@ void runTile(const TileArguments& a) {
   const auto start = std::chrono::steady_clock::now();
   if (a.block.empty() == a.layout.empty())
     throw InputError("give either --block MESH (with --grid and --pitch) or --layout FILE");
+  checkBundleOutput(a.output, a.replace);
 
   std::vector<LayoutShape> shapes;
   std::vector<Placement> placements;
@@ -137,6 +139,7 @@ void addTileCommand(CLI::App& app) {
   cmd->add_option("--overlap-tolerance", args->overlapTolerance,
                   "Initial overlap accepted between bodies, in --unit [default: 0.1 voxel]");
   cmd->add_option("-o,--output", args->output, "Bundle directory to write (bundle.h5 + one .vdb per shape)")->required();
+  cmd->add_flag("--replace", args->replace, "Replace a bundle already in the output directory");
   cmd->footer("Example (the paper's slab): tessera tile --block planar.obj --unit mm --grid 7x7 --pitch 10 --fix perimeter -o slab");
   cmd->callback([args] { runTile(*args); });
 }

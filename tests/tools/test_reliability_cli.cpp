@@ -1,0 +1,81 @@
+// Reliability (issue: never lose, corrupt or mislabel a result): each test is named after the
+// defect it guards against.
+#include "tests/fixtures/temp_dir.h"
+#include "tests/tools/cli_runner.h"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+using namespace tessera;
+using tessera::test::kDefaultBlock;
+using tessera::test::quoted;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string tile(const fs::path& out, const std::string& extra = "") {
+  return "tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 3x3 --pitch 10 --spacing 1.0 -o " + quoted(out) + extra;
+}
+
+}  // namespace
+
+TEST_CASE("reliability 6: tile refuses to replace an existing bundle without --replace") {
+  test::TempDir dir;
+  REQUIRE(test::runTessera(tile(dir / "slab")).status == 0);
+  const auto before = fs::last_write_time(dir / "slab/bundle.h5");
+  const test::CliResult again = test::runTessera(tile(dir / "slab"));
+  REQUIRE(again.status == 2);
+  REQUIRE_THAT(again.err, Contains("holds a bundle already") && Contains("--replace"));
+  REQUIRE(fs::last_write_time(dir / "slab/bundle.h5") == before);
+  REQUIRE(test::runTessera(tile(dir / "slab", " --replace")).status == 0);
+}
+
+TEST_CASE("reliability 7: output paths are checked before any work") {
+  test::TempDir dir;
+  REQUIRE(test::runTessera(tile(dir / "slab")).status == 0);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[protocol]\ndelta_max = 0.2e-3\n");
+  test::writeFile(dir / "a_file", "x");
+  const struct {
+    std::string output, expected;
+  } cases[] = {
+      {dir / "a_file", "exists and is not a directory"},
+      {dir / "a_file/below", "cannot create the output directory"},
+      {"/proc/tessera-out", "cannot"},
+      {dir / "slab", "is the bundle's folder"},
+  };
+  for (const auto& c : cases) {
+    const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(c.output));
+    INFO(c.output << ": " << r.err);
+    REQUIRE(r.status == 2);
+    REQUIRE_THAT(r.err, Contains(c.expected));
+    REQUIRE_THAT(r.err, !Contains("internal error"));
+    REQUIRE_THAT(r.err, !Contains("run: delta"));  // refused before the run began
+  }
+  REQUIRE_FALSE(fs::exists(dir / "slab/summary.json"));
+  const test::CliResult tileToFile = test::runTessera(tile(dir / "a_file"));
+  REQUIRE(tileToFile.status == 2);
+  REQUIRE_THAT(tileToFile.err, Contains("not a directory"));
+}
+
+TEST_CASE("reliability 10: command-line mistakes exit 2, help exits 0") {
+  const test::CliResult unknown = test::runTessera("run --no-such-flag");
+  REQUIRE(unknown.status == 2);
+  const test::CliResult missing = test::runTessera("prep");
+  REQUIRE(missing.status == 2);
+  const test::CliResult notANumber = test::runTessera("tile --block x.obj --unit mm --pitch ten -o y");
+  REQUIRE(notANumber.status == 2);
+  REQUIRE(test::runTessera("run --help").status == 0);
+  REQUIRE(test::runTessera("--version").status == 0);
+}
+
+TEST_CASE("reliability 12: nonsense run options are refused: negative threads") {
+  test::TempDir dir;
+  REQUIRE(test::runTessera(tile(dir / "slab")).status == 0);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n");
+  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --threads -3 -o " + quoted(dir / "out"));
+  REQUIRE(r.status == 2);
+  REQUIRE_THAT(r.err, Contains("--threads"));
+  REQUIRE_FALSE(fs::exists(dir / "out"));
+}
