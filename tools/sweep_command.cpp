@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -96,6 +97,12 @@ bool caseComplete(const fs::path& run) {
   }
 }
 
+std::string formatValue(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
 void runSweep(const SweepArguments& a) {
   std::vector<Axis> axes;
   for (const auto& s : a.sets) axes.push_back(parseAxis(s));
@@ -138,6 +145,20 @@ void runSweep(const SweepArguments& a) {
     char name[32];
     std::snprintf(name, sizeof name, "case_%03zu", c);
     caseDirs.push_back(dir / name);
+  }
+  // A case folder holds one case for good: a folder from a sweep of other values, another base
+  // scene or preset is refused, never relabelled (re-running the same sweep finishes what is missing).
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const fs::path scene = caseDirs[c] / "scene.toml";
+    if (!fs::exists(scene)) continue;
+    std::ifstream in(scene);
+    const std::string held((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (held != texts[c]) {
+      std::string values;
+      for (std::size_t k = 0; k < axes.size(); ++k) values += (k ? ", " : "") + axes[k].key + " = " + formatValue(cases[c][k]);
+      throw InputError(caseDirs[c].string() + " holds a case of another sweep (its scene.toml differs from this sweep's " +
+                       values + "); choose another -o, or remove " + dir.string() + " to start again");
+    }
   }
   for (std::size_t c = 0; c < cases.size(); ++c) {
     fs::create_directories(caseDirs[c]);

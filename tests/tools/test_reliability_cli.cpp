@@ -6,6 +6,8 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 using namespace tessera;
 using tessera::test::kDefaultBlock;
@@ -78,4 +80,22 @@ TEST_CASE("reliability 12: nonsense run options are refused: negative threads") 
   REQUIRE(r.status == 2);
   REQUIRE_THAT(r.err, Contains("--threads"));
   REQUIRE_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("reliability 2: a sweep re-run with other values is refused, not relabelled") {
+  test::TempDir dir;
+  REQUIRE(test::runTessera(tile(dir / "slab")).status == 0);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[indenter]\nspeed = 0.05\n[protocol]\ndelta_max = 0.05e-3\n");
+  const std::string sweep = "sweep " + quoted(dir / "scene.toml") + " -o " + quoted(dir / "mu") + " --jobs 2 --set mu=";
+  REQUIRE(test::runTessera(sweep + "0.2,0.3").status == 0);
+  const test::CliResult other = test::runTessera(sweep + "0.8,0.9");
+  REQUIRE(other.status == 2);
+  REQUIRE_THAT(other.err, Contains("case_000 holds a case of another sweep") && Contains("material.friction = 0.8"));
+  std::ifstream held(dir / "mu/case_000/scene.toml");
+  const std::string text((std::istreambuf_iterator<char>(held)), std::istreambuf_iterator<char>());
+  REQUIRE_THAT(text, Contains("friction = 0.2"));
+  // The same sweep again finishes what is missing (here: nothing).
+  const test::CliResult same = test::runTessera(sweep + "0.2,0.3");
+  REQUIRE(same.status == 0);
+  REQUIRE_THAT(same.err, Contains("already complete"));
 }
