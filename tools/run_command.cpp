@@ -1,5 +1,6 @@
 // tessera run: the indentation test of a slab, end to end.
 #include "geometry/input_error.h"
+#include "levelset/assembly.h"
 #include "levelset/bundle.h"
 #include "levelset/shape_builder.h"
 #include "solver/checkpoint.h"
@@ -170,6 +171,21 @@ int runTest(const RunArguments& a) {
                  bundle.shapes[0].resolution.nodeSpacing * 1e3, bundle.shapes[0].resolution.voxelSize * 1e3);
   }
 
+  // The bodies as the bundle places them may not overlap (a bundle edited by hand, or two bodies
+  // placed on one another): the same check as tile and assemble, before any work.
+  {
+    double finestVoxel = 1e300;
+    for (const Shape& shape : bundle.shapes) finestVoxel = std::min(finestVoxel, shape.sdf.voxelSize);
+    const AssemblyCheck check = checkAssembly(bundle, 0.1 * finestVoxel, 0.5 * finestVoxel);
+    if (!check.overlaps.empty()) {
+      const BodyPair& worst = check.overlaps.front();
+      char depth[64];
+      std::snprintf(depth, sizeof depth, "%.4g mm", -worst.separation * 1e3);
+      throw InputError(scene.bundle + ": bodies '" + bundle.bodies[worst.a].name + "' and '" + bundle.bodies[worst.b].name +
+                       "' overlap by " + depth + " (" + std::to_string(check.overlaps.size()) +
+                       " overlapping pair(s)); rebuild the bundle with tessera tile or assemble");
+    }
+  }
   ContactParameters contact = scene.contact;
   if (contact.spanLength == 0) contact.spanLength = bundle.spanLength;
   if (contact.spanInterfaces == 0) contact.spanInterfaces = bundle.spanInterfaces;

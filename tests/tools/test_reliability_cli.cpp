@@ -1,5 +1,6 @@
 // Reliability (issue: never lose, corrupt or mislabel a result): each test is named after the
 // defect it guards against.
+#include "levelset/bundle.h"
 #include "tests/fixtures/temp_dir.h"
 #include "tests/tools/cli_runner.h"
 
@@ -98,4 +99,18 @@ TEST_CASE("reliability 2: a sweep re-run with other values is refused, not relab
   const test::CliResult same = test::runTessera(sweep + "0.2,0.3");
   REQUIRE(same.status == 0);
   REQUIRE_THAT(same.err, Contains("already complete"));
+}
+
+TEST_CASE("reliability 5: run refuses a bundle whose bodies overlap, coincident ones included") {
+  test::TempDir dir;
+  REQUIRE(test::runTessera(tile(dir / "slab")).status == 0);
+  Bundle edited = readBundle(dir / "slab");
+  edited.bodies[3].position = edited.bodies[4].position;  // r1c0 moved onto the centre block
+  edited.bodies[3].orientation = edited.bodies[4].orientation;
+  writeBundle(dir / "edited", edited);
+  test::writeFile(dir / "scene.toml", "bundle = \"edited\"\n[protocol]\ndelta_max = 0.1e-3\n");
+  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "out"));
+  REQUIRE(r.status == 2);
+  REQUIRE_THAT(r.err, Contains("'r1c0' and 'r1c1' overlap") || Contains("'r1c1' and 'r1c0' overlap"));
+  REQUIRE_FALSE(fs::exists(dir / "out"));
 }
