@@ -87,7 +87,7 @@ TEST_CASE("an exported y-up assembly imports in place: the tiler's slab, one sha
   REQUIRE(b.spanInterfaces == 4);
 }
 
-TEST_CASE("supports by rule: the outer ring of a square slab is its perimeter; span estimate of the default slab") {
+TEST_CASE("supports by rule: the outer ring of a square slab is its perimeter, and the span estimate of the default slab") {
   SquareGridOptions grid;  // 7 x 7
   LayoutShape shape;
   shape.key = "planar";
@@ -106,7 +106,7 @@ TEST_CASE("supports by rule: the outer ring of a square slab is its perimeter; s
   REQUIRE_THAT(rule, Contains("pitch"));
 }
 
-TEST_CASE("identical parts share a shape only when one is a rigid motion of the other; a mirror image does not") {
+TEST_CASE("identical parts share a shape only when one is a rigid motion of the other, a mirror image does not") {
   test::TempDir dir;
   const TriangleMesh block = makePlanarBlock(10e-3, 3.18e-3, 5 * M_PI / 180);
   TriangleMesh turned = block, mirrored = block;

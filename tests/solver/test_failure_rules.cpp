@@ -69,7 +69,7 @@ TEST_CASE("failure rules: a block that lost every block contact falls, and is re
   REQUIRE_FALSE(s.world.isSupport(1));
 }
 
-TEST_CASE("failure rules: support runs through chains of contacts; a block pushed past its neighbours by h is out") {
+TEST_CASE("failure rules: support runs through chains of contacts, and a block pushed past its neighbours by h is out") {
   const Bundle slab = test::smallSlab(3, 0.25e-3, 1.0e-3);
   SolverSettings settings;
   settings.localDamping = 0.3;

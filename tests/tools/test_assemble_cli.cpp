@@ -80,7 +80,7 @@ TEST_CASE("assemble imports a y-up metre export in one command and reports each 
   REQUIRE_THAT(again.err, Contains("--replace"));
 }
 
-TEST_CASE("assemble refuses bad input in one line with the file, the problem and the fix; exit 2, nothing written") {
+TEST_CASE("assemble refuses bad input in one line with the file, the problem and the fix, exit 2, nothing written") {
   test::TempDir dir;
   makeExport(dir / "export");
   const std::string parts = quoted(dir / "export/parts.obj"), frame = " --frame " + quoted(dir / "export/frame.obj");
