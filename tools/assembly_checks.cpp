@@ -30,25 +30,34 @@ void checkBundleOutput(const std::string& directory, bool replace) {
   requireWritableDirectory(directory);
 }
 
+double finestVoxel(const Bundle& bundle) {
+  double finest = 1e300;
+  for (const Shape& s : bundle.shapes) finest = std::min(finest, s.sdf.voxelSize);
+  return finest;
+}
+
+void refuseOverlaps(const Bundle& bundle, const AssemblyCheck& check, double tolerance, const std::string& where,
+                    const std::string& fix) {
+  if (check.overlaps.empty()) return;
+  const BodyPair& worst = check.overlaps.front();
+  throw InputError(where + "bodies '" + bundle.bodies[worst.a].name + "' and '" + bundle.bodies[worst.b].name +
+                   "' overlap by " + mm(-worst.separation) + " (tolerance " + mm(tolerance) + "; " +
+                   std::to_string(check.overlaps.size()) + " overlapping pair(s) in all); " + fix);
+}
+
 AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
                                            const std::string& command, const std::string& fix) {
-  double finestVoxel = 1e300;
-  for (const Shape& s : bundle.shapes) finestVoxel = std::min(finestVoxel, s.sdf.voxelSize);
-  const double tolerance = overlapTolerance ? *overlapTolerance : 0.1 * finestVoxel;
-  const double touch = gap + 0.5 * finestVoxel;
+  const double voxel = finestVoxel(bundle);
+  const double tolerance = overlapTolerance ? *overlapTolerance : 0.1 * voxel;
+  const double touch = gap + 0.5 * voxel;
   AssemblySummary summary;
   summary.check = checkAssembly(bundle, tolerance, touch);
-  if (!summary.check.overlaps.empty()) {
-    const BodyPair& worst = summary.check.overlaps.front();
-    throw InputError("bodies '" + bundle.bodies[worst.a].name + "' and '" + bundle.bodies[worst.b].name +
-                     "' overlap by " + mm(-worst.separation) + " (tolerance " + mm(tolerance) + "; " +
-                     std::to_string(summary.check.overlaps.size()) + " overlapping pair(s) in all); " + fix);
-  }
+  refuseOverlaps(bundle, summary.check, tolerance, "", fix);
   for (int i : summary.check.isolated)
     std::cerr << command << ": warning: body '" << bundle.bodies[i].name << "' touches no other body (nothing within "
               << mm(touch) << ")\n";
-  const double threshold = 0.01 * 0.5 * finestVoxel;
-  for (const VerticalLock& l : verticalLocks(bundle, 0.5 * finestVoxel)) {
+  const double threshold = 0.01 * 0.5 * voxel;
+  for (const VerticalLock& l : verticalLocks(bundle, 0.5 * voxel)) {
     ++summary.free;
     if (l.upDepth > threshold && l.downDepth > threshold) ++summary.locked;
     else

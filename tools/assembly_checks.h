@@ -11,6 +11,14 @@ namespace tessera::tools {
 /// already (unless `replace`), and a directory that can be created and written. InputError otherwise.
 void checkBundleOutput(const std::string& directory, bool replace);
 
+/// The finest voxel of the bundle's shapes, m: the scale of the assembly checks' tolerances.
+double finestVoxel(const Bundle& bundle);
+
+/// InputError for the deepest overlap of `check`, if any: "<where>bodies 'a' and 'b' overlap by
+/// ... (tolerance ...; N overlapping pair(s) in all); <fix>".
+void refuseOverlaps(const Bundle& bundle, const AssemblyCheck& check, double tolerance, const std::string& where,
+                    const std::string& fix);
+
 /// What the checks of a new assembly found (tile, assemble).
 struct AssemblySummary {
   AssemblyCheck check;

@@ -11,6 +11,7 @@
 #include "solver/run_output.h"
 #include "solver/scene.h"
 #include "solver/world.h"
+#include "tools/assembly_checks.h"
 #include "tools/commands.h"
 #include "tools/output_directory.h"
 
@@ -174,17 +175,9 @@ int runTest(const RunArguments& a) {
   // The bodies as the bundle places them may not overlap (a bundle edited by hand, or two bodies
   // placed on one another): the same check as tile and assemble, before any work.
   {
-    double finestVoxel = 1e300;
-    for (const Shape& shape : bundle.shapes) finestVoxel = std::min(finestVoxel, shape.sdf.voxelSize);
-    const AssemblyCheck check = checkAssembly(bundle, 0.1 * finestVoxel, 0.5 * finestVoxel);
-    if (!check.overlaps.empty()) {
-      const BodyPair& worst = check.overlaps.front();
-      char depth[64];
-      std::snprintf(depth, sizeof depth, "%.4g mm", -worst.separation * 1e3);
-      throw InputError(scene.bundle + ": bodies '" + bundle.bodies[worst.a].name + "' and '" + bundle.bodies[worst.b].name +
-                       "' overlap by " + depth + " (" + std::to_string(check.overlaps.size()) +
-                       " overlapping pair(s)); rebuild the bundle with tessera tile or assemble");
-    }
+    const double tolerance = 0.1 * finestVoxel(bundle);
+    refuseOverlaps(bundle, checkAssembly(bundle, tolerance, 0.5 * finestVoxel(bundle)), tolerance, scene.bundle + ": ",
+                   "rebuild the bundle with tessera tile or assemble");
   }
   ContactParameters contact = scene.contact;
   if (contact.spanLength == 0) contact.spanLength = bundle.spanLength;
