@@ -11,4 +11,11 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+/// A file that could not be written (disk full, over quota, not writable). what() names the file
+/// and the cause; the previous version of the file is untouched. Tools exit 2 (docs: exit codes).
+class WriteError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace tessera

@@ -1,6 +1,7 @@
 #include "geometry/mesh_export.h"
 
 #include "geometry/input_error.h"
+#include "geometry/safe_write.h"
 
 #include <assimp/Exporter.hpp>
 #include <assimp/scene.h>
@@ -48,14 +49,11 @@ void writeMesh(const TriangleMesh& mesh, const std::string& path, MeshFileFormat
   }
 
   const char* formatId = format == MeshFileFormat::Obj ? "objnomtl" : format == MeshFileFormat::StlAscii ? "stl" : "stlb";
-  const fs::path target(path);
-  const fs::path temporary = target.parent_path() / (".tmp-" + target.filename().string());
-  Assimp::Exporter exporter;
-  if (exporter.Export(&scene, formatId, temporary.string()) != AI_SUCCESS) {
-    fs::remove(temporary);
-    throw std::runtime_error(path + ": cannot write mesh (" + exporter.GetErrorString() + ")");
-  }
-  fs::rename(temporary, target);
+  writeFileSafely(fs::path(path), [&](const fs::path& temporary) {
+    Assimp::Exporter exporter;
+    if (exporter.Export(&scene, formatId, temporary.string()) != AI_SUCCESS)
+      throw std::runtime_error(std::string("cannot write mesh (") + exporter.GetErrorString() + ")");
+  });
 }
 
 }  // namespace tessera

@@ -1,5 +1,6 @@
 #include "levelset/assembly_export.h"
 
+#include "geometry/safe_write.h"
 #include "levelset/assembly.h"
 #include "levelset/layout_file.h"
 
@@ -21,14 +22,13 @@ constexpr int kVtkVertex = 1;
 constexpr int kVtkTriangle = 5;
 
 void writeAtomically(const fs::path& target, const std::function<void(std::ostream&)>& write) {
-  const fs::path temporary = target.parent_path() / (".tmp-" + target.filename().string());
-  {
+  writeFileSafely(target, [&](const fs::path& temporary) {
     std::ofstream out(temporary);
     out.precision(17);
     write(out);
-    if (!out) throw std::runtime_error(target.string() + ": cannot write");
-  }
-  fs::rename(temporary, target);
+    out.close();
+    if (!out) throw std::runtime_error("short write");
+  });
 }
 
 template <class T>

@@ -1,6 +1,7 @@
 #include "levelset/bundle.h"
 
 #include "geometry/input_error.h"
+#include "geometry/safe_write.h"
 #include "levelset/hdf5_file.h"
 #include "levelset/signed_distance.h"
 
@@ -8,7 +9,6 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
-#include <unistd.h>
 
 namespace tessera {
 
@@ -282,12 +282,10 @@ Bundle readBundle(const std::string& path) {
 void writeBundle(const std::string& directory, const Bundle& bundle) {
   const fs::path dir(directory);
   const bool created = !fs::exists(dir);
-  const fs::path target = dir / kBundleFileName;
-  const fs::path temporary = dir / (".tmp-" + std::to_string(::getpid()) + "-" + kBundleFileName);
   try {
     fs::create_directories(dir);
     for (const Shape& s : bundle.shapes) writeVdb(s.sdf, (dir / (s.name + ".vdb")).string(), s.name);
-    {
+    writeFileSafely(dir / kBundleFileName, [&](const fs::path& temporary) {
       Handle f = h5::createFile(temporary.string());
       h5::writeAttribute(f.get(), "format", std::string(kBundleFormatName));
       h5::writeAttribute(f.get(), "format_version", static_cast<std::int64_t>(kBundleFormatVersion));
@@ -297,11 +295,11 @@ void writeBundle(const std::string& directory, const Bundle& bundle) {
       for (std::size_t i = 0; i < bundle.shapes.size(); ++i)
         writeShape(shapes.get(), bundle.shapes[i], static_cast<std::int64_t>(i));
       writeBodies(f.get(), bundle);
-    }
-    fs::rename(temporary, target);
+      shapes = Handle();
+      h5::closeFile(f);
+    }, [](const fs::path& temporary) { h5::verifyReadable(temporary.string()); });
   } catch (...) {
     std::error_code ignored;
-    fs::remove(temporary, ignored);
     if (created) fs::remove_all(dir, ignored);
     throw;
   }

@@ -9,10 +9,15 @@ namespace tessera::h5 {
 
 namespace {
 
-// HDF5 prints its own error stack by default; we report errors ourselves.
-void silenceLibraryErrors() {
+// HDF5 prints its own error stack by default; we report errors ourselves. Nor may it close
+// files in its exit handler: a file whose close failed (a full disk) would be flushed again after
+// main() returned, and crash there (H5dont_atexit must come before any other HDF5 call).
+void initializeLibrary() {
   static std::once_flag once;
-  std::call_once(once, [] { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); });
+  std::call_once(once, [] {
+    H5dont_atexit();
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  });
 }
 
 hid_t check(hid_t id, const std::string& what) {
@@ -51,13 +56,23 @@ Handle::~Handle() {
 }
 
 Handle createFile(const std::string& path) {
-  silenceLibraryErrors();
+  initializeLibrary();
   return Handle(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create " + path));
 }
 
 Handle openFileReadOnly(const std::string& path) {
-  silenceLibraryErrors();
+  initializeLibrary();
   return Handle(check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open " + path + " as HDF5"));
+}
+
+void closeFile(Handle& file) {
+  const hid_t id = file.release();
+  if (id >= 0 && H5Fclose(id) < 0) throw std::runtime_error("HDF5: cannot flush and close the file");
+}
+
+void verifyReadable(const std::string& path) {
+  Handle file = openFileReadOnly(path);
+  closeFile(file);
 }
 
 Handle createGroup(hid_t parent, const std::string& name) {

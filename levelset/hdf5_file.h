@@ -19,6 +19,12 @@ public:
   ~Handle();
   hid_t get() const { return id_; }
   bool valid() const { return id_ >= 0; }
+  /// Gives up ownership: the caller closes the identifier.
+  hid_t release() {
+    const hid_t id = id_;
+    id_ = H5I_INVALID_HID;
+    return id;
+  }
 
 private:
   hid_t id_ = H5I_INVALID_HID;
@@ -28,6 +34,11 @@ private:
 /// user files turn them into InputError naming the file.
 Handle createFile(const std::string& path);
 Handle openFileReadOnly(const std::string& path);
+/// Flushes and closes a file, throwing if that fails (a full disk shows up here); the handle's
+/// destructor closes silently, so every writer ends with closeFile.
+void closeFile(Handle& file);
+/// Opens and closes an HDF5 file (the library checks its end-of-file address: a truncated file fails).
+void verifyReadable(const std::string& path);
 Handle createGroup(hid_t parent, const std::string& name);
 Handle openGroup(hid_t parent, const std::string& name);
 std::vector<std::string> childNames(hid_t group);

@@ -2,6 +2,7 @@
 
 #include "geometry/input_error.h"
 #include "geometry/length_unit.h"
+#include "geometry/safe_write.h"
 
 #include <nlohmann/json.hpp>
 
@@ -194,14 +195,7 @@ void writeLayout(const std::string& path, const Layout& layout) {
   }
   if (layout.spanInterfaces > 0)
     root["span"] = {{"length", layout.spanLength / scale}, {"interfaces", layout.spanInterfaces}};
-  const fs::path target(path);
-  const fs::path temporary = target.parent_path() / (".tmp-" + target.filename().string());
-  {
-    std::ofstream out(temporary);
-    out << root.dump(2) << "\n";
-    if (!out) throw std::runtime_error(path + ": cannot write the layout");
-  }
-  fs::rename(temporary, target);
+  writeTextFileSafely(fs::path(path), root.dump(2) + "\n");
 }
 
 }  // namespace tessera

@@ -3,6 +3,7 @@
 
 #include "geometry/input_error.h"
 #include "geometry/point_mesh_distance.h"
+#include "geometry/safe_write.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -98,14 +99,20 @@ void writeVdb(const DenseSdf& sdf, const std::string& path, const std::string& g
       }
 
   namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path temporary = target.parent_path() / (".tmp-" + target.filename().string());
-  {
-    openvdb::io::File file(temporary.string());
-    file.write({grid});
-    file.close();
-  }
-  fs::rename(temporary, target);
+  // OpenVDB does not report every failed write: the grid is read back before the rename.
+  writeFileSafely(
+      fs::path(path),
+      [&](const fs::path& temporary) {
+        openvdb::io::File file(temporary.string());
+        file.write({grid});
+        file.close();
+      },
+      [&](const fs::path& temporary) {
+        openvdb::io::File file(temporary.string());
+        file.open();
+        if (!file.readGrid(gridName)) throw std::runtime_error("grid '" + gridName + "' missing");
+        file.close();
+      });
 }
 
 DenseSdf readVdb(const std::string& path, const std::string& gridName, const DenseSdf& layout) {

@@ -1,6 +1,7 @@
 #include "solver/checkpoint.h"
 
 #include "geometry/input_error.h"
+#include "geometry/safe_write.h"
 #include "levelset/hdf5_file.h"
 #include "solver/curve_table.h"
 
@@ -15,7 +16,7 @@ using h5::Handle;
 namespace {
 
 constexpr const char* kFormat = "tessera-checkpoint";
-constexpr std::int64_t kVersion = 2;
+constexpr std::int64_t kVersion = 3;
 
 hsize_t count(std::size_t n) { return static_cast<hsize_t>(n); }
 
@@ -27,6 +28,7 @@ void writeVectors(hid_t g, const std::string& name, const std::vector<Eigen::Vec
 
 std::vector<Eigen::Vector3d> readVectors(hid_t g, const std::string& name) {
   const auto flat = h5::readDataset<double>(g, name);
+  if (flat.size() % 3 != 0) throw std::runtime_error("'" + name + "' is not a list of 3-vectors");
   std::vector<Eigen::Vector3d> v(flat.size() / 3);
   for (std::size_t i = 0; i < v.size(); ++i) v[i] = Eigen::Vector3d(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
   return v;
@@ -40,6 +42,7 @@ void writeQuaternions(hid_t g, const std::string& name, const std::vector<Eigen:
 
 std::vector<Eigen::Quaterniond> readQuaternions(hid_t g, const std::string& name) {
   const auto flat = h5::readDataset<double>(g, name);
+  if (flat.size() % 4 != 0) throw std::runtime_error("'" + name + "' is not a list of quaternions");
   std::vector<Eigen::Quaterniond> q(flat.size() / 4);
   for (std::size_t i = 0; i < q.size(); ++i) q[i] = Eigen::Quaterniond(flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]);
   return q;
@@ -158,6 +161,17 @@ void readWorld(hid_t g, WorldState& w) {
   const auto fA = readVectors(g, "pair_force_a"), tA = readVectors(g, "pair_torque_a");
   const auto fB = readVectors(g, "pair_force_b"), tB = readVectors(g, "pair_torque_b");
   const auto elastic = h5::readDataset<double>(g, "pair_elastic"), depth = h5::readDataset<double>(g, "pair_max_depth");
+  // Every count and index is checked against the arrays before it is used.
+  if (b.size() != a.size() || n.size() != a.size() || fA.size() != a.size() || tA.size() != a.size() ||
+      fB.size() != a.size() || tB.size() != a.size() || elastic.size() != a.size() || depth.size() != a.size())
+    throw std::runtime_error("inconsistent pair records");
+  std::size_t total = 0;
+  for (std::int32_t c : n) {
+    if (c < 0) throw std::runtime_error("a negative contact count");
+    total += static_cast<std::size_t>(c);
+  }
+  if (total != keys.size() || springs.size() != total || energy.size() != total || area.size() != total)
+    throw std::runtime_error("contact counts do not match the contact records");
   w.pairs.clear();
   std::size_t next = 0;
   for (std::size_t p = 0; p < a.size(); ++p) {
@@ -296,6 +310,20 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   const auto linkCount = h5::readDataset<std::int32_t>(g, "snapshot_links");
   const auto linkPair = h5::readDataset<std::int32_t>(g, "link_pair");
   const auto linkPoint = readVectors(g, "link_point"), linkForce = readVectors(g, "link_force");
+  const std::size_t frames = snapshot.size() / 2;
+  if (snapshot.size() % 2 != 0 || position.size() != frames * bodies || orientation.size() != frames * bodies ||
+      linkCount.size() != frames || linkPair.size() != 2 * linkPoint.size() || linkForce.size() != linkPoint.size())
+    throw std::runtime_error("inconsistent snapshot records");
+  std::size_t links = 0;
+  for (std::int32_t c : linkCount) {
+    if (c < 0) throw std::runtime_error("a negative force-link count");
+    links += static_cast<std::size_t>(c);
+  }
+  if (links != linkPoint.size()) throw std::runtime_error("force-link counts do not match the links");
+  for (std::int32_t body : linkPair)
+    if (body < -64 || body >= static_cast<std::int32_t>(bodies)) throw std::runtime_error("a force link names no body");
+  if (s.phase < 0 || s.phase > 2 || r.target < -1 || r.target >= static_cast<int>(bodies))
+    throw std::runtime_error("protocol state out of range");
   r.snapshots.clear();
   std::size_t link = 0;
   for (std::size_t k = 0; 2 * k + 1 < snapshot.size(); ++k) {
@@ -320,28 +348,27 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
 
 void writeCheckpoint(const std::string& path, const CheckpointSource& source, const WorldState& world,
                      const IndentationState& state, const IndentationRecord& record) {
-  const fs::path target(path);
-  const fs::path temporary = target.parent_path() / (".tmp-" + target.filename().string());
-  try {
-    {
+  writeFileSafely(fs::path(path), [&](const fs::path& temporary) {
       Handle f = h5::createFile(temporary.string());
       h5::writeAttribute(f.get(), "format", std::string(kFormat));
       h5::writeAttribute(f.get(), "format_version", kVersion);
       h5::writeAttribute(f.get(), "generator", generatorVersion());
       h5::writeAttribute(f.get(), "scene", source.scene);
+      h5::writeAttribute(f.get(), "scene_text", source.sceneText);
+      h5::writeAttribute(f.get(), "scene_digest", source.sceneDigest);
+      h5::writeAttribute(f.get(), "preset", source.preset);
       h5::writeAttribute(f.get(), "bundle", source.bundle);
+      h5::writeAttribute(f.get(), "bundle_relative", source.bundleRelative);
+      h5::writeAttribute(f.get(), "bundle_digest", source.bundleDigest);
       h5::writeAttribute(f.get(), "threads", std::int64_t{source.threads});
       Handle w = h5::createGroup(f.get(), "world");
       writeWorld(w.get(), world);
       Handle r = h5::createGroup(f.get(), "run");
       writeRecord(r.get(), state, record);
-    }
-    fs::rename(temporary, target);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw;
-  }
+      w = Handle();
+      r = Handle();
+      h5::closeFile(f);
+    }, [](const fs::path& temporary) { h5::verifyReadable(temporary.string()); });
 }
 
 CheckpointSource readCheckpointSource(const std::string& path) {
@@ -353,8 +380,17 @@ CheckpointSource readCheckpointSource(const std::string& path) {
     if (version != kVersion)
       throw InputError(path + ": checkpoint format version " + std::to_string(version) + " is not supported (this " +
                        generatorVersion() + " reads version " + std::to_string(kVersion) + "; run it again from the scene)");
-    return {h5::readStringAttribute(f.get(), "scene"), h5::readStringAttribute(f.get(), "bundle"),
-            static_cast<int>(h5::readIntAttribute(f.get(), "threads"))};
+    CheckpointSource s;
+    s.scene = h5::readStringAttribute(f.get(), "scene");
+    s.sceneText = h5::readStringAttribute(f.get(), "scene_text");
+    s.sceneDigest = h5::readStringAttribute(f.get(), "scene_digest");
+    s.preset = h5::readStringAttribute(f.get(), "preset");
+    s.bundle = h5::readStringAttribute(f.get(), "bundle");
+    s.bundleRelative = h5::readStringAttribute(f.get(), "bundle_relative");
+    s.bundleDigest = h5::readStringAttribute(f.get(), "bundle_digest");
+    s.threads = static_cast<int>(h5::readIntAttribute(f.get(), "threads"));
+    if (s.threads < 0 || s.threads > 4096) throw std::runtime_error("thread count out of range");
+    return s;
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
@@ -371,6 +407,8 @@ void readCheckpoint(const std::string& path, WorldState& world, IndentationState
     if (world.bodies.position.size() != bodies) throw std::runtime_error("it holds a different number of bodies than the bundle");
     Handle r = h5::openGroup(f.get(), "run");
     readRecord(r.get(), state, record, bodies);
+    if (state.sphere < -1 || state.sphere >= static_cast<int>(world.spheres.size()) || (state.phase > 0 && state.sphere < 0))
+      throw std::runtime_error("the indenter's index is out of range");
   } catch (const std::exception& e) {
     throw InputError(path + ": cannot resume from this checkpoint (" + e.what() + ")");
   }

@@ -145,9 +145,9 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     record.settleSteps = world.stepCount();
     // An assembly that does not stand under its own weight (supports, friction) is not a test.
     const RigidBodies& b = world.bodies();
-    const std::vector<Eigen::Vector3d>& start = world.startPositions();
+    const std::vector<Eigen::Vector3d>& built = world.startPositions();
     for (int i = 0; i < static_cast<int>(b.size()); ++i)
-      if (!b.fixed[i] && start[i].z() - b.position[i].z() > scene.protocol.fallenClearance * world.bodySize(i))
+      if (!b.fixed[i] && built[i].z() - b.position[i].z() > scene.protocol.fallenClearance * world.bodySize(i))
         ++record.sunkWhileSettling;
     if (record.sunkWhileSettling > 0 && hooks.warning)
       hooks.warning(std::to_string(record.sunkWhileSettling) + " free bodies sank by more than " +

@@ -43,7 +43,7 @@ struct ResponseParameters {
   double energy = 0;              ///< J, W: area under P(delta) up to the failure deflection (or the end)
   double energyToEnd = 0;         ///< J, area under P(delta) over the whole run
   double ultimateDeflection = 0;  ///< m: where the load returns below 1 % of P_max for good, else the last delta
-  std::string failureMode;        ///< from the final state: "no failure", "loaded block out", "N blocks out", "collapse"
+  std::string failureMode;        ///< from the final state: "no failure", "none yet (run incomplete)", "loaded block out", "N blocks out", "collapse"
   std::vector<LoadDrop> drops;    ///< every sudden load drop after the peak, the main one first
   ContactState atPeak, atFailure; ///< atFailure: at the failure deflection (or the end)
   CurveSample end;                ///< the last sample: energies at the end of the run

@@ -1,5 +1,6 @@
 #include "solver/run_output.h"
 
+#include "geometry/safe_write.h"
 #include "levelset/assembly_export.h"
 #include "levelset/hdf5_file.h"
 #include "solver/curve_table.h"
@@ -15,21 +16,6 @@ namespace tessera {
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path temporaryFor(const fs::path& target) { return target.parent_path() / (".tmp-" + target.filename().string()); }
-
-template <class Write>
-void atomically(const fs::path& target, Write&& write) {
-  const fs::path temporary = temporaryFor(target);
-  try {
-    write(temporary);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw;
-  }
-  fs::rename(temporary, target);
-}
 
 void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bundle, const ContactParameters& contact,
                     const IndentationRecord& record) {
@@ -100,6 +86,9 @@ void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bund
   h5::writeDataset(fallen.get(), "delta", fallenDelta, {fallenDelta.size()});
   h5::writeDataset(fallen.get(), "retired", fallenRetired, {fallenRetired.size()});
   h5::writeDataset(fallen.get(), "touching", fallenTouching, {fallenTouching.size()});
+  fallen = h5::Handle();
+  snaps = h5::Handle();
+  h5::closeFile(f);
 }
 
 }  // namespace
@@ -108,7 +97,7 @@ void writeSweepTable(const std::string& path, const std::vector<std::string>& ke
                      const std::vector<std::vector<double>>& values, const std::vector<std::string>& columns,
                      const std::vector<std::vector<double>>& table, const std::vector<std::string>& cases,
                      const std::vector<std::string>& failureModes, const std::vector<std::string>& stopReasons) {
-  atomically(fs::path(path), [&](const fs::path& p) {
+  writeFileSafely(fs::path(path), [&](const fs::path& p) {
     h5::Handle f = h5::createFile(p.string());
     h5::writeAttribute(f.get(), "format", std::string("tessera-sweep"));
     h5::writeAttribute(f.get(), "generator", generatorVersion());
@@ -122,7 +111,8 @@ void writeSweepTable(const std::string& path, const std::vector<std::string>& ke
     h5::writeStrings(f.get(), "case", cases);
     h5::writeStrings(f.get(), "failure_mode", failureModes);
     h5::writeStrings(f.get(), "stop_reason", stopReasons);
-  });
+    h5::closeFile(f);
+  }, [](const fs::path& p) { h5::verifyReadable(p.string()); });
 }
 
 void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
@@ -131,11 +121,12 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   const fs::path dir(directory);
   fs::create_directories(dir / "paraview");
 
-  atomically(dir / "results.h5", [&](const fs::path& p) { writeResultsH5(p, scene, bundle, contact, record); });
+  writeFileSafely(dir / "results.h5", [&](const fs::path& p) { writeResultsH5(p, scene, bundle, contact, record); },
+                  [](const fs::path& p) { h5::verifyReadable(p.string()); });
 
-  atomically(dir / "curve.csv", [&](const fs::path& p) {
-    std::ofstream out(p);
-    out << "delta_mm,load_N,time_s,kinetic_J,external_work_J,contacts,block_displacement_mm,indenter_penetration_mm,"
+  {
+    std::string out =
+        "delta_mm,load_N,time_s,kinetic_J,external_work_J,contacts,block_displacement_mm,indenter_penetration_mm,"
            "sliding_fraction,loaded_sliding_fraction\n";
     char line[320];
     for (const CurveSample& s : record.curve) {
@@ -143,10 +134,10 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
                     s.time, s.kinetic, s.externalWork, s.contacts, s.blockDisplacement * 1e3, s.indenterPenetration * 1e3,
                     s.blockContacts > 0 ? s.slidingContacts / s.blockContacts : 0.0,
                     s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0);
-      out << line;
+      out += line;
     }
-    if (!out) throw std::runtime_error(p.string() + ": cannot write");
-  });
+    writeTextFileSafely(dir / "curve.csv", out);
+  }
 
   nlohmann::json fallen = nlohmann::json::array();
   for (const FallenBody& b : record.fallen)
@@ -175,7 +166,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
       {"scene", scene.path},
       {"bundle", scene.bundle},
       {"target", record.targetName},
-      {"stop_reason", record.stopReason},
+      {"stop_reason", record.stopReason.empty() ? std::string("running") : record.stopReason},
       {"response",
        {{"peak_load_N", response.peakLoad},
         {"delta_at_peak_mm", response.deltaAtPeak * 1e3},
@@ -234,11 +225,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
         {"samples", record.curve.size()},
         {"snapshots", record.snapshots.size()}}},
   };
-  atomically(dir / "summary.json", [&](const fs::path& p) {
-    std::ofstream out(p);
-    out << summary.dump(2) << "\n";
-    if (!out) throw std::runtime_error(p.string() + ": cannot write");
-  });
+  writeTextFileSafely(dir / "summary.json", summary.dump(2) + "\n");
 
   std::vector<std::string> files;
   std::vector<double> times;

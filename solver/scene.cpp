@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -103,9 +105,16 @@ private:
 
 Scene readScene(const std::string& path) {
   if (!fs::exists(path)) throw InputError(path + ": no such scene file; see assets/scenes/default.toml for an example");
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in && !in.eof()) throw InputError(path + ": cannot read the scene file");
+  return readSceneText(text, path);
+}
+
+Scene readSceneText(const std::string& text, const std::string& path) {
   toml::table root;
   try {
-    root = toml::parse_file(path);
+    root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     std::ostringstream where;
     where << e.source().begin;

@@ -96,6 +96,8 @@ struct Scene {
 /// Reads a TOML scene file; unknown keys, wrong types and out-of-range values are InputErrors
 /// naming the file, the key and the accepted range. See docs/scene.md.
 Scene readScene(const std::string& path);
+/// A scene from its text; `path` names it in messages and anchors a relative bundle path.
+Scene readSceneText(const std::string& text, const std::string& path);
 
 /// The text of a scene file with some numeric keys replaced ("table.key" -> value) and its bundle
 /// path made absolute, for the cases of a sweep. Throws InputError for a key the scene format

@@ -133,8 +133,61 @@ WorldState World::state() const {
   return s;
 }
 
+namespace {
+
+bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
+bool unit(const Eigen::Quaterniond& q) { return q.coeffs().allFinite() && std::abs(q.norm() - 1.0) < 1e-6; }
+
+template <class T, class Valid>
+void requireEach(const std::vector<T>& values, std::size_t size, bool orEmpty, const char* what, Valid&& valid) {
+  if (values.size() != size && !(orEmpty && values.empty()))
+    throw std::invalid_argument(std::string(what) + ": " + std::to_string(values.size()) + " values for " + std::to_string(size));
+  for (const T& v : values)
+    if (!valid(v)) throw std::invalid_argument(std::string(what) + ": a value is not finite (or not a unit quaternion)");
+}
+
+}  // namespace
+
+// A state from a file is checked whole before it replaces this World's: sizes against the bodies,
+// pair indices against the bodies and obstacles, contact keys against the nodes, every number finite.
+void World::checkState(const WorldState& s) const {
+  const std::size_t n = bodies_.size();
+  requireEach(s.bodies.position, n, false, "positions", finite);
+  requireEach(s.bodies.orientation, n, false, "orientations", unit);
+  requireEach(s.bodies.velocity, n, false, "velocities", finite);
+  requireEach(s.bodies.angularMomentum, n, false, "angular momenta", finite);
+  requireEach(s.bodies.fixed, n, false, "fixed flags", [](char) { return true; });
+  requireEach(s.retired, n, false, "retired flags", [](char) { return true; });
+  for (const auto* v : {&s.builtPosition, &s.force, &s.torque, &s.contactForce, &s.contactTorque, &s.dampingForce,
+                        &s.dampingTorque, &s.startPosition})
+    requireEach(*v, n, true, "per-body vectors", finite);
+  requireEach(s.builtOrientation, n, true, "per-body orientations", unit);
+  for (const SphereObstacle& sphere : s.spheres)
+    if (!finite(sphere.center) || !finite(sphere.velocity) || !(sphere.radius > 0) || !std::isfinite(sphere.radius) ||
+        !(sphere.stiffnessFactor > 0) || !std::isfinite(sphere.stiffnessFactor))
+      throw std::invalid_argument("an indenter with a non-finite or non-positive value");
+  requireEach(s.sphereReaction, s.spheres.size(), true, "indenter reactions", finite);
+  requireEach(s.builtSphereCentre, s.spheres.size(), true, "indenter positions", finite);
+  const int obstacles = static_cast<int>(s.spheres.size() + s.planes.size());
+  for (const PairContacts& p : s.pairs) {
+    if (p.a < 0 || p.a >= static_cast<int>(n) || p.b < -obstacles || p.b >= static_cast<int>(n) || p.a == p.b)
+      throw std::invalid_argument("a contact pair (" + std::to_string(p.a) + ", " + std::to_string(p.b) + ") names no body");
+    for (const NodeContact& c : p.contacts) {
+      const int body = (c.key >> 31) == 0 ? p.a : p.b;
+      const std::size_t nodes = body >= 0 ? shapes_[bodies_.shape[body]].nodes.position.size() : 0;
+      if ((body >= 0 && (c.key & 0x7fffffffu) >= nodes) || !finite(c.spring) || !std::isfinite(c.energy) || !std::isfinite(c.area))
+        throw std::invalid_argument("a contact names no node, or holds a non-finite value");
+    }
+    if (!finite(p.forceA) || !finite(p.torqueA) || !finite(p.forceB) || !finite(p.torqueB))
+      throw std::invalid_argument("a contact pair holds a non-finite force");
+  }
+  for (double e : {s.initialEnergy, s.obstacleWork, s.friction, s.damping, s.retiredKinetic, s.projection, s.mostSupplied, s.time})
+    if (!std::isfinite(e)) throw std::invalid_argument("an energy or the time is not finite");
+  if (s.time < 0 || s.steps < 0) throw std::invalid_argument("a negative time or step count");
+}
+
 void World::restore(const WorldState& s) {
-  if (s.bodies.size() != bodies_.size()) throw std::invalid_argument("checkpoint holds a different number of bodies");
+  checkState(s);
   bodies_ = s.bodies;
   retired_ = s.retired;
   spheres_ = s.spheres;

@@ -89,8 +89,11 @@ public:
   void step();
 
   /// The changing state, and its restoration into a World made from the same bundle and settings.
+  /// restore() checks the state first (sizes, indices, finite values): std::invalid_argument
+  /// naming what is wrong, and this World unchanged.
   WorldState state() const;
   void restore(const WorldState& state);
+  void checkState(const WorldState& state) const;
 
   /// Takes a body out of the computation (a block that has fallen clear): it is frozen where it
   /// is, no longer integrated and no longer in any pair; its kinetic energy is booked as carried off.

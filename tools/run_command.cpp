@@ -1,5 +1,7 @@
 // tessera run: the indentation test of a slab, end to end.
+#include "geometry/file_digest.h"
 #include "geometry/input_error.h"
+#include "geometry/safe_write.h"
 #include "levelset/assembly.h"
 #include "levelset/bundle.h"
 #include "levelset/shape_builder.h"
@@ -13,6 +15,7 @@
 #include "solver/world.h"
 #include "tools/assembly_checks.h"
 #include "tools/commands.h"
+#include "tools/folder_lock.h"
 #include "tools/output_directory.h"
 
 #include <atomic>
@@ -22,6 +25,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
+#include <optional>
 
 #include <unistd.h>
 
@@ -44,14 +49,23 @@ struct RunArguments {
   bool noPlot = false;
 };
 
-// Runs Debian's Python on a plotting script of tools/plot; a missing matplotlib or VTK only costs
-// the picture.
+// Runs Debian's Python on a plotting script of tools/plot; a failure only costs the picture, and
+// the script's own one-line reason is shown.
 void drawPicture(const std::string& script, const fs::path& out, const std::string& picture) {
   const fs::path path = fs::path(TESSERA_SOURCE_DIR) / "tools" / "plot" / script;
-  const std::string command = "/usr/bin/python3 '" + path.string() + "' '" + out.string() + "' >/dev/null 2>&1";
-  if (!fs::exists(path) || std::system(command.c_str()) != 0)
-    std::cerr << "run: note: " << picture << " not drawn (needs Debian's python3-matplotlib and python3-vtk9: "
-              << "scripts/setup.sh installs them)\n";
+  const fs::path log = out / (".plot-" + picture + ".log");
+  const std::string command = "/usr/bin/python3 '" + path.string() + "' '" + out.string() + "' >'" + log.string() + "' 2>&1";
+  if (!fs::exists(path)) {
+    std::cerr << "run: note: " << picture << " not drawn (" << path.string() << " is missing)\n";
+  } else if (std::system(command.c_str()) != 0) {
+    std::ifstream in(log);
+    std::string line, last;
+    while (std::getline(in, line))
+      if (!line.empty()) last = line;
+    std::cerr << "run: note: " << picture << " not drawn (" << (last.empty() ? "the plotting script failed" : last) << ")\n";
+  }
+  std::error_code ignored;
+  fs::remove(log, ignored);
 }
 
 void printSummary(const IndentationRecord& record, const ResponseParameters& r, double failureFraction, const std::string& out) {
@@ -85,8 +99,45 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
   std::printf("  indenter           radius %.4g mm at %.4g mm/s; h = %.4g mm\n", record.indenterRadius * 1e3,
               record.indenterSpeed * 1e3, record.thickness * 1e3);
   std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
-  std::printf("written to %s (results.h5, curve.csv, summary.json, curve.png, paraview/slab.pvd, checkpoint.h5)\n",
-              out.c_str());
+  std::string files;
+  for (const char* f : {"results.h5", "curve.csv", "summary.json", "curve.png", "snapshots.png", "paraview/slab.pvd", "checkpoint.h5"})
+    if (fs::exists(fs::path(out) / f)) files += (files.empty() ? "" : ", ") + std::string(f);
+  std::printf("written to %s (%s)\n", out.c_str(), files.c_str());
+}
+
+std::string readText(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw InputError(path + ": no such scene file; see assets/scenes/default.toml for an example");
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::string bundleFile(const std::string& bundle) {
+  return fs::is_directory(bundle) ? (fs::path(bundle) / kBundleFileName).string() : bundle;
+}
+
+// The scene of a stopped run, exactly as it started: its text from the checkpoint, its bundle
+// found beside the run folder as it was (folders moved together) or where it was. Refuses, naming
+// what changed, a scene file edited since, another bundle, or another preset.
+Scene resumedScene(const std::string& out, const CheckpointSource& source, const RunArguments& a) {
+  const std::string newRun = "start a new run with -o NEW for new values";
+  const std::string fix = "a resumed run continues with exactly what it started with; " + newRun;
+  if (!a.preset.empty() && a.preset != source.preset)
+    throw InputError(out + ": this run started " + (source.preset.empty() ? "without --preset" : "with --preset " + source.preset) +
+                     ", not --preset " + a.preset + "; " + fix);
+  if (fs::is_regular_file(source.scene) && textDigest(readText(source.scene)) != source.sceneDigest)
+    throw InputError(source.scene + ": changed since the run in " + out + " started; restore it to resume, or " + newRun);
+  const fs::path kept = fs::path(out) / "scene.toml";
+  if (!source.preset.empty() && fs::exists(kept) && readText(kept.string()) != source.sceneText)
+    throw InputError(kept.string() + ": changed since the run started; restore it to resume, or " + newRun);
+  Scene scene = readSceneText(source.sceneText, source.preset.empty() ? source.scene : kept.string());
+  const fs::path beside = fs::path(out) / source.bundleRelative;
+  scene.bundle = !a.bundle.empty() ? a.bundle : fs::exists(bundleFile(beside.string())) ? beside.string() : source.bundle;
+  if (!fs::exists(bundleFile(scene.bundle)))
+    throw InputError(out + ": the bundle of this run is gone from " + source.bundle + "; give where it is now with --bundle DIR");
+  if (fileDigest(bundleFile(scene.bundle)) != source.bundleDigest)
+    throw InputError(scene.bundle + ": not the bundle the run in " + out + " started with (re-tiled or edited since); " + fix);
+  scene.solver.threads = source.threads;
+  return scene;
 }
 
 int runTest(const RunArguments& a) {
@@ -100,12 +151,12 @@ int runTest(const RunArguments& a) {
 
   Scene scene;
   CheckpointSource source;
-  std::string presetScene;  // with --preset: the scene text the run reads
+  std::optional<FolderLock> lock;  // one writer per run folder, held to the end
   if (resume) {
+    if (!fs::is_directory(out)) throw InputError(out + ": no such run folder to resume");
+    lock.emplace(out, "a run");
     source = readCheckpointSource(checkpointFile);
-    scene = readScene(source.scene);
-    scene.bundle = source.bundle;
-    scene.solver.threads = source.threads;
+    scene = resumedScene(out, source, a);
     if (a.threads >= 0 && a.threads != source.threads) {
       std::cerr << "run: note: resuming with " << a.threads << " threads instead of " << source.threads << "\n";
       scene.solver.threads = a.threads;
@@ -113,33 +164,29 @@ int runTest(const RunArguments& a) {
   } else {
     if (fs::exists(checkpointFile))
       throw InputError(out + ": holds a run already; resume it with --resume " + out + " or choose another -o");
+    const std::string sceneText = readText(a.scene);
     if (!a.preset.empty()) {
-      // The scene with the preset's keys: read from a temporary file, written as OUT/scene.toml
-      // with the first results (and read from there by --resume).
-      presetScene = "# " + a.scene + " with --preset " + a.preset + "\n" +
-                    sceneWithOverrides(a.scene, findPreset(a.preset).overrides);
-      const fs::path temporary = fs::temp_directory_path() / ("tessera-preset-" + std::to_string(::getpid()) + ".toml");
-      std::ofstream(temporary) << presetScene;
-      try {
-        scene = readScene(temporary.string());
-      } catch (...) {
-        fs::remove(temporary);
-        throw;
-      }
-      fs::remove(temporary);
-      scene.path = (fs::path(out) / "scene.toml").string();
+      // The scene with the preset's keys, kept as OUT/scene.toml with the first results.
+      source.sceneText = "# " + a.scene + " with --preset " + a.preset + "\n" +
+                         sceneWithOverrides(a.scene, findPreset(a.preset).overrides);
+      scene = readSceneText(source.sceneText, (fs::path(out) / "scene.toml").string());
     } else {
-      scene = readScene(a.scene);
+      source.sceneText = sceneText;
+      scene = readSceneText(sceneText, a.scene);
     }
     if (!a.bundle.empty()) scene.bundle = a.bundle;
     if (a.threads >= 0) scene.solver.threads = a.threads;
-    source = {fs::absolute(scene.path).string(), fs::absolute(scene.bundle).string(), scene.solver.threads};
-  }
-  if (!resume) {
     // Where the results go, checked before any work: writable, and not the bundle itself.
     if (fs::exists(out) && fs::exists(scene.bundle) && fs::equivalent(out, scene.bundle))
       throw InputError(out + ": is the bundle's folder; write the results to another -o");
     requireWritableDirectory(out);
+    source.scene = fs::absolute(a.scene).lexically_normal().string();
+    source.sceneDigest = textDigest(sceneText);
+    source.preset = a.preset;
+    source.bundle = fs::absolute(scene.bundle).lexically_normal().string();
+    source.bundleRelative = fs::path(source.bundle).lexically_relative(fs::absolute(out).lexically_normal()).string();
+    source.bundleDigest = fs::exists(bundleFile(scene.bundle)) ? fileDigest(bundleFile(scene.bundle)) : "";
+    source.threads = scene.solver.threads;
   }
   Bundle bundle = readBundle(scene.bundle);
   if (bundle.bodies.empty())
@@ -198,10 +245,18 @@ int runTest(const RunArguments& a) {
   World world = makeWorld();
   IndentationRecord record;
   IndentationState state;
+  if (!resume) {
+    lock.emplace(out, "a run");  // made here, after every check: a refused run leaves no folder behind
+    if (fs::exists(checkpointFile)) throw InputError(out + ": another run started there meanwhile; choose another -o");
+  }
   if (resume) {
     WorldState restored = world.state();
     readCheckpoint(checkpointFile, restored, state, record);
-    world.restore(restored);
+    try {
+      world.restore(restored);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(checkpointFile + ": corrupt checkpoint (" + e.what() + "); start the run again from its scene");
+    }
     std::fprintf(stderr, "run: resuming %s at t = %.6g s (step %ld)\n", out.c_str(), world.time(), world.stepCount());
   }
   std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, dt = %.3g s (automatic %.3g s)\n",
@@ -231,8 +286,7 @@ int runTest(const RunArguments& a) {
   hooks.warning = [](const std::string& w) { std::cerr << "run: warning: " << w << "\n"; };
   hooks.checkpointSeconds = scene.output.checkpointSeconds;
   const auto keepPresetScene = [&] {
-    fs::create_directories(out);
-    if (!presetScene.empty() && !fs::exists(scene.path)) std::ofstream(scene.path) << presetScene;
+    if (!source.preset.empty() && !fs::exists(scene.path)) writeTextFileSafely(scene.path, source.sceneText);
   };
   hooks.checkpoint = [&](const IndentationState& s) {
     keepPresetScene();

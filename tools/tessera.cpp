@@ -4,6 +4,7 @@
 #include "tools/commands.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 int main(int argc, char** argv) {
@@ -28,6 +29,12 @@ int main(int argc, char** argv) {
     const int status = app.exit(e);
     return status == 0 ? 0 : 2;
   } catch (const tessera::InputError& e) {
+    std::cerr << "tessera: error: " << e.what() << "\n";
+    return 2;
+  } catch (const tessera::WriteError& e) {
+    std::cerr << "tessera: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {  // a folder that cannot be made or listed
     std::cerr << "tessera: error: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {

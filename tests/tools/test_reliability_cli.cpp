@@ -91,7 +91,8 @@ TEST_CASE("reliability 2: a sweep re-run with other values is refused, not relab
   REQUIRE(test::runTessera(sweep + "0.2,0.3").status == 0);
   const test::CliResult other = test::runTessera(sweep + "0.8,0.9");
   REQUIRE(other.status == 2);
-  REQUIRE_THAT(other.err, Contains("case_000 holds a case of another sweep") && Contains("material.friction = 0.8"));
+  REQUIRE_THAT(other.err, Contains("holds a sweep of other values") && Contains("material.friction = 0.8") &&
+                             Contains("--extend"));
   std::ifstream held(dir / "mu/case_000/scene.toml");
   const std::string text((std::istreambuf_iterator<char>(held)), std::istreambuf_iterator<char>());
   REQUIRE_THAT(text, Contains("friction = 0.2"));
@@ -99,6 +100,17 @@ TEST_CASE("reliability 2: a sweep re-run with other values is refused, not relab
   const test::CliResult same = test::runTessera(sweep + "0.2,0.3");
   REQUIRE(same.status == 0);
   REQUIRE_THAT(same.err, Contains("already complete"));
+  // Told to extend, it adds the new values as new cases and tables all four.
+  const test::CliResult extended = test::runTessera(sweep + "0.3,0.8 --extend");
+  INFO(extended.err);
+  REQUIRE(extended.status == 0);
+  REQUIRE_THAT(extended.err, Contains("case_001 already complete") && Contains("running case_002"));
+  REQUIRE_THAT(extended.out, Contains("3 of 3 cases"));
+  // Another base scene for a value the folder holds: refused, naming the case.
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[indenter]\nspeed = 0.06\n[protocol]\ndelta_max = 0.05e-3\n");
+  const test::CliResult otherBase = test::runTessera(sweep + "0.2");
+  REQUIRE(otherBase.status == 2);
+  REQUIRE_THAT(otherBase.err, Contains("case_000 holds the case material.friction = 0.2 of another base scene"));
 }
 
 TEST_CASE("reliability 5: run refuses a bundle whose bodies overlap, coincident ones included") {

@@ -9,7 +9,10 @@ import csv
 import json
 import sys
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    raise SystemExit("needs Debian's python3-matplotlib (scripts/setup.sh installs it)")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

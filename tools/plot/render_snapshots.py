@@ -8,7 +8,10 @@ Reads RUNDIR/paraview/slab.pvd and its blocks_NNNN.vtu with VTK; draws with matp
 import argparse
 import xml.etree.ElementTree as ET
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    raise SystemExit("needs Debian's python3-matplotlib (scripts/setup.sh installs it)")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

@@ -14,7 +14,10 @@ import csv
 import json
 import os
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    raise SystemExit("report: error: needs Debian's python3-matplotlib (scripts/setup.sh installs it)")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -58,8 +61,11 @@ def main():
     parser.add_argument("sweep")
     parser.add_argument("--experiments")
     args = parser.parse_args()
-    with open(os.path.join(args.sweep, "sweep.json")) as f:
-        manifest = json.load(f)
+    try:
+        with open(os.path.join(args.sweep, "sweep.json")) as f:
+            manifest = json.load(f)
+    except (OSError, ValueError) as e:
+        raise SystemExit(f"report: error: {args.sweep}: not a readable sweep folder ({e}); give the -o folder of tessera sweep")
     key = manifest["keys"][0]
     name, unit, scale = label(key)
     out = os.path.join(args.sweep, "report")
@@ -74,9 +80,11 @@ def main():
             delta, load = read_curve(os.path.join(run, "curve.csv"))
         except (OSError, ValueError):
             continue
+        if summary.get("stop_reason") not in ("delta_max", "failure"):
+            continue  # interrupted, unstable or still running: never drawn as a result
         cases.append((case["values"][0] * scale, summary, delta, load))
     if not cases:
-        raise SystemExit(f"{args.sweep}: no complete case yet")
+        raise SystemExit(f"report: error: {args.sweep}: no complete case yet; finish the sweep by running it again")
     cases.sort(key=lambda c: c[0])
     colours = plt.cm.viridis(np.linspace(0, 0.9, len(cases)))
     caption = f"{name} [{unit}]" if unit else name

@@ -1,0 +1,25 @@
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace tessera {
+
+/// Writes `target` so that it is either the complete new file or the previous one, never a part:
+///  1. `write` fills a temporary sibling, .tmp-<pid>-<name> (the pid keeps concurrent writers apart);
+///  2. `verify`, if given, reads the temporary back (a writer that does not report its own errors,
+///     such as a library's, is caught here);
+///  3. the temporary is synced to disk (a full disk can first show up here), renamed over `target`,
+///     and the directory is synced, so the rename survives a power cut.
+/// Any failure removes the temporary and throws WriteError naming `target` and the cause ("disk full
+/// or over quota" when the system says so). Temporaries left by killed processes are removed first.
+void writeFileSafely(const std::filesystem::path& target, const std::function<void(const std::filesystem::path&)>& write,
+                     const std::function<void(const std::filesystem::path&)>& verify = {});
+
+/// writeFileSafely of a text.
+void writeTextFileSafely(const std::filesystem::path& target, const std::string& text);
+
+/// Removes the .tmp-<pid>-* files in `directory` whose process is gone (a killed writer's).
+void removeStaleTemporaries(const std::filesystem::path& directory);
+
+}  // namespace tessera
