@@ -62,6 +62,8 @@ TriangleMesh makeWaveBlock(double a, double h, double theta, double amplitude, i
   require(a > 0 && h > 0, "wave block: side and thickness must be positive");
   require(waves >= 1, "wave block: --waves must be at least 1");
   require(levels >= 2 * waves + 1, "wave block: --levels must be at least 2 x waves + 1 to resolve the waves");
+  require(waves <= 1000 && levels <= 10000,
+          "wave block: at most 1000 --waves and 10000 --levels (finer than any grid can resolve)");
   require(std::abs(theta) < M_PI / 2, "wave block: the angle must be below 90 degrees");
   const double slope = std::tan(theta);
   const auto f = [&](double z) { return z * slope + amplitude * std::sin(2 * M_PI * waves * z / h); };

@@ -2,6 +2,7 @@
 
 #include "geometry/input_error.h"
 #include "geometry/safe_write.h"
+#include "levelset/bundle_check.h"
 #include "levelset/hdf5_file.h"
 #include "levelset/signed_distance.h"
 
@@ -271,6 +272,7 @@ Bundle readBundle(const std::string& path) {
       bundle.shapes.push_back(readShape(shapes.get(), order[i].second));
     }
     readBodies(f.get(), bundle);
+    checkBundleValues(bundle);
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {

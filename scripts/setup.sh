@@ -23,11 +23,24 @@ packages=(
   libcli11-dev nlohmann-json3-dev               # command line, JSON output
   libtomlplusplus-dev                           # scene files (TOML)
   catch2                                        # tests
-  python3-vtk9 python3-matplotlib               # tests read exports with VTK; PNG rendering
+  python3-matplotlib python3-numpy              # PNG rendering
   libbenchmark-dev                              # benchmarks (bench/)
 )
 if [ "${1:-}" = "--with-yade" ]; then
   packages+=(yade python3-h5py python3-numpy)   # bench/peer_yade.sh
+fi
+
+# VTK for Python, with which the tests read the exports back: Debian's python3-vtk9, unless
+# /usr/bin/python3 already imports vtkmodules (ParaView's own Python counts) or ParaView's Python
+# package is installed (python3-paraview conflicts with python3-vtk9: installing it would remove
+# pvpython's modules). Without VTK the two export-reading tests report themselves skipped.
+if ! /usr/bin/python3 -c 'import vtkmodules.vtkIOXML' 2>/dev/null; then
+  if dpkg-query -W -f='${Status}' python3-paraview 2>/dev/null | grep -q "install ok installed"; then
+    echo "setup: python3-paraview is installed and its VTK is not importable by /usr/bin/python3;" \
+         "not installing python3-vtk9 (it conflicts); the VTK export tests will be skipped" >&2
+  else
+    packages+=(python3-vtk9)
+  fi
 fi
 
 missing=()

@@ -29,7 +29,8 @@ public:
     const toml::node* node = find(key);
     if (!node) return;
     const std::optional<double> v = node->value<double>();
-    if (!v || !std::isfinite(*v)) fail(key, "must be a number" + suffix(unit));
+    if (!v) fail(key, "must be a number" + suffix(unit));
+    if (!std::isfinite(*v)) fail(key, "must be a finite number" + suffix(unit) + ", got " + (std::isnan(*v) ? "nan" : "inf"));
     if (*v < lo || *v > hi) {
       std::ostringstream range;
       range << "must be in [" << lo << ", " << hi << "]" << suffix(unit) << ", got " << *v;
@@ -70,7 +71,7 @@ public:
     if (!a || a->size() != N) fail(key, what);
     for (int k = 0; k < N; ++k) {
       const std::optional<double> v = (*a)[k].value<double>();
-      if (!v || !std::isfinite(*v)) fail(key, what);
+      if (!v || !std::isfinite(*v)) fail(key, what + (v ? " (finite)" : ""));
       value[k] = *v;
     }
     return true;
@@ -198,6 +199,8 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   solver.number("time_step_factor", scene.solver.timeStepFactor, 1e-4, 1, "of the stability limit");
   solver.integer("threads", scene.solver.threads, 0, 1024);
   solver.vector<3>("gravity", scene.solver.gravity, "m/s^2");
+  if (!(scene.solver.gravity.norm() <= 1000))  // 100 g; also NaN
+    throw InputError(path + ": solver.gravity must be at most 1000 m/s^2 (100 g) in size, e.g. [0, 0, -9.81]; 0 turns it off");
   solver.number("max_penetration", scene.solver.maxPenetration, 0, 1, "m; 0 = a quarter of the thinnest block");
   solver.number("broad_phase_margin", scene.solver.broadPhaseMargin, 0, 1, "m; 0 = 0.157 x the thinnest block");
   solver.boolean("exact_convex_level_sets", scene.solver.exactConvexLevelSets);

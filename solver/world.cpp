@@ -87,6 +87,10 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
     throw std::invalid_argument(format("time step %.4g s is above the stability estimate 2 / omega_max = %.4g s "
                                        "for this assembly and material; use a smaller time step, or 0 (automatic)",
                                        dt_, limit));
+  // As small a step as time_step_factor allows, and no smaller: below, a run only costs more steps.
+  if (settings.timeStep > 0 && omega > 0 && dt_ < 1e-4 * limit)
+    throw std::invalid_argument(format("time step %.4g s is below 1e-4 of the stability estimate %.4g s: the run would "
+                                       "take over 10 000 times the steps it needs; use 0 (automatic)", dt_, limit));
   penetrationLimit_ = settings.maxPenetration > 0 ? settings.maxPenetration : 0.25 * thinnest;
   if (!(settings_.broadPhaseMargin > 0)) settings_.broadPhaseMargin = settings.broadPhaseMarginRatio * thinnest;
 

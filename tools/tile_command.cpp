@@ -34,15 +34,21 @@ struct TileArguments {
   bool anySize = false;
   bool replace = false;
   std::string output;
+  long maxBodies = 10000;
 };
 
-std::pair<int, int> parseGrid(const std::string& text) {
-  int columns = 0, rows = 0;
+// Columns x rows, each at least 1, and at most maxBodies blocks in all (tiling's checks grow as
+// the square of the count).
+std::pair<int, int> parseGrid(const std::string& text, long maxBodies) {
+  long long columns = 0, rows = 0;
   char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &columns, &x, &rows, &extra) != 3 || (x != 'x' && x != 'X') ||
+  if (std::sscanf(text.c_str(), "%lld%c%lld%c", &columns, &x, &rows, &extra) != 3 || (x != 'x' && x != 'X') ||
       columns < 1 || rows < 1)
     throw InputError("--grid '" + text + "': give columns x rows, e.g. --grid 7x7");
-  return {columns, rows};
+  if (columns > maxBodies || rows > maxBodies || columns * rows > maxBodies)
+    throw InputError("--grid '" + text + "': more than --max-bodies " + std::to_string(maxBodies) +
+                     " blocks; give a smaller grid, or raise --max-bodies if you mean it (tiling time grows as the square of the count)");
+  return {static_cast<int>(columns), static_cast<int>(rows)};
 }
 
 void runTile(const TileArguments& a) {
@@ -62,7 +68,7 @@ void runTile(const TileArguments& a) {
     unitName = a.unit;
     const double m = parseLengthUnit(unitName).metres;
     SquareGridOptions grid;
-    std::tie(grid.columns, grid.rows) = parseGrid(a.grid);
+    std::tie(grid.columns, grid.rows) = parseGrid(a.grid, a.maxBodies);
     grid.pitch = *a.pitch * m;
     grid.gap = a.gap * m;
     grid.alternate = !a.noAlternate;
@@ -140,6 +146,7 @@ void addTileCommand(CLI::App& app) {
                   "Initial overlap accepted between bodies, in --unit [default: 0.1 voxel]");
   cmd->add_option("-o,--output", args->output, "Bundle directory to write (bundle.h5 + one .vdb per shape)")->required();
   cmd->add_flag("--replace", args->replace, "Replace a bundle already in the output directory");
+  cmd->add_option("--max-bodies", args->maxBodies, "Refuse a slab of more blocks than this")->capture_default_str();
   cmd->footer("Example (the paper's slab): tessera tile --block planar.obj --unit mm --grid 7x7 --pitch 10 --fix perimeter -o slab");
   cmd->callback([args] { runTile(*args); });
 }

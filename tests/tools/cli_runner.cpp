@@ -18,9 +18,9 @@ std::string slurp(const std::string& path) {
 }
 }  // namespace
 
-CliResult runTessera(const std::string& arguments) {
+CliResult runTessera(const std::string& arguments, const std::string& shell) {
   TempDir capture;
-  const std::string command = std::string("'") + TESSERA_EXE + "' " + arguments + " >'" + (capture / "out") + "' 2>'" +
+  const std::string command = shell + std::string(" '") + TESSERA_EXE + "' " + arguments + " >'" + (capture / "out") + "' 2>'" +
                               (capture / "err") + "' </dev/null";
   const int raw = std::system(command.c_str());
   CliResult r;

@@ -9,8 +9,9 @@ struct CliResult {
   std::string out, err;
 };
 
-/// `arguments` are appended to the executable path as they are (quote them with quoted()).
-CliResult runTessera(const std::string& arguments);
+/// `arguments` are appended to the executable path as they are (quote them with quoted()); `shell`
+/// runs before it in the same /bin/sh (e.g. "ulimit -f 40; trap '' XFSZ;" for a small disk).
+CliResult runTessera(const std::string& arguments, const std::string& shell = "");
 
 /// A shell-quoted argument.
 inline std::string quoted(const std::string& s) { return "'" + s + "'"; }

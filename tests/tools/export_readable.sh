@@ -3,6 +3,9 @@
 # and renders to a PNG. Usage: export_readable.sh TESSERA PYTHON SOURCE_DIR
 set -euo pipefail
 tessera=$1 python=$2 source=$3
+if ! "$python" -c 'import vtkmodules.vtkIOXML' 2>/dev/null; then
+  echo "skipped: $python cannot import vtkmodules (install python3-vtk9, or ParaView's Python)"; exit 77
+fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$tessera" tile --block "$source/assets/blocks/planar_a10_h3.18_5deg.obj" --unit mm --grid 7x7 --pitch 10 \

@@ -3,6 +3,9 @@
 # all blocks, and curve.png is drawn. Usage: run_paraview_readable.sh TESSERA PYTHON SOURCE_DIR
 set -euo pipefail
 tessera=$1 python=$2 source=$3
+if ! "$python" -c 'import vtkmodules.vtkIOXML' 2>/dev/null; then
+  echo "skipped: $python cannot import vtkmodules (install python3-vtk9, or ParaView's Python)"; exit 77
+fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$tessera" tile --block "$source/assets/blocks/planar_a10_h3.18_5deg.obj" --unit mm --grid 3x3 --pitch 10 \

@@ -1,14 +1,19 @@
 // Reliability (issue: never lose, corrupt or mislabel a result): each test is named after the
 // defect it guards against.
+#include "geometry/file_digest.h"
 #include "levelset/bundle.h"
+#include "levelset/hdf5_file.h"
 #include "tests/fixtures/temp_dir.h"
 #include "tests/tools/cli_runner.h"
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
+#include <limits>
 
 using namespace tessera;
 using tessera::test::kDefaultBlock;
@@ -125,4 +130,216 @@ TEST_CASE("reliability 5: run refuses a bundle whose bodies overlap, coincident 
   REQUIRE(r.status == 2);
   REQUIRE_THAT(r.err, Contains("'r1c0' and 'r1c1' overlap") || Contains("'r1c1' and 'r1c0' overlap"));
   REQUIRE_FALSE(fs::exists(dir / "out"));
+}
+
+namespace {
+
+// A finished 3 x 3 run in dir/run (its checkpoint kept), from dir/scene.toml on dir/slab.
+void finishedRun(const test::TempDir& dir) {
+  REQUIRE(test::runTessera(tile(dir / "slab")).status == 0);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[indenter]\nspeed = 0.05\n[protocol]\ndelta_max = 0.2e-3\n");
+  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "run"));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE(fs::exists(dir / "run/checkpoint.h5"));
+}
+
+std::vector<std::string> temporaries(const fs::path& dir) {
+  std::vector<std::string> found;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.path().filename().string().rfind(".tmp-", 0) == 0 || (e.is_regular_file() && e.file_size() == 0 &&
+                                                                e.path().filename() != ".lock"))
+      found.push_back(e.path().string());
+  return found;
+}
+
+// Replaces dataset `name` of group `group` in an HDF5 file.
+template <class T>
+void replaceDataset(const std::string& file, const std::string& group, const std::string& name, const std::vector<T>& values,
+                    const std::vector<hsize_t>& dims) {
+  h5::Handle f(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  REQUIRE(f.valid());
+  h5::Handle g = h5::openGroup(f.get(), group);
+  REQUIRE(H5Ldelete(g.get(), name.c_str(), H5P_DEFAULT) >= 0);
+  h5::writeDataset(g.get(), name, values, dims);
+}
+
+}  // namespace
+
+TEST_CASE("reliability 1: a full disk is one clear error, exit 2, and the previous files stay whole") {
+  test::TempDir dir;
+  finishedRun(dir);
+  const std::string bundleBefore = fileDigest(dir / "slab/bundle.h5");
+  const std::string smallDisk = "ulimit -f 60; trap '' XFSZ;";  // files of at most 60 KiB: "File too large"
+  const test::CliResult retile = test::runTessera(tile(dir / "slab", " --replace"), smallDisk);
+  INFO(retile.err);
+  REQUIRE(retile.status == 2);
+  REQUIRE_THAT(retile.err, Contains("cannot write: disk full"));
+  REQUIRE(fileDigest(dir / "slab/bundle.h5") == bundleBefore);
+  REQUIRE(temporaries(dir / "slab").empty());
+
+  const test::CliResult run = test::runTessera(
+      "run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "full"), "ulimit -f 40; trap '' XFSZ;");
+  INFO(run.err);
+  REQUIRE(run.status == 2);  // not 139: no crash in the HDF5 library's exit handlers
+  REQUIRE_THAT(run.err, Contains("checkpoint.h5: cannot write: disk full"));
+  REQUIRE(temporaries(dir / "full").empty());
+  REQUIRE_FALSE(fs::exists(dir / "full/summary.json"));
+}
+
+TEST_CASE("reliability 3: a damaged checkpoint is one clear error, never a crash") {
+  test::TempDir dir;
+  finishedRun(dir);
+  const std::string checkpoint = dir / "run/checkpoint.h5";
+  fs::copy_file(checkpoint, dir / "good.h5");
+  const auto refused = [&](const std::string& damage) {
+    const test::CliResult r = test::runTessera("run --resume " + quoted(dir / "run") + " --no-plot");
+    INFO(damage << ": " << r.err);
+    REQUIRE(r.status == 2);
+    REQUIRE_THAT(r.err, Contains("checkpoint.h5") && (Contains("corrupt checkpoint") || Contains("cannot resume")));
+    fs::copy_file(dir / "good.h5", checkpoint, fs::copy_options::overwrite_existing);
+  };
+  std::vector<hsize_t> dims;
+  const auto pairA = [&] {
+    h5::Handle f = h5::openFileReadOnly(checkpoint);
+    return h5::readDataset<std::int32_t>(h5::openGroup(f.get(), "world").get(), "pair_a", &dims);
+  }();
+  REQUIRE_FALSE(pairA.empty());
+  replaceDataset(checkpoint, "world", "pair_a", std::vector<std::int32_t>(pairA.size(), 999), dims);
+  refused("pair index out of range");
+  replaceDataset(checkpoint, "world", "pair_a", std::vector<std::int32_t>(pairA.size(), -7), dims);
+  refused("negative pair index");
+  replaceDataset(checkpoint, "world", "pair_contacts", std::vector<std::int32_t>(pairA.size(), -5), dims);
+  refused("negative contact count");
+  replaceDataset(checkpoint, "world", "pair_contacts", std::vector<std::int32_t>(pairA.size(), 1 << 30), dims);
+  refused("huge contact count");
+  replaceDataset(checkpoint, "world", "contact_key", std::vector<double>{}, {0});
+  refused("no contact keys");
+  replaceDataset(checkpoint, "world", "orientation", std::vector<double>(36, std::nan("")), {9, 4});
+  refused("NaN orientation");
+  replaceDataset(checkpoint, "run", "snapshot_links", std::vector<std::int32_t>{1 << 30}, {1});
+  refused("huge link count");
+  test::writeFile(checkpoint, "not HDF5 at all");
+  refused("garbage");
+  // Undamaged, it resumes.
+  REQUIRE(test::runTessera("run --resume " + quoted(dir / "run") + " --no-plot").status == 0);
+}
+
+TEST_CASE("reliability 4: resume refuses a changed scene, bundle or preset, and finds a run folder moved with its bundle") {
+  test::TempDir dir;
+  finishedRun(dir);
+  const std::string resume = "run --resume " + quoted(dir / "run") + " --no-plot";
+  const std::string sceneText = "bundle = \"slab\"\n[indenter]\nspeed = 0.05\n[protocol]\ndelta_max = 0.2e-3\n";
+  test::writeFile(dir / "scene.toml", sceneText + "[material]\nfriction = 0.9\n");
+  test::CliResult r = test::runTessera(resume);
+  REQUIRE(r.status == 2);
+  REQUIRE_THAT(r.err, Contains("scene.toml: changed since the run"));
+  test::writeFile(dir / "scene.toml", sceneText);
+  r = test::runTessera(resume + " --preset fast");
+  REQUIRE(r.status == 2);
+  REQUIRE_THAT(r.err, Contains("this run started without --preset"));
+
+  // Moved together, the run folder finds its bundle beside it and resumes from its own scene.
+  fs::create_directories(dir / "moved");
+  fs::copy(dir / "run", dir / "moved/run", fs::copy_options::recursive);
+  fs::copy(dir / "slab", dir / "moved/slab", fs::copy_options::recursive);
+  fs::remove(dir / "scene.toml");
+  r = test::runTessera("run --resume " + quoted(dir / "moved/run") + " --no-plot");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.err, Contains("resuming"));
+
+  REQUIRE(test::runTessera(tile(dir / "slab", " --replace --gap 0.01")).status == 0);
+  r = test::runTessera(resume);
+  REQUIRE(r.status == 2);
+  REQUIRE_THAT(r.err, Contains("not the bundle the run in") && Contains("re-tiled or edited"));
+}
+
+TEST_CASE("reliability 9: limits are refused with the number and the fix") {
+  test::TempDir dir;
+  const struct {
+    std::string arguments, expected;
+  } cases[] = {
+      {tile(dir / "a", "").replace(tile(dir / "a", "").find("3x3"), 3, "1000x1000"), "more than --max-bodies 10000"},
+      {tile(dir / "a", "").replace(tile(dir / "a", "").find("3x3"), 3, "99999999999x3"), "more than --max-bodies"},
+      {"block wave --unit mm --levels 10000000 -o " + quoted(dir / "w.obj"), "at most 1000 --waves and 10000 --levels"},
+  };
+  for (const auto& c : cases) {
+    const test::CliResult r = test::runTessera(c.arguments);
+    INFO(c.arguments << ": " << r.err);
+    REQUIRE(r.status == 2);
+    REQUIRE_THAT(r.err, Contains(c.expected));
+  }
+  REQUIRE(test::runTessera(tile(dir / "slab")).status == 0);
+  const auto runRefused = [&](const std::string& scene, const std::string& expected) {
+    test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n" + scene);
+    const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "out"));
+    INFO(scene << ": " << r.err);
+    REQUIRE(r.status == 2);
+    REQUIRE_THAT(r.err, Contains(expected));
+    REQUIRE_FALSE(fs::exists(dir / "out"));
+  };
+  runRefused("[solver]\ntime_step = 1e-300\n", "below 1e-4 of the stability estimate");
+  runRefused("[solver]\ngravity = [0, 0, -1e300]\n", "gravity must be at most 1000 m/s^2");
+  runRefused("[material]\nfriction = inf\n", "must be a finite number (Coulomb coefficient), got inf");
+  const test::CliResult sweep = test::runTessera("sweep " + quoted(dir / "scene.toml") + " -o " + quoted(dir / "many") +
+                                                 " --set mu=0.1:0.5:1000000");
+  REQUIRE(sweep.status == 2);
+  REQUIRE_THAT(sweep.err, Contains("more than --max-cases 1000"));
+  REQUIRE_FALSE(fs::exists(dir / "many"));
+}
+
+TEST_CASE("reliability 11: values inside a bundle are checked: a corrupt bundle is one clear error") {
+  test::TempDir dir;
+  REQUIRE(test::runTessera(tile(dir / "slab")).status == 0);
+  const Bundle good = readBundle(dir / "slab");
+  const double nan = std::nan("");
+  const struct {
+    std::function<void(Bundle&)> damage;
+    std::string expected;
+  } cases[] = {
+      {[&](Bundle& b) { b.shapes[0].nodes.positions[3].x() = nan; }, "node 3 has a non-finite position"},
+      {[&](Bundle& b) { b.shapes[0].nodes.areas[5] = 0; }, "node 5 has a zero, negative or non-finite area"},
+      {[&](Bundle& b) { b.shapes[0].nodes.normals[2].setZero(); }, "node 2 has a normal that is not a unit vector"},
+      {[&](Bundle& b) { b.shapes[0].sdf.origin.y() = nan; }, "the grid's origin or voxel size"},
+      {[&](Bundle& b) { b.shapes[0].nodes = SurfaceNodes{}; }, "fewer than 4 surface nodes"},
+      {[&](Bundle& b) { b.bodies[2].name = b.bodies[1].name; }, "a second body of that name"},
+      {[&](Bundle& b) { b.bodies[4].orientation.coeffs()[0] = nan; }, "its orientation is not a unit quaternion"},
+      {[&](Bundle& b) { b.bodies[0].position.z() = std::numeric_limits<double>::infinity(); }, "its position is not finite"},
+  };
+  for (const auto& c : cases) {
+    Bundle bad = good;
+    c.damage(bad);
+    fs::remove_all(dir / "bad");
+    writeBundle(dir / "bad", bad);
+    for (const std::string command : {"inspect ", "export "}) {
+      const test::CliResult r =
+          test::runTessera(command + quoted(dir / "bad") + (command == "export " ? " -o " + quoted(dir / "view") : ""));
+      INFO(command << c.expected << ": " << r.err);
+      REQUIRE(r.status == 2);
+      REQUIRE_THAT(r.err, Contains("corrupt or incomplete bundle") && Contains(c.expected));
+    }
+  }
+}
+
+TEST_CASE("reliability 13: a second writer of a run folder is refused while the first holds it") {
+  test::TempDir dir;
+  finishedRun(dir);
+  // flock(1) holds the folder's lock as a running tessera would.
+  const std::string holder = "(flock " + quoted(dir / "run/.lock") + " sleep 3 &); sleep 0.5;";
+  const test::CliResult r = test::runTessera("run --resume " + quoted(dir / "run") + " --no-plot", holder);
+  INFO(r.err);
+  REQUIRE(r.status == 2);
+  REQUIRE_THAT(r.err, Contains("another tessera process") && Contains("is writing a run there"));
+}
+
+TEST_CASE("reliability 14: messages say what happened") {
+  test::TempDir dir;
+  finishedRun(dir);
+  const test::CliResult noPlot = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "b"));
+  REQUIRE(noPlot.status == 0);
+  REQUIRE_THAT(noPlot.out, Contains("written to") && !Contains("curve.png"));
+  const test::CliResult report = test::runTessera("report " + quoted(dir / "run"));
+  REQUIRE(report.status == 2);
+  REQUIRE_THAT(report.err, Contains("not a sweep folder") && !Contains("Traceback"));
 }
