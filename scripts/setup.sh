@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Tessera needs (only those missing), then configures and builds.
-# Usage: scripts/setup.sh [--with-yade]   (run as root, or with sudo available)
+# Usage: scripts/setup.sh [--with-yade] [--with-sanitizers]   (run as root, or with sudo available)
 #        --with-yade also installs YADE, the peer LS-DEM code of bench/peer_yade.sh (large; not
-#        needed to build, run or test Tessera)
+#        needed to build, run or test Tessera); --with-sanitizers clang and its sanitizer and fuzzer
+#        runtimes (scripts/sanitize.sh)
 # Env:   BUILD_DIR (default: build), BUILD_TYPE (default: Release), JOBS (default: nproc)
 set -euo pipefail
 
@@ -26,9 +27,13 @@ packages=(
   python3-matplotlib python3-numpy              # PNG rendering
   libbenchmark-dev                              # benchmarks (bench/)
 )
-if [ "${1:-}" = "--with-yade" ]; then
-  packages+=(yade python3-h5py python3-numpy)   # bench/peer_yade.sh
-fi
+for option in "$@"; do
+  case "$option" in
+    --with-yade) packages+=(yade python3-h5py python3-numpy) ;;   # bench/peer_yade.sh
+    --with-sanitizers) packages+=(clang libclang-rt-dev) ;;       # scripts/sanitize.sh: ASan, UBSan, libFuzzer
+    *) echo "setup: unknown option $option (use --with-yade, --with-sanitizers)" >&2; exit 2 ;;
+  esac
+done
 
 # VTK for Python, with which the tests read the exports back: Debian's python3-vtk9, unless
 # /usr/bin/python3 already imports vtkmodules (ParaView's own Python counts) or ParaView's Python

@@ -34,8 +34,9 @@ int main(int argc, char** argv) {
   } catch (const tessera::WriteError& e) {
     std::cerr << "tessera: error: " << e.what() << "\n";
     return 2;
-  } catch (const std::filesystem::filesystem_error& e) {  // a folder that cannot be made or listed
-    std::cerr << "tessera: error: " << e.what() << "\n";
+  } catch (const std::filesystem::filesystem_error& e) {  // a path that cannot be made, listed or read
+    std::cerr << "tessera: error: " << (e.path1().empty() ? std::string() : e.path1().string() + ": ") << e.code().message()
+              << "; check the path, or choose another (-o)\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "tessera: internal error: " << e.what() << "\n";
