@@ -40,6 +40,19 @@ hid_t nativeType<std::int32_t>() { return H5T_NATIVE_INT32; }
 template <>
 hid_t nativeType<std::uint8_t>() { return H5T_NATIVE_UINT8; }
 
+// The element count of a dataset, refused when it claims more data than the file can hold: at
+// most the bytes stored times deflate's largest ratio (1032:1, RFC 1951), plus 1 MB of fill
+// values. A damaged file then fails here instead of allocating (and touching) terabytes.
+hsize_t checkedCount(hid_t set, const std::vector<hsize_t>& shape, std::size_t elementBytes, const std::string& name) {
+  double count = 1;
+  for (hsize_t d : shape) count *= static_cast<double>(d);
+  const double stored = static_cast<double>(H5Dget_storage_size(set));
+  if (count * static_cast<double>(elementBytes) > 1032.0 * stored + 1e6)
+    throw std::runtime_error("HDF5: dataset '" + name + "' claims " + std::to_string(static_cast<long long>(count)) +
+                             " elements, more than the file holds");
+  return static_cast<hsize_t>(count);
+}
+
 }  // namespace
 
 Handle& Handle::operator=(Handle&& other) noexcept {
@@ -55,9 +68,15 @@ Handle::~Handle() {
   if (id_ >= 0) H5Idec_ref(id_);
 }
 
+// Files are written in the HDF5 1.8+ format, whose metadata (superblock, object headers, B-trees,
+// heaps) carries checksums: a damaged file is then refused by the library when it is opened or an
+// object read, instead of being parsed (the 1.6 format has no checksums, and a damaged object
+// header could crash the library).
 Handle createFile(const std::string& path) {
   initializeLibrary();
-  return Handle(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create " + path));
+  Handle access(check(H5Pcreate(H5P_FILE_ACCESS), "make file properties"));
+  check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST), "choose the file format");
+  return Handle(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), "create " + path));
 }
 
 Handle openFileReadOnly(const std::string& path) {
@@ -114,6 +133,7 @@ void writeDataset(hid_t parent, const std::string& name, const std::vector<T>& d
       total = chunk[a] * rest;
     }
     check(H5Pset_chunk(properties.get(), static_cast<int>(chunk.size()), chunk.data()), "chunk " + name);
+    check(H5Pset_fletcher32(properties.get()), "checksum " + name);  // a damaged chunk fails to read
     check(H5Pset_deflate(properties.get(), 4), "compress " + name);
   }
   Handle set(check(H5Dcreate2(parent, name.c_str(), nativeType<T>(), space.get(), H5P_DEFAULT, properties.get(),
@@ -130,8 +150,7 @@ std::vector<T> readDataset(hid_t parent, const std::string& name, std::vector<hs
   if (rank < 0) throw std::runtime_error("HDF5: cannot read rank of " + name);
   std::vector<hsize_t> shape(static_cast<std::size_t>(rank));
   H5Sget_simple_extent_dims(space.get(), shape.data(), nullptr);
-  hsize_t count = 1;
-  for (hsize_t d : shape) count *= d;
+  const hsize_t count = checkedCount(set.get(), shape, sizeof(T), name);
   std::vector<T> data(count);
   if (count > 0) check(H5Dread(set.get(), nativeType<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), "read " + name);
   if (dims) *dims = shape;
@@ -198,6 +217,8 @@ std::vector<std::string> readStrings(hid_t parent, const std::string& name) {
   if (H5Sget_simple_extent_ndims(space.get()) != 1) throw std::runtime_error("HDF5: dataset '" + name + "' is not 1-D");
   H5Sget_simple_extent_dims(space.get(), &count, nullptr);
   const std::size_t width = H5Tget_size(type.get());
+  if (width == 0) throw std::runtime_error("HDF5: cannot read the string width of " + name);
+  checkedCount(set.get(), {count}, width, name);
   std::string packed(width * count, '\0');
   if (count > 0) check(H5Dread(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data()), "read " + name);
   std::vector<std::string> values;

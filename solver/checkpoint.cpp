@@ -5,6 +5,7 @@
 #include "levelset/hdf5_file.h"
 #include "solver/curve_table.h"
 
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
@@ -172,6 +173,8 @@ void readWorld(hid_t g, WorldState& w) {
   }
   if (total != keys.size() || springs.size() != total || energy.size() != total || area.size() != total)
     throw std::runtime_error("contact counts do not match the contact records");
+  for (double key : keys)  // stored as doubles: whole numbers that fit a 32-bit key
+    if (!(key >= 0 && key < 4294967296.0 && key == std::floor(key))) throw std::runtime_error("a contact key out of range");
   w.pairs.clear();
   std::size_t next = 0;
   for (std::size_t p = 0; p < a.size(); ++p) {
