@@ -3,10 +3,7 @@
 # bit, as the run left alone. Usage: resume_after_kill.sh TESSERA SOURCE_DIR
 set -euo pipefail
 tessera=$1 source=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-"$tessera" tile --block "$source/assets/blocks/planar_a10_h3.18_5deg.obj" --unit mm --grid 3x3 --pitch 10 \
-  --spacing 1.0 -o "$work/slab" > /dev/null
+source "$(dirname "${BASH_SOURCE[0]}")/small_slab.sh"  # $work/slab
 printf 'bundle = "slab"\n[indenter]\nspeed = 0.005\n[protocol]\ndelta_max = 1.0e-3\n[damping]\nlocal = 0.3\n[solver]\nthreads = 2\n[output]\ncheckpoint_seconds = 0.2\n' > "$work/scene.toml"
 
 "$tessera" run "$work/scene.toml" --no-plot -o "$work/whole" > /dev/null 2>&1

@@ -5,10 +5,7 @@
 # Usage: sweep_interrupt.sh TESSERA SOURCE_DIR
 set -euo pipefail
 tessera=$1 source=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-"$tessera" tile --block "$source/assets/blocks/planar_a10_h3.18_5deg.obj" --unit mm --grid 3x3 --pitch 10 \
-  --spacing 1.0 -o "$work/slab" > /dev/null
+source "$(dirname "${BASH_SOURCE[0]}")/small_slab.sh"  # $work/slab
 printf 'bundle = "slab"\n[indenter]\nspeed = 0.002\n[protocol]\ndelta_max = 0.3e-3\n[output]\ncheckpoint_seconds = 0.2\n' \
   > "$work/scene.toml"
 sweep=("$tessera" sweep "$work/scene.toml" -o "$work/mu" --set mu=0.2,0.3,0.4 --jobs 1 --threads 1)
