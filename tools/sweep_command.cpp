@@ -334,6 +334,11 @@ int runSweep(const SweepArguments& a) {
         a.preset.empty() ? std::vector<std::pair<std::string, double>>{} : findPreset(a.preset).overrides;
     for (std::size_t k = 0; k < axes.size(); ++k) overrides.emplace_back(axes[k].key, v[k]);
     cases.push_back({v, sceneWithOverrides(a.scene, overrides), {}});
+    try {  // every case a valid scene before anything is made
+      readSceneText(cases.back().scene, a.scene);
+    } catch (const InputError& e) {
+      throw InputError("case " + std::to_string(cases.size() - 1) + " of the sweep is not a valid scene: " + e.what());
+    }
   }
 
   const fs::path dir(a.output);
@@ -341,23 +346,14 @@ int runSweep(const SweepArguments& a) {
   const FolderLock lock(a.output, "a sweep");
   nlohmann::json manifest;
   cases = placeCases(dir, keys, cases, a.extend, manifest);
-  // Write (and so validate) every new case's scene before running anything.
-  for (std::size_t c = 0; c < cases.size(); ++c) {
-    const fs::path scene = cases[c].dir / "scene.toml";
-    if (fs::exists(scene)) continue;
-    fs::create_directories(cases[c].dir);
-    writeTextFileSafely(scene, cases[c].scene);
-    try {
-      readScene(scene.string());
-    } catch (const InputError& e) {
-      for (const SweepCase& made : cases)
-        if (!fs::exists(made.dir / "run")) fs::remove_all(made.dir);
-      throw InputError(std::string("case ") + std::to_string(c) + " of the sweep is not a valid scene: " + e.what());
-    }
-  }
+  // The manifest first, then the case scenes: a sweep stopped in between is found again by its values.
   manifest["scene"] = fs::absolute(a.scene).string();
   manifest["preset"] = a.preset;
   writeTextFileSafely(dir / "sweep.json", manifest.dump(2) + "\n");
+  for (const SweepCase& c : cases) {
+    fs::create_directories(c.dir);
+    if (!fs::exists(c.dir / "scene.toml")) writeTextFileSafely(c.dir / "scene.toml", c.scene);
+  }
 
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const int jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, cores / static_cast<unsigned>(a.threads)));
