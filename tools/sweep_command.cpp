@@ -1,5 +1,6 @@
 // tessera sweep: a scene run over a list (or grid) of parameter values, cases in parallel;
 // tessera report: the paper's figures from a sweep.
+#include "geometry/file_digest.h"
 #include "geometry/input_error.h"
 #include "geometry/safe_write.h"
 #include "solver/presets.h"
@@ -136,8 +137,9 @@ struct SweepCase {
 // one set of values for good (sweep.json lists them). Cases of this sweep already in the folder
 // are found by their values and must hold the same scene; new values are refused unless --extend.
 std::vector<SweepCase> placeCases(const fs::path& dir, const std::vector<std::string>& keys, std::vector<SweepCase> cases,
-                                  bool extend, nlohmann::json& manifest) {
-  manifest = {{"keys", keys}, {"cases", nlohmann::json::array()}};
+                                  bool extend, const std::string& baseDigest, nlohmann::json& manifest) {
+  manifest = {{"keys", keys}, {"cases", nlohmann::json::array()}, {"base_digest", baseDigest}};
+  std::string heldBase = baseDigest;  // of the base scene and preset the folder's cases were made from
   const fs::path manifestFile = dir / "sweep.json";
   std::map<std::vector<double>, fs::path> held;
   int nextNumber = 0;
@@ -150,6 +152,7 @@ std::vector<SweepCase> placeCases(const fs::path& dir, const std::vector<std::st
         for (const auto& k : old.at("keys")) oldKeys += (oldKeys.empty() ? "" : ", ") + k.get<std::string>();
         throw InputError(dir.string() + ": holds a sweep over " + oldKeys + "; choose another -o for a sweep over other keys");
       }
+      heldBase = old.value("base_digest", baseDigest);
       for (const auto& c : old.at("cases")) {
         const std::string name = c.at("directory");
         held[c.at("values").get<std::vector<double>>()] = dir / name;
@@ -176,6 +179,9 @@ std::vector<SweepCase> placeCases(const fs::path& dir, const std::vector<std::st
     if (!held.empty() && !extend)
       throw InputError(dir.string() + " holds a sweep of other values (not " + values + "); add --extend to add these "
                        "cases to it, or choose another -o");
+    if (heldBase != baseDigest)
+      throw InputError(dir.string() + " holds a sweep of another base scene or preset; extend it from the same scene and "
+                       "preset, or choose another -o");
     char name[32];
     std::snprintf(name, sizeof name, "case_%03d", nextNumber++);
     c.dir = dir / name;
@@ -345,7 +351,7 @@ int runSweep(const SweepArguments& a) {
   requireWritableDirectory(a.output);
   const FolderLock lock(a.output, "a sweep");
   nlohmann::json manifest;
-  cases = placeCases(dir, keys, cases, a.extend, manifest);
+  cases = placeCases(dir, keys, cases, a.extend, textDigest(readText(a.scene) + "\npreset " + a.preset), manifest);
   // The manifest first, then the case scenes: a sweep stopped in between is found again by its values.
   manifest["scene"] = fs::absolute(a.scene).string();
   manifest["preset"] = a.preset;

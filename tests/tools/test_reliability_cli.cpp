@@ -116,6 +116,9 @@ TEST_CASE("reliability 2: a sweep re-run with other values is refused, not relab
   const test::CliResult otherBase = test::runTessera(sweep + "0.2");
   REQUIRE(otherBase.status == 2);
   REQUIRE_THAT(otherBase.err, Contains("case_000 holds the case material.friction = 0.2 of another base scene"));
+  const test::CliResult otherBaseNewValue = test::runTessera(sweep + "0.9 --extend");
+  REQUIRE(otherBaseNewValue.status == 2);
+  REQUIRE_THAT(otherBaseNewValue.err, Contains("holds a sweep of another base scene or preset"));
 }
 
 TEST_CASE("reliability 5: run refuses a bundle whose bodies overlap, coincident ones included") {
