@@ -100,6 +100,9 @@ void runTile(const TileArguments& a) {
       throw InputError(a.layout + ": the layout states unit '" + layout.unit + "'; drop --unit or make them agree");
     shapes = layout.shapes;
     placements = layout.bodies;
+    if (static_cast<long>(placements.size()) > a.maxBodies)
+      throw InputError(a.layout + ": " + std::to_string(placements.size()) + " bodies, more than --max-bodies " +
+                       std::to_string(a.maxBodies) + "; raise --max-bodies if you mean it (tiling time grows as the square of the count)");
     spanLength = layout.spanLength;
     spanInterfaces = layout.spanInterfaces;
   }

@@ -266,6 +266,8 @@ TEST_CASE("reliability 9: limits are refused with the number and the fix") {
       {tile(dir / "a", "").replace(tile(dir / "a", "").find("3x3"), 3, "1000x1000"), "more than --max-bodies 10000"},
       {tile(dir / "a", "").replace(tile(dir / "a", "").find("3x3"), 3, "99999999999x3"), "more than --max-bodies"},
       {"block wave --unit mm --levels 10000000 -o " + quoted(dir / "w.obj"), "at most 1000 --waves and 10000 --levels"},
+      {"tile --layout " + quoted(TESSERA_ASSETS "/layouts/hex_slab.json") + " --max-bodies 5 -o " + quoted(dir / "h"),
+       "bodies, more than --max-bodies 5"},
   };
   for (const auto& c : cases) {
     const test::CliResult r = test::runTessera(c.arguments);
