@@ -3,6 +3,7 @@
 #include "geometry/input_error.h"
 
 #include <array>
+#include <cstdio>
 #include <utility>
 
 namespace tessera {
@@ -13,6 +14,12 @@ LengthUnit parseLengthUnit(const std::string& name) {
   for (const auto& [unit, metres] : known)
     if (name == unit) return {name, metres};
   throw InputError("unknown length unit '" + name + "': use one of m, cm, mm, um, in, ft");
+}
+
+std::string formatMillimetres(double metres) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g mm", metres * 1e3);
+  return buffer;
 }
 
 }  // namespace tessera

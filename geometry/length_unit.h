@@ -12,4 +12,7 @@ struct LengthUnit {
 /// Parses a unit name; throws InputError listing the accepted names otherwise.
 LengthUnit parseLengthUnit(const std::string& name);
 
+/// A length for messages: metres shown in mm to 4 significant digits ("3.18 mm").
+std::string formatMillimetres(double metres);
+
 }  // namespace tessera

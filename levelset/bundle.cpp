@@ -1,7 +1,6 @@
 #include "levelset/bundle.h"
 
 #include "geometry/input_error.h"
-#include "geometry/safe_write.h"
 #include "levelset/bundle_check.h"
 #include "levelset/hdf5_file.h"
 #include "levelset/signed_distance.h"
@@ -287,19 +286,16 @@ void writeBundle(const std::string& directory, const Bundle& bundle) {
   try {
     fs::create_directories(dir);
     for (const Shape& s : bundle.shapes) writeVdb(s.sdf, (dir / (s.name + ".vdb")).string(), s.name);
-    writeFileSafely(dir / kBundleFileName, [&](const fs::path& temporary) {
-      Handle f = h5::createFile(temporary.string());
-      h5::writeAttribute(f.get(), "format", std::string(kBundleFormatName));
-      h5::writeAttribute(f.get(), "format_version", static_cast<std::int64_t>(kBundleFormatVersion));
-      h5::writeAttribute(f.get(), "generator", bundle.generator.empty() ? generatorVersion() : bundle.generator);
-      h5::writeAttribute(f.get(), "length_unit", std::string("m"));
-      Handle shapes = h5::createGroup(f.get(), "shapes");
+    h5::writeFile(dir / kBundleFileName, [&](hid_t f) {
+      h5::writeAttribute(f, "format", std::string(kBundleFormatName));
+      h5::writeAttribute(f, "format_version", static_cast<std::int64_t>(kBundleFormatVersion));
+      h5::writeAttribute(f, "generator", bundle.generator.empty() ? generatorVersion() : bundle.generator);
+      h5::writeAttribute(f, "length_unit", std::string("m"));
+      Handle shapes = h5::createGroup(f, "shapes");
       for (std::size_t i = 0; i < bundle.shapes.size(); ++i)
         writeShape(shapes.get(), bundle.shapes[i], static_cast<std::int64_t>(i));
-      writeBodies(f.get(), bundle);
-      shapes = Handle();
-      h5::closeFile(f);
-    }, [](const fs::path& temporary) { h5::verifyReadable(temporary.string()); });
+      writeBodies(f, bundle);
+    });
   } catch (...) {
     std::error_code ignored;
     if (created) fs::remove_all(dir, ignored);

@@ -1,5 +1,7 @@
 #include "levelset/hdf5_file.h"
 
+#include "geometry/safe_write.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <mutex>
@@ -84,14 +86,16 @@ Handle openFileReadOnly(const std::string& path) {
   return Handle(check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open " + path + " as HDF5"));
 }
 
-void closeFile(Handle& file) {
-  const hid_t id = file.release();
-  if (id >= 0 && H5Fclose(id) < 0) throw std::runtime_error("HDF5: cannot flush and close the file");
-}
-
-void verifyReadable(const std::string& path) {
-  Handle file = openFileReadOnly(path);
-  closeFile(file);
+void writeFile(const std::filesystem::path& target, const std::function<void(hid_t file)>& write) {
+  writeFileSafely(
+      target,
+      [&](const std::filesystem::path& temporary) {
+        Handle file = createFile(temporary.string());
+        write(file.get());  // the objects it opened are closed when it returns
+        const hid_t id = file.release();  // the handle's destructor would close without checking
+        if (H5Fclose(id) < 0) throw std::runtime_error("HDF5: cannot flush and close the file");
+      },
+      [](const std::filesystem::path& temporary) { openFileReadOnly(temporary.string()); });
 }
 
 Handle createGroup(hid_t parent, const std::string& name) {

@@ -2,6 +2,8 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,11 +36,10 @@ private:
 /// user files turn them into InputError naming the file.
 Handle createFile(const std::string& path);
 Handle openFileReadOnly(const std::string& path);
-/// Flushes and closes a file, throwing if that fails (a full disk shows up here); the handle's
-/// destructor closes silently, so every writer ends with closeFile.
-void closeFile(Handle& file);
-/// Opens and closes an HDF5 file (the library checks its end-of-file address: a truncated file fails).
-void verifyReadable(const std::string& path);
+/// Writes an HDF5 file whole or not at all (writeFileSafely): creates it under a temporary name,
+/// lets `write` fill the open file, closes it checking the flush (a full disk shows up there), and
+/// reopens it (the library checks its end-of-file address) before the rename. Throws WriteError.
+void writeFile(const std::filesystem::path& target, const std::function<void(hid_t file)>& write);
 Handle createGroup(hid_t parent, const std::string& name);
 Handle openGroup(hid_t parent, const std::string& name);
 std::vector<std::string> childNames(hid_t group);

@@ -14,16 +14,6 @@
 
 namespace tessera {
 
-namespace {
-
-std::string formatLength(double metres) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.4g mm", metres * 1e3);
-  return buffer;
-}
-
-}  // namespace
-
 bool isValidShapeName(const std::string& name) {
   if (name.empty() || name.size() > 64 || name.front() == '.') return false;
   for (char c : name)
@@ -76,21 +66,21 @@ void checkResolution(const Eigen::Vector3d& extents, const ShapeResolution& reso
 
   // OpenVDB's linear transform refuses scales whose cube is below its tolerance (1e-15 m^3).
   if (voxel < 1e-5)
-    throw InputError(label + ": voxel size " + formatLength(voxel) + " is below 0.01 mm, the finest the OpenVDB grid "
+    throw InputError(label + ": voxel size " + formatMillimetres(voxel) + " is below 0.01 mm, the finest the OpenVDB grid "
                      "(in metres) holds; coarsen --voxel, or check --unit");
   const double thinnest = extents.minCoeff();
   const double across = thinnest / voxel;
   if (across < 3)
-    throw InputError(label + ": voxel size " + formatLength(voxel) + " is too coarse: the thinnest dimension (" +
-                     formatLength(thinnest) + ") spans " + std::to_string(across).substr(0, 4) +
-                     " voxels, the grid cannot tell inside from outside; use a voxel below " + formatLength(thinnest / 10));
+    throw InputError(label + ": voxel size " + formatMillimetres(voxel) + " is too coarse: the thinnest dimension (" +
+                     formatMillimetres(thinnest) + ") spans " + std::to_string(across).substr(0, 4) +
+                     " voxels, the grid cannot tell inside from outside; use a voxel below " + formatMillimetres(thinnest / 10));
   if (across < 10)
-    log.warnings.push_back("under-resolved: the thinnest dimension (" + formatLength(thinnest) + ") spans only " +
+    log.warnings.push_back("under-resolved: the thinnest dimension (" + formatMillimetres(thinnest) + ") spans only " +
                            std::to_string(across).substr(0, 4) + " voxels; use a voxel below " +
-                           formatLength(thinnest / 10) + " (rule of thumb: 1/10 of the smallest feature)");
+                           formatMillimetres(thinnest / 10) + " (rule of thumb: 1/10 of the smallest feature)");
   if (thinnest / spacing < 2)
-    log.warnings.push_back("coarse nodes: the thinnest dimension (" + formatLength(thinnest) +
-                           ") spans fewer than 2 node spacings; use a spacing below " + formatLength(thinnest / 2));
+    log.warnings.push_back("coarse nodes: the thinnest dimension (" + formatMillimetres(thinnest) +
+                           ") spans fewer than 2 node spacings; use a spacing below " + formatMillimetres(thinnest / 2));
 
 }
 
@@ -110,8 +100,8 @@ Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& 
   const Eigen::Vector3d extents = boundingBox(shape.mesh.vertices).sizes();
   const double largest = extents.maxCoeff();
   if (!limits.anySize && (largest < limits.smallest || largest > limits.largest))
-    throw InputError(label + ": the block is " + formatLength(largest) + " across read as " + source.unit +
-                     ", outside " + formatLength(limits.smallest) + " to " + formatLength(limits.largest) +
+    throw InputError(label + ": the block is " + formatMillimetres(largest) + " across read as " + source.unit +
+                     ", outside " + formatMillimetres(limits.smallest) + " to " + formatMillimetres(limits.largest) +
                      ": check --unit (mesh files carry no unit), or pass --any-size if that size is meant");
   const ShapeResolution resolved = resolution.resolvedFor(extents.minCoeff());
   shape.resolution = resolved;
@@ -121,13 +111,13 @@ Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& 
     char budget[160];
     std::snprintf(budget, sizeof budget, "needs about %.3g GB, above the budget of %.3g GB", estimate.bytes * 1e-9,
                   limits.maxMemoryBytes * 1e-9);
-    throw InputError(label + ": voxel " + formatLength(resolved.voxelSize) + " and spacing " +
-                     formatLength(resolved.nodeSpacing) + " on a block " + formatLength(largest) + " across " + budget +
+    throw InputError(label + ": voxel " + formatMillimetres(resolved.voxelSize) + " and spacing " +
+                     formatMillimetres(resolved.nodeSpacing) + " on a block " + formatMillimetres(largest) + " across " + budget +
                      " (" + estimate.text() + "); coarsen --voxel/--spacing (default: relative to the block), "
                      "check --unit, or raise --max-memory");
   }
   if (log.now)
-    log.now("voxel " + formatLength(resolved.voxelSize) + ", spacing " + formatLength(resolved.nodeSpacing) +
+    log.now("voxel " + formatMillimetres(resolved.voxelSize) + ", spacing " + formatMillimetres(resolved.nodeSpacing) +
             "; estimate: " + estimate.text());
 
   const MeshFeatures features = findFeatures(shape.mesh, resolution.featureAngle);

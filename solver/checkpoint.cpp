@@ -1,7 +1,6 @@
 #include "solver/checkpoint.h"
 
 #include "geometry/input_error.h"
-#include "geometry/safe_write.h"
 #include "levelset/hdf5_file.h"
 #include "solver/curve_table.h"
 
@@ -351,27 +350,23 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
 
 void writeCheckpoint(const std::string& path, const CheckpointSource& source, const WorldState& world,
                      const IndentationState& state, const IndentationRecord& record) {
-  writeFileSafely(fs::path(path), [&](const fs::path& temporary) {
-      Handle f = h5::createFile(temporary.string());
-      h5::writeAttribute(f.get(), "format", std::string(kFormat));
-      h5::writeAttribute(f.get(), "format_version", kVersion);
-      h5::writeAttribute(f.get(), "generator", generatorVersion());
-      h5::writeAttribute(f.get(), "scene", source.scene);
-      h5::writeAttribute(f.get(), "scene_text", source.sceneText);
-      h5::writeAttribute(f.get(), "scene_digest", source.sceneDigest);
-      h5::writeAttribute(f.get(), "preset", source.preset);
-      h5::writeAttribute(f.get(), "bundle", source.bundle);
-      h5::writeAttribute(f.get(), "bundle_relative", source.bundleRelative);
-      h5::writeAttribute(f.get(), "bundle_digest", source.bundleDigest);
-      h5::writeAttribute(f.get(), "threads", std::int64_t{source.threads});
-      Handle w = h5::createGroup(f.get(), "world");
-      writeWorld(w.get(), world);
-      Handle r = h5::createGroup(f.get(), "run");
-      writeRecord(r.get(), state, record);
-      w = Handle();
-      r = Handle();
-      h5::closeFile(f);
-    }, [](const fs::path& temporary) { h5::verifyReadable(temporary.string()); });
+  h5::writeFile(fs::path(path), [&](hid_t f) {
+    h5::writeAttribute(f, "format", std::string(kFormat));
+    h5::writeAttribute(f, "format_version", kVersion);
+    h5::writeAttribute(f, "generator", generatorVersion());
+    h5::writeAttribute(f, "scene", source.scene);
+    h5::writeAttribute(f, "scene_text", source.sceneText);
+    h5::writeAttribute(f, "scene_digest", source.sceneDigest);
+    h5::writeAttribute(f, "preset", source.preset);
+    h5::writeAttribute(f, "bundle", source.bundle);
+    h5::writeAttribute(f, "bundle_relative", source.bundleRelative);
+    h5::writeAttribute(f, "bundle_digest", source.bundleDigest);
+    h5::writeAttribute(f, "threads", std::int64_t{source.threads});
+    Handle w = h5::createGroup(f, "world");
+    writeWorld(w.get(), world);
+    Handle r = h5::createGroup(f, "run");
+    writeRecord(r.get(), state, record);
+  });
 }
 
 CheckpointSource readCheckpointSource(const std::string& path) {

@@ -17,26 +17,25 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bundle, const ContactParameters& contact,
+void writeResultsH5(hid_t f, const Scene& scene, const Bundle& bundle, const ContactParameters& contact,
                     const IndentationRecord& record) {
-  h5::Handle f = h5::createFile(path.string());
-  h5::writeAttribute(f.get(), "format", std::string("tessera-results"));
-  h5::writeAttribute(f.get(), "format_version", std::int64_t{2});
-  h5::writeAttribute(f.get(), "generator", generatorVersion());
-  h5::writeAttribute(f.get(), "scene_file", scene.path);
-  h5::writeAttribute(f.get(), "bundle", scene.bundle);
-  h5::writeAttribute(f.get(), "bundle_generator", bundle.generator);
-  h5::writeAttribute(f.get(), "youngs_modulus", contact.youngsModulus);
-  h5::writeAttribute(f.get(), "normal_stiffness", contact.normalStiffness());
-  h5::writeAttribute(f.get(), "friction", contact.friction);
-  h5::writeAttribute(f.get(), "time_step", record.timeStep);
-  h5::writeAttribute(f.get(), "stop_reason", record.stopReason);
+  h5::writeAttribute(f, "format", std::string("tessera-results"));
+  h5::writeAttribute(f, "format_version", std::int64_t{2});
+  h5::writeAttribute(f, "generator", generatorVersion());
+  h5::writeAttribute(f, "scene_file", scene.path);
+  h5::writeAttribute(f, "bundle", scene.bundle);
+  h5::writeAttribute(f, "bundle_generator", bundle.generator);
+  h5::writeAttribute(f, "youngs_modulus", contact.youngsModulus);
+  h5::writeAttribute(f, "normal_stiffness", contact.normalStiffness());
+  h5::writeAttribute(f, "friction", contact.friction);
+  h5::writeAttribute(f, "time_step", record.timeStep);
+  h5::writeAttribute(f, "stop_reason", record.stopReason);
 
-  h5::writeAttribute(f.get(), "target", record.targetName);
-  h5::writeAttribute(f.get(), "thickness", record.thickness);
-  writeCurve(h5::createGroup(f.get(), "curve").get(), record.curve);
+  h5::writeAttribute(f, "target", record.targetName);
+  h5::writeAttribute(f, "thickness", record.thickness);
+  writeCurve(h5::createGroup(f, "curve").get(), record.curve);
 
-  h5::Handle snaps = h5::createGroup(f.get(), "snapshots");
+  h5::Handle snaps = h5::createGroup(f, "snapshots");
   std::vector<std::string> names;
   for (const Body& b : bundle.bodies) names.push_back(b.name);
   h5::writeStrings(snaps.get(), "body_names", names);
@@ -72,7 +71,7 @@ void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bund
   h5::writeDataset(snaps.get(), "force_point", point, {point.size() / 3, 3});
   h5::writeDataset(snaps.get(), "force", force, {force.size() / 3, 3});
 
-  h5::Handle fallen = h5::createGroup(f.get(), "fallen");
+  h5::Handle fallen = h5::createGroup(f, "fallen");
   std::vector<std::string> fallenNames;
   std::vector<double> fallenDelta;
   std::vector<std::uint8_t> fallenRetired, fallenTouching;
@@ -86,9 +85,6 @@ void writeResultsH5(const fs::path& path, const Scene& scene, const Bundle& bund
   h5::writeDataset(fallen.get(), "delta", fallenDelta, {fallenDelta.size()});
   h5::writeDataset(fallen.get(), "retired", fallenRetired, {fallenRetired.size()});
   h5::writeDataset(fallen.get(), "touching", fallenTouching, {fallenTouching.size()});
-  fallen = h5::Handle();
-  snaps = h5::Handle();
-  h5::closeFile(f);
 }
 
 }  // namespace
@@ -97,22 +93,20 @@ void writeSweepTable(const std::string& path, const std::vector<std::string>& ke
                      const std::vector<std::vector<double>>& values, const std::vector<std::string>& columns,
                      const std::vector<std::vector<double>>& table, const std::vector<std::string>& cases,
                      const std::vector<std::string>& failureModes, const std::vector<std::string>& stopReasons) {
-  writeFileSafely(fs::path(path), [&](const fs::path& p) {
-    h5::Handle f = h5::createFile(p.string());
-    h5::writeAttribute(f.get(), "format", std::string("tessera-sweep"));
-    h5::writeAttribute(f.get(), "generator", generatorVersion());
-    h5::writeStrings(f.get(), "keys", keys);
-    h5::writeStrings(f.get(), "columns", columns);
+  h5::writeFile(fs::path(path), [&](hid_t f) {
+    h5::writeAttribute(f, "format", std::string("tessera-sweep"));
+    h5::writeAttribute(f, "generator", generatorVersion());
+    h5::writeStrings(f, "keys", keys);
+    h5::writeStrings(f, "columns", columns);
     std::vector<double> v, t;
     for (const auto& row : values) v.insert(v.end(), row.begin(), row.end());
     for (const auto& row : table) t.insert(t.end(), row.begin(), row.end());
-    h5::writeDataset(f.get(), "values", v, {values.size(), keys.size()});
-    h5::writeDataset(f.get(), "table", t, {table.size(), columns.size()});
-    h5::writeStrings(f.get(), "case", cases);
-    h5::writeStrings(f.get(), "failure_mode", failureModes);
-    h5::writeStrings(f.get(), "stop_reason", stopReasons);
-    h5::closeFile(f);
-  }, [](const fs::path& p) { h5::verifyReadable(p.string()); });
+    h5::writeDataset(f, "values", v, {values.size(), keys.size()});
+    h5::writeDataset(f, "table", t, {table.size(), columns.size()});
+    h5::writeStrings(f, "case", cases);
+    h5::writeStrings(f, "failure_mode", failureModes);
+    h5::writeStrings(f, "stop_reason", stopReasons);
+  });
 }
 
 void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
@@ -121,8 +115,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   const fs::path dir(directory);
   fs::create_directories(dir / "paraview");
 
-  writeFileSafely(dir / "results.h5", [&](const fs::path& p) { writeResultsH5(p, scene, bundle, contact, record); },
-                  [](const fs::path& p) { h5::verifyReadable(p.string()); });
+  h5::writeFile(dir / "results.h5", [&](hid_t f) { writeResultsH5(f, scene, bundle, contact, record); });
 
   {
     std::string out =

@@ -1,6 +1,7 @@
 #include "tools/assembly_checks.h"
 
 #include "geometry/input_error.h"
+#include "geometry/length_unit.h"
 #include "tools/output_directory.h"
 
 #include <filesystem>
@@ -10,16 +11,6 @@
 #include <iostream>
 
 namespace tessera::tools {
-
-namespace {
-
-std::string mm(double metres) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g mm", metres * 1e3);
-  return buffer;
-}
-
-}  // namespace
 
 void checkBundleOutput(const std::string& directory, bool replace) {
   namespace fs = std::filesystem;
@@ -41,7 +32,7 @@ void refuseOverlaps(const Bundle& bundle, const AssemblyCheck& check, double tol
   if (check.overlaps.empty()) return;
   const BodyPair& worst = check.overlaps.front();
   throw InputError(where + "bodies '" + bundle.bodies[worst.a].name + "' and '" + bundle.bodies[worst.b].name +
-                   "' overlap by " + mm(-worst.separation) + " (tolerance " + mm(tolerance) + "; " +
+                   "' overlap by " + formatMillimetres(-worst.separation) + " (tolerance " + formatMillimetres(tolerance) + "; " +
                    std::to_string(check.overlaps.size()) + " overlapping pair(s) in all); " + fix);
 }
 
@@ -55,7 +46,7 @@ AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<d
   refuseOverlaps(bundle, summary.check, tolerance, "", fix);
   for (int i : summary.check.isolated)
     std::cerr << command << ": warning: body '" << bundle.bodies[i].name << "' touches no other body (nothing within "
-              << mm(touch) << ")\n";
+              << formatMillimetres(touch) << ")\n";
   const double threshold = 0.01 * 0.5 * voxel;
   for (const VerticalLock& l : verticalLocks(bundle, 0.5 * voxel)) {
     ++summary.free;
@@ -76,12 +67,12 @@ void printAssemblySummary(const Bundle& bundle, const AssemblySummary& summary) 
   double deepest = 0.0;
   for (const BodyPair& c : summary.check.contacts) deepest = std::max(deepest, -c.separation);
   std::printf("  contacts      %zu touching pairs, deepest initial overlap %s\n", summary.check.contacts.size(),
-              mm(deepest).c_str());
+              formatMillimetres(deepest).c_str());
   std::printf("  interlocking  %d of %zu free bodies held both up and down by their neighbours\n", summary.locked,
               summary.free);
   if (bundle.spanInterfaces > 0)
     std::printf("  span          L = %s free span, M = %d interfaces across it (k_n = E M / L)\n",
-                mm(bundle.spanLength).c_str(), bundle.spanInterfaces);
+                formatMillimetres(bundle.spanLength).c_str(), bundle.spanInterfaces);
 }
 
 }  // namespace tessera::tools
