@@ -13,8 +13,8 @@
 // Run: build/bench/stability_map OUT.csv [jobs]   (about 20 min on 2 cores; plot with
 // bench/plot_stability_map.py OUT.csv docs/stability_map.png; results: docs/performance.md)
 #include "bench/default_slab.h"
-#include "solver/indentation.h"
-#include "solver/response.h"
+#include "run/indentation.h"
+#include "run/response.h"
 #include "solver/world.h"
 
 #include <atomic>

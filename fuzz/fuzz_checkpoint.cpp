@@ -3,10 +3,10 @@
 // `fuzz_checkpoint --seeds DIR` writes the seeds: DIR/bundle/stack.h5 and DIR/checkpoint/stack.h5.
 #include "fuzz/input_file.h"
 #include "geometry/block_generators.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "levelset/bundle.h"
 #include "levelset/shape_builder.h"
-#include "solver/checkpoint.h"
+#include "run/checkpoint.h"
 #include "solver/world.h"
 
 #include <cstring>

@@ -1,6 +1,6 @@
 // Fuzz target: the layout reader (JSON). Anything but a valid layout must be an InputError.
 #include "fuzz/input_file.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "levelset/layout_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

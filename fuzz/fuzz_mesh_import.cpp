@@ -1,7 +1,7 @@
 // Fuzz target: mesh import and validation (assimp's STL/OBJ readers, then ours). The first byte
 // picks the extension; a bad mesh must be an InputError, never a crash or a hang.
 #include "fuzz/input_file.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/mesh_import.h"
 #include "geometry/mesh_validation.h"
 

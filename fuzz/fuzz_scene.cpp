@@ -1,6 +1,6 @@
 // Fuzz target: the scene reader (TOML). Anything but a valid scene must be an InputError.
-#include "geometry/input_error.h"
-#include "solver/scene.h"
+#include "io/input_error.h"
+#include "run/scene.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
 #include "geometry/block_generators.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 
 #include <cmath>
 #include <functional>

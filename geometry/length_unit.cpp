@@ -1,6 +1,6 @@
 #include "geometry/length_unit.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 
 #include <array>
 #include <cstdio>

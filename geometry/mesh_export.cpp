@@ -1,7 +1,7 @@
 #include "geometry/mesh_export.h"
 
-#include "geometry/input_error.h"
-#include "geometry/safe_write.h"
+#include "io/input_error.h"
+#include "io/safe_write.h"
 
 #include <assimp/Exporter.hpp>
 #include <assimp/scene.h>

@@ -1,6 +1,6 @@
 #include "geometry/mesh_import.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>

@@ -1,6 +1,6 @@
 #include "geometry/mesh_validation.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/mass_properties.h"
 #include "geometry/mesh_topology.h"
 #include "geometry/self_intersection.h"

@@ -1,6 +1,6 @@
 #include "geometry/surface_nodes.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/point_grid.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include "geometry/tessellation.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "geometry/up_axis.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 
 namespace tessera {
 

@@ -1,6 +1,6 @@
 #include "levelset/assembler.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/length_unit.h"
 #include "geometry/mass_properties.h"
 #include "geometry/mesh_import.h"

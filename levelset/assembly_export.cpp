@@ -1,6 +1,6 @@
 #include "levelset/assembly_export.h"
 
-#include "geometry/safe_write.h"
+#include "io/safe_write.h"
 #include "levelset/assembly.h"
 #include "levelset/layout_file.h"
 

@@ -1,8 +1,8 @@
 #include "levelset/bundle.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "levelset/bundle_check.h"
-#include "levelset/hdf5_file.h"
+#include "io/hdf5_file.h"
 #include "levelset/signed_distance.h"
 
 #include <algorithm>

@@ -1,8 +1,8 @@
 #include "levelset/layout_file.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/length_unit.h"
-#include "geometry/safe_write.h"
+#include "io/safe_write.h"
 
 #include <nlohmann/json.hpp>
 

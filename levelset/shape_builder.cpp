@@ -1,6 +1,6 @@
 #include "levelset/shape_builder.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/length_unit.h"
 #include "geometry/mesh_features.h"
 #include "geometry/mesh_import.h"

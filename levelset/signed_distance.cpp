@@ -1,9 +1,9 @@
 // The one translation unit that includes OpenVDB (its headers are heavy to compile).
 #include "levelset/signed_distance.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/point_mesh_distance.h"
-#include "geometry/safe_write.h"
+#include "io/safe_write.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>

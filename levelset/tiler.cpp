@@ -1,6 +1,6 @@
 #include "levelset/tiler.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "levelset/assembly.h"
 
 #include <map>

@@ -1,8 +1,9 @@
 // tessera assemble: part meshes placed in world coordinates (a design tool's export) -> a bundle.
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/length_unit.h"
 #include "levelset/assembler.h"
-#include "tools/assembly_checks.h"
+#include "levelset/assembly_checks.h"
+#include "tools/assembly_report.h"
 #include "tools/commands.h"
 #include "tools/resolution_options.h"
 
@@ -85,7 +86,7 @@ void runAssemble(const AssembleArguments& a) {
 
   const AssemblySummary summary = checkAssemblyBeforeWriting(
       bundle, a.overlapTolerance ? std::optional<double>(*a.overlapTolerance * unit.metres) : std::nullopt, 0.0,
-      "assemble", "check that every part was exported once, in one unit, or raise --overlap-tolerance");
+      "check that every part was exported once, in one unit, or raise --overlap-tolerance");
   writeBundle(a.output, bundle);
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -96,7 +97,7 @@ void runAssemble(const AssembleArguments& a) {
     std::printf("  shape %-20s %2ld bod%s, %s\n", s.name.c_str(), static_cast<long>(users), users == 1 ? "y " : "ies",
                 levelSetPath(s).c_str());
   }
-  printAssemblySummary(bundle, summary);
+  printAssemblySummary(bundle, summary, "assemble");
   std::printf("  span rule     %s\n", report.spanRule.c_str());
   std::printf("written to %s in %.2f s\n", a.output.c_str(), seconds);
 }

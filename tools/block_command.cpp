@@ -1,6 +1,6 @@
 // tessera block: write a parametric block mesh (OBJ or STL).
 #include "geometry/block_generators.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/length_unit.h"
 #include "geometry/mass_properties.h"
 #include "geometry/mesh_export.h"

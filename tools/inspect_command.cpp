@@ -1,5 +1,5 @@
 // tessera inspect: what a bundle holds, and the signed distance of a shape at a point.
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/length_unit.h"
 #include "geometry/point_spacing.h"
 #include "levelset/bundle.h"

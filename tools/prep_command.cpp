@@ -1,5 +1,5 @@
 // tessera prep: mesh file -> validated, measured, solver-ready shape in an asset bundle.
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/length_unit.h"
 #include "levelset/bundle.h"
 #include "levelset/shape_builder.h"

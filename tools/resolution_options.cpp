@@ -1,6 +1,6 @@
 #include "tools/resolution_options.h"
 
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 
 #include <cmath>
 #include <string>

@@ -1,22 +1,10 @@
 // tessera run: the indentation test of a slab, end to end.
-#include "geometry/file_digest.h"
-#include "geometry/input_error.h"
-#include "geometry/safe_write.h"
-#include "levelset/assembly.h"
+#include "io/input_error.h"
 #include "levelset/bundle.h"
-#include "levelset/shape_builder.h"
-#include "solver/checkpoint.h"
-#include "solver/indentation.h"
-#include "solver/load_point.h"
-#include "solver/presets.h"
-#include "solver/response.h"
-#include "solver/run_output.h"
-#include "solver/scene.h"
-#include "solver/world.h"
-#include "tools/assembly_checks.h"
+#include "run/presets.h"
+#include "run/run_session.h"
 #include "tools/commands.h"
-#include "tools/folder_lock.h"
-#include "tools/output_directory.h"
+#include "tools/plot_scripts.h"
 
 #include <atomic>
 #include <csignal>
@@ -49,22 +37,23 @@ struct RunArguments {
   bool noPlot = false;
 };
 
-// Runs Debian's Python on a plotting script of tools/plot; a failure only costs the picture, and
-// the script's own one-line reason is shown.
+// Draws a picture with a plotting script (tools/plot); a failure only costs the picture, and the
+// script's own one-line reason is shown.
 void drawPicture(const std::string& script, const fs::path& out, const std::string& picture) {
-  const fs::path path = fs::path(TESSERA_SOURCE_DIR) / "tools" / "plot" / script;
   const fs::path log = out / (".plot-" + picture + ".log");
-  const std::string command = "/usr/bin/python3 '" + path.string() + "' '" + out.string() + "' >'" + log.string() + "' 2>&1";
-  if (!fs::exists(path)) {
-    std::cerr << "run: note: " << picture << " not drawn (" << path.string() << " is missing)\n";
-  } else if (std::system(command.c_str()) != 0) {
+  std::error_code ignored;
+  fs::remove(log, ignored);
+  if (plotScript(script).empty()) {
+    std::cerr << "run: note: " << picture << " not drawn (" << script << " is not installed beside tessera)\n";
+  } else if (plotPython().empty()) {
+    std::cerr << "run: note: " << picture << " not drawn (no python3; set TESSERA_PYTHON)\n";
+  } else if (runPlotScript(script, {out.string()}, log.string()) != 0) {
     std::ifstream in(log);
     std::string line, last;
     while (std::getline(in, line))
       if (!line.empty()) last = line;
     std::cerr << "run: note: " << picture << " not drawn (" << (last.empty() ? "the plotting script failed" : last) << ")\n";
   }
-  std::error_code ignored;
   fs::remove(log, ignored);
 }
 
@@ -105,172 +94,35 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
   std::printf("written to %s (%s)\n", out.c_str(), files.c_str());
 }
 
-std::string readText(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw InputError(path + ": no such scene file; see assets/scenes/default.toml for an example");
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-std::string bundleFile(const std::string& bundle) {
-  return fs::is_directory(bundle) ? (fs::path(bundle) / kBundleFileName).string() : bundle;
-}
-
-// The scene of a stopped run, exactly as it started: its text from the checkpoint, its bundle
-// found beside the run folder as it was (folders moved together) or where it was. Refuses, naming
-// what changed, a scene file edited since, another bundle, or another preset.
-Scene resumedScene(const std::string& out, const CheckpointSource& source, const RunArguments& a) {
-  const std::string newRun = "start a new run with -o NEW for new values";
-  const std::string fix = "a resumed run continues with exactly what it started with; " + newRun;
-  if (!a.preset.empty() && a.preset != source.preset)
-    throw InputError(out + ": this run started " + (source.preset.empty() ? "without --preset" : "with --preset " + source.preset) +
-                     ", not --preset " + a.preset + "; " + fix);
-  if (fs::is_regular_file(source.scene) && textDigest(readText(source.scene)) != source.sceneDigest)
-    throw InputError(source.scene + ": changed since the run in " + out + " started; restore it to resume, or " + newRun);
-  const fs::path kept = fs::path(out) / "scene.toml";
-  if (!source.preset.empty() && fs::exists(kept) && readText(kept.string()) != source.sceneText)
-    throw InputError(kept.string() + ": changed since the run started; restore it to resume, or " + newRun);
-  Scene scene = readSceneText(source.sceneText, source.preset.empty() ? source.scene : kept.string());
-  const fs::path beside = fs::path(out) / source.bundleRelative;
-  scene.bundle = !a.bundle.empty() ? a.bundle : fs::exists(bundleFile(beside.string())) ? beside.string() : source.bundle;
-  if (!fs::exists(bundleFile(scene.bundle)))
-    throw InputError(out + ": the bundle of this run is gone from " + source.bundle + "; give where it is now with --bundle DIR");
-  if (fileDigest(bundleFile(scene.bundle)) != source.bundleDigest)
-    throw InputError(scene.bundle + ": not the bundle the run in " + out + " started with (re-tiled or edited since); " + fix);
-  scene.solver.threads = source.threads;
-  return scene;
-}
-
 int runTest(const RunArguments& a) {
-  const bool resume = !a.resume.empty();
-  if (resume == !a.scene.empty())
-    throw InputError("give either a SCENE file (with -o OUTDIR) or --resume OUTDIR");
-  const std::string out = resume ? a.resume : a.output;
-  if (!resume && out.empty()) throw InputError("-o OUTDIR is required with a scene");
-  const std::string checkpointFile = (fs::path(out) / "checkpoint.h5").string();
+  if (a.resume.empty() == a.scene.empty()) throw InputError("give either a SCENE file (with -o OUTDIR) or --resume OUTDIR");
+  if (a.resume.empty() && a.output.empty()) throw InputError("-o OUTDIR is required with a scene");
   if (a.threads < -1) throw InputError("--threads must be 0 (all cores) or a positive number, got " + std::to_string(a.threads));
-
-  Scene scene;
-  CheckpointSource source;
-  std::optional<FolderLock> lock;  // one writer per run folder, held to the end
-  if (resume) {
-    if (!fs::is_directory(out)) throw InputError(out + ": no such run folder to resume");
-    lock.emplace(out, "a run");
-    source = readCheckpointSource(checkpointFile);
-    scene = resumedScene(out, source, a);
-    if (a.threads >= 0 && a.threads != source.threads) {
-      std::cerr << "run: note: resuming with " << a.threads << " threads instead of " << source.threads << "\n";
-      scene.solver.threads = a.threads;
-    }
+  const RunLog log = [](const std::string& line) { std::cerr << "run: " << line << "\n"; };
+  std::unique_ptr<RunSession> session;
+  if (a.resume.empty()) {
+    RunRequest request;
+    request.scene = a.scene;
+    request.output = a.output;
+    request.bundle = a.bundle;
+    request.preset = a.preset;
+    request.threads = a.threads;
+    session = RunSession::start(request, log);
   } else {
-    if (fs::exists(checkpointFile))
-      throw InputError(out + ": holds a run already; resume it with --resume " + out + " or choose another -o");
-    const std::string sceneText = readText(a.scene);
-    if (!a.preset.empty()) {
-      // The scene with the preset's keys, kept as OUT/scene.toml with the first results.
-      source.sceneText = "# " + a.scene + " with --preset " + a.preset + "\n" +
-                         sceneWithOverrides(a.scene, findPreset(a.preset).overrides);
-      scene = readSceneText(source.sceneText, (fs::path(out) / "scene.toml").string());
-    } else {
-      source.sceneText = sceneText;
-      scene = readSceneText(sceneText, a.scene);
-    }
-    if (!a.bundle.empty()) scene.bundle = a.bundle;
-    if (a.threads >= 0) scene.solver.threads = a.threads;
-    // Where the results go, checked before any work: writable, and not the bundle itself.
-    if (fs::exists(out) && fs::exists(scene.bundle) && fs::equivalent(out, scene.bundle))
-      throw InputError(out + ": is the bundle's folder; write the results to another -o");
-    requireWritableDirectory(out);
-    source.scene = fs::absolute(a.scene).lexically_normal().string();
-    source.sceneDigest = textDigest(sceneText);
-    source.preset = a.preset;
-    source.bundle = fs::absolute(scene.bundle).lexically_normal().string();
-    source.bundleRelative = fs::path(source.bundle).lexically_relative(fs::absolute(out).lexically_normal()).string();
-    source.bundleDigest = fs::exists(bundleFile(scene.bundle)) ? fileDigest(bundleFile(scene.bundle)) : "";
-    source.threads = scene.solver.threads;
+    session = RunSession::resume(a.resume, a.bundle, a.preset, a.threads, log);
   }
-  Bundle bundle = readBundle(scene.bundle);
-  if (bundle.bodies.empty())
-    throw InputError(scene.bundle + ": the bundle holds no bodies; build a slab with tessera tile");
-  try {
-    chooseLoadPoint(bundle, scene.indenter);  // where it will load: checked before any work
-  } catch (const std::invalid_argument& e) {
-    throw InputError(scene.path + ": " + e.what());
-  }
-  if (scene.resolution.any()) {
-    // Each shape again from its (body-frame) mesh: the body frame, and so every pose, is unchanged.
-    const ResolutionOverride& o = scene.resolution;
-    for (Shape& shape : bundle.shapes) {
-      ShapeResolution r = shape.resolution;
-      if (o.nodeSpacing > 0 || o.nodeSpacingRatio > 0) {
-        r.nodeSpacing = o.nodeSpacing;
-        r.nodeSpacingRatio = o.nodeSpacingRatio;
-      }
-      if (o.voxelSize > 0 || o.voxelRatio > 0) {
-        r.voxelSize = o.voxelSize;
-        r.voxelRatio = o.voxelRatio;
-      }
-      PrepLog log;
-      ShapeLimits limits;
-      limits.anySize = true;  // the bundle's shapes were accepted when they were prepared
-      shape = buildShape(shape.name, shape.mesh, shape.source, r, scene.path, log, limits);
-      for (const auto& w : log.warnings) std::cerr << "run: warning: shape '" << shape.name << "': " << w << "\n";
-    }
-    std::fprintf(stderr, "run: shapes re-prepared at node spacing %.4g mm, voxel %.4g mm\n",
-                 bundle.shapes[0].resolution.nodeSpacing * 1e3, bundle.shapes[0].resolution.voxelSize * 1e3);
-  }
-
-  // The bodies as the bundle places them may not overlap (a bundle edited by hand, or two bodies
-  // placed on one another): the same check as tile and assemble, before any work.
-  {
-    const double tolerance = 0.1 * finestVoxel(bundle);
-    refuseOverlaps(bundle, checkAssembly(bundle, tolerance, 0.5 * finestVoxel(bundle)), tolerance, scene.bundle + ": ",
-                   "rebuild the bundle with tessera tile or assemble");
-  }
-  ContactParameters contact = scene.contact;
-  if (contact.spanLength == 0) contact.spanLength = bundle.spanLength;
-  if (contact.spanInterfaces == 0) contact.spanInterfaces = bundle.spanInterfaces;
-  if (!(contact.spanLength > 0) || contact.spanInterfaces < 1)
-    throw InputError(scene.path + ": the span (M, L) for k_n = E M / L is unknown: the bundle does not define one; "
-                     "set [span] length and interfaces");
-
-  // The World checks what only the bundle and material decide (e.g. a fixed time step against
-  // the stability estimate): a bad scene value, reported as such.
-  const auto makeWorld = [&] {
-    try {
-      return World(bundle, contact, scene.solver);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(scene.path + ": " + e.what());
-    }
-  };
-  World world = makeWorld();
-  IndentationRecord record;
-  IndentationState state;
-  if (!resume) {
-    lock.emplace(out, "a run");  // made here, after every check: a refused run leaves no folder behind
-    if (fs::exists(checkpointFile)) throw InputError(out + ": another run started there meanwhile; choose another -o");
-  }
-  if (resume) {
-    WorldState restored = world.state();
-    readCheckpoint(checkpointFile, restored, state, record);
-    try {
-      world.restore(restored);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(checkpointFile + ": corrupt checkpoint (" + e.what() + "); start the run again from its scene");
-    }
+  const std::string& out = session->output();
+  const World& world = session->world();
+  const ContactParameters& contact = session->contact();
+  if (session->resumed())
     std::fprintf(stderr, "run: resuming %s at t = %.6g s (step %ld)\n", out.c_str(), world.time(), world.stepCount());
-  }
   std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, dt = %.3g s (automatic %.3g s)\n",
-               bundle.bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
+               session->bundle().bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
                world.timeStep(), world.automaticTimeStep());
-  for (const Shape& shape : bundle.shapes)
+  for (const Shape& shape : session->bundle().shapes)
     std::fprintf(stderr, "run: shape '%s': %s\n", shape.name.c_str(),
-                 levelSetPath(shape, scene.solver.exactConvexLevelSets).c_str());
+                 levelSetPath(shape, session->scene().solver.exactConvexLevelSets).c_str());
 
-  int freeBodies = 0;
-  for (const Body& b : bundle.bodies) freeBodies += b.fixed ? 0 : 1;
-  const ResponseSettings analysis{contact.youngsModulus, contact.spanLength, scene.protocol.failureLoadFraction, freeBodies,
-                                  scene.protocol.stiffnessFitRatio, scene.protocol.quasiStaticLimit};
-  const auto response = [&] { return analyseResponse(record, analysis); };
   RunHooks hooks;
   hooks.progress = [](const Progress& p) {
     if (p.settling) {
@@ -284,28 +136,15 @@ int runTest(const RunArguments& a) {
   };
   hooks.interrupted = [] { return stopRequested.load(); };
   hooks.warning = [](const std::string& w) { std::cerr << "run: warning: " << w << "\n"; };
-  hooks.checkpointSeconds = scene.output.checkpointSeconds;
-  const auto keepPresetScene = [&] {
-    if (!source.preset.empty() && !fs::exists(scene.path)) writeTextFileSafely(scene.path, source.sceneText);
-  };
-  hooks.checkpoint = [&](const IndentationState& s) {
-    keepPresetScene();
-    writeCheckpoint(checkpointFile, source, world.state(), s, record);
-    writeRunOutputs(out, scene, bundle, contact, record, response());
-  };
-
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
   std::string failure;
   try {
-    runIndentation(world, bundle, scene, record, state, hooks);
+    session->run(hooks);
   } catch (const SolverInstability& e) {
     failure = e.what();
-    record.stopReason = "instability";
-    record.steps = world.stepCount();
-    keepPresetScene();
-    writeRunOutputs(out, scene, bundle, contact, record, response());  // what was recorded, not the unstable state
   }
+  const IndentationRecord& record = session->record();
   if (!record.settled && record.stopReason != "interrupted")
     std::fprintf(stderr, "run: warning: the slab had not settled after %.3g s (kinetic energy above %.3g J)\n",
                  record.settleTime, record.settleKinetic);
@@ -313,7 +152,7 @@ int runTest(const RunArguments& a) {
     drawPicture("plot_curve.py", out, "curve.png");
     drawPicture("render_snapshots.py", out, "snapshots.png");
   }
-  printSummary(record, response(), scene.protocol.failureLoadFraction, out);
+  printSummary(record, session->response(), session->scene().protocol.failureLoadFraction, out);
   if (!failure.empty()) {
     std::cerr << "tessera: error: the run became unstable and was stopped: " << failure << "\n";
     return 3;

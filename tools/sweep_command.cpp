@@ -1,15 +1,16 @@
 // tessera sweep: a scene run over a list (or grid) of parameter values, cases in parallel;
 // tessera report: the paper's figures from a sweep.
-#include "geometry/file_digest.h"
-#include "geometry/input_error.h"
-#include "geometry/safe_write.h"
-#include "solver/presets.h"
-#include "solver/run_output.h"
-#include "solver/scene.h"
+#include "io/file_digest.h"
+#include "io/input_error.h"
+#include "io/safe_write.h"
+#include "run/presets.h"
+#include "run/run_output.h"
+#include "run/scene.h"
 #include "tools/child_process.h"
 #include "tools/commands.h"
-#include "tools/folder_lock.h"
-#include "tools/output_directory.h"
+#include "tools/plot_scripts.h"
+#include "io/folder_lock.h"
+#include "io/output_directory.h"
 
 #include <nlohmann/json.hpp>
 
@@ -408,11 +409,12 @@ void addSweepCommand(CLI::App& app) {
   rep->callback([report] {
     if (!fs::exists(fs::path(report->first) / "sweep.csv"))
       throw InputError(report->first + ": not a sweep folder (no sweep.csv); give the -o folder of tessera sweep");
-    const fs::path script = fs::path(TESSERA_SOURCE_DIR) / "tools" / "plot" / "report_sweep.py";
-    std::string command = "/usr/bin/python3 '" + script.string() + "' '" + report->first + "'";
-    if (!report->second.empty()) command += " --experiments '" + report->second + "'";
-    if (std::system(command.c_str()) != 0)  // the script printed why
-      throw CLI::RuntimeError(2);
+    std::vector<std::string> arguments{report->first};
+    if (!report->second.empty()) arguments.insert(arguments.end(), {"--experiments", report->second});
+    const int status = runPlotScript("report_sweep.py", arguments, "");
+    if (status == 127)
+      throw InputError("report: report_sweep.py or python3 not found beside tessera; reinstall, or set TESSERA_PYTHON");
+    if (status != 0) throw CLI::RuntimeError(2);  // the script printed why
   });
 }
 

@@ -1,5 +1,5 @@
 // tessera: the command line of the Tessera toolkit. Subcommands live in *_command.cpp.
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "levelset/bundle.h"
 #include "tools/commands.h"
 

@@ -1,10 +1,11 @@
 // tessera tile: blocks + a tessellation (built-in square grid or a layout file) -> a slab bundle.
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/length_unit.h"
-#include "geometry/mesh_import.h"
 #include "levelset/assembly.h"
+#include "levelset/slab_plan.h"
 #include "levelset/tiler.h"
-#include "tools/assembly_checks.h"
+#include "levelset/assembly_checks.h"
+#include "tools/assembly_report.h"
 #include "tools/commands.h"
 #include "tools/resolution_options.h"
 
@@ -57,16 +58,11 @@ void runTile(const TileArguments& a) {
     throw InputError("give either --block MESH (with --grid and --pitch) or --layout FILE");
   checkBundleOutput(a.output, a.replace);
 
-  std::vector<LayoutShape> shapes;
-  std::vector<Placement> placements;
-  std::string unitName;
-  double spanLength = 0;
-  int spanInterfaces = 0;
+  SlabPlan plan;
   if (!a.block.empty()) {
     if (a.unit.empty()) throw InputError(a.block + ": state the mesh's length unit with --unit (mm, cm, m, in)");
     if (!a.pitch) throw InputError("--pitch is required with --block: the centre-to-centre distance, in --unit");
-    unitName = a.unit;
-    const double m = parseLengthUnit(unitName).metres;
+    const double m = parseLengthUnit(a.unit).metres;
     SquareGridOptions grid;
     std::tie(grid.columns, grid.rows) = parseGrid(a.grid, a.maxBodies);
     grid.pitch = *a.pitch * m;
@@ -74,46 +70,22 @@ void runTile(const TileArguments& a) {
     grid.alternate = !a.noAlternate;
     if (a.fix != "perimeter" && a.fix != "none") throw InputError("--fix '" + a.fix + "': use perimeter or none");
     grid.fixPerimeter = a.fix == "perimeter";
-    LayoutShape shape;
-    shape.key = shapeNameFromPath(a.block);
-    shape.mesh = a.block;
-    shapes.push_back(shape);
-    placements = squareGrid(grid, shape.key);
-    // Blocks are laid out (and turned) about the centre of their plan bounding box, wherever the
-    // mesh has its origin: a block with its origin at a corner still gives a centred slab.
-    MeshImportOptions import;
-    import.metresPerUnit = m;
-    const Eigen::AlignedBox3d box = boundingBox(importMesh(a.block, import).mesh.vertices);
-    const Eigen::Vector3d centre(box.center().x(), box.center().y(), 0.0);
-    if (centre.norm() > 1e-9 * box.diagonal().norm()) {
-      for (Placement& p : placements) p.translation -= p.rotation * centre;
-      std::cerr << "tile: note: the block mesh is centred at (" << centre.x() / m << ", " << centre.y() / m << ") "
-                << unitName << " in plan, not at its origin; blocks are placed by that centre\n";
-    }
-    const InterlockingSpan span = squareGridSpan(grid);
-    spanLength = span.length;
-    spanInterfaces = span.interfaces;
+    plan = gridSlabPlan(a.block, a.unit, grid);
   } else {
-    Layout layout = readLayout(a.layout);
-    unitName = layout.unit;
-    if (!a.unit.empty() && a.unit != layout.unit)
-      throw InputError(a.layout + ": the layout states unit '" + layout.unit + "'; drop --unit or make them agree");
-    shapes = layout.shapes;
-    placements = layout.bodies;
-    if (static_cast<long>(placements.size()) > a.maxBodies)
-      throw InputError(a.layout + ": " + std::to_string(placements.size()) + " bodies, more than --max-bodies " +
-                       std::to_string(a.maxBodies) + "; raise --max-bodies if you mean it (tiling time grows as the square of the count)");
-    spanLength = layout.spanLength;
-    spanInterfaces = layout.spanInterfaces;
+    plan = layoutSlabPlan(a.layout, a.maxBodies);
+    if (!a.unit.empty() && a.unit != plan.unit)
+      throw InputError(a.layout + ": the layout states unit '" + plan.unit + "'; drop --unit or make them agree");
   }
+  for (const std::string& note : plan.notes) std::cerr << "tile: note: " << note << "\n";
+  const std::string& unitName = plan.unit;
   const LengthUnit unit = parseLengthUnit(unitName);
   const ShapeResolution resolution = shapeResolution(a.voxel, a.spacing, unit.metres, a.block.empty() ? a.layout : a.block);
 
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "tile: " << m << "\n"; };
-  Bundle bundle = tileAssembly(shapes, placements, unitName, resolution, log, shapeLimits(a.maxMemory, a.anySize));
-  bundle.spanLength = spanLength;
-  bundle.spanInterfaces = spanInterfaces;
+  Bundle bundle = tileAssembly(plan.shapes, plan.placements, unitName, resolution, log, shapeLimits(a.maxMemory, a.anySize));
+  bundle.spanLength = plan.spanLength;
+  bundle.spanInterfaces = plan.spanInterfaces;
 
   for (const auto& note : log.notes) std::cerr << "tile: note: " << note << "\n";
   for (const auto& warning : log.warnings) std::cerr << "tile: warning: " << warning << "\n";
@@ -121,12 +93,12 @@ void runTile(const TileArguments& a) {
   // Check the assembly before anything is written.
   const AssemblySummary summary =
       checkAssemblyBeforeWriting(bundle, a.overlapTolerance ? std::optional<double>(*a.overlapTolerance * unit.metres) : std::nullopt,
-                                 a.gap * unit.metres, "tile", "check --pitch or the layout positions, or add --gap");
+                                 a.gap * unit.metres, "check --pitch or the layout positions, or add --gap");
 
   writeBundle(a.output, bundle);
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  printAssemblySummary(bundle, summary);
+  printAssemblySummary(bundle, summary, "tile");
   std::printf("written to %s in %.2f s\n", a.output.c_str(), seconds);
 }
 

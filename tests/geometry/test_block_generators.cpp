@@ -1,7 +1,7 @@
 // Generated blocks are valid solids with the closed-form volume; the shipped default block
 // is the generator's planar block.
 #include "geometry/block_generators.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/mass_properties.h"
 #include "geometry/mesh_import.h"
 #include "geometry/mesh_validation.h"

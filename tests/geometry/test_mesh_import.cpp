@@ -1,7 +1,7 @@
 // Import: the same mesh as ASCII STL, binary STL and OBJ gives the same mesh; units scale;
 // duplicate vertices are welded; unreadable files are refused with the file name.
 #include "geometry/block_generators.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/mass_properties.h"
 #include "geometry/mesh_export.h"
 #include "geometry/mesh_import.h"

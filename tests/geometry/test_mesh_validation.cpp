@@ -1,7 +1,7 @@
 // Validation: each kind of broken mesh is refused with a message naming the problem;
 // a consistently inverted mesh is repaired.
 #include "geometry/block_generators.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/mass_properties.h"
 #include "geometry/mesh_validation.h"
 #include "tests/fixtures/analytic_meshes.h"

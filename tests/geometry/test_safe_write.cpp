@@ -1,7 +1,7 @@
 // Safe writes (a file is whole or absent) and file digests.
-#include "geometry/file_digest.h"
-#include "geometry/input_error.h"
-#include "geometry/safe_write.h"
+#include "io/file_digest.h"
+#include "io/input_error.h"
+#include "io/safe_write.h"
 #include "tests/fixtures/temp_dir.h"
 
 #include <catch2/catch.hpp>

@@ -1,5 +1,5 @@
 // The built-in square tessellation and its interlocking span.
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/tessellation.h"
 
 #include <catch2/catch.hpp>

@@ -1,7 +1,7 @@
 // Assemblies imported in place (levelset/assembler.h): pieces, the up axis, shared shapes,
 // supports, the span — checked against the same slab built by the tiler.
 #include "geometry/block_generators.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/mesh_export.h"
 #include "geometry/up_axis.h"
 #include "levelset/assembler.h"

@@ -1,7 +1,7 @@
 // Assemblies: poses, the paper's slab (counts, no overlap, interlocking checked with the level
 // sets), overlap detection, and the layout round trip tile -> export -> re-read.
 #include "geometry/block_generators.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/mesh_export.h"
 #include "levelset/assembly.h"
 #include "levelset/assembly_export.h"

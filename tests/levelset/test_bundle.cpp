@@ -1,8 +1,8 @@
 // The asset bundle: round trip, versioning, corrupt files, atomic writes.
 #include "geometry/block_generators.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "levelset/bundle.h"
-#include "levelset/hdf5_file.h"
+#include "io/hdf5_file.h"
 #include "levelset/shape_builder.h"
 #include "tests/fixtures/analytic_meshes.h"
 #include "tests/fixtures/temp_dir.h"

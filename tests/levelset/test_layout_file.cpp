@@ -1,5 +1,5 @@
 // Layout files: what they accept, and every kind of bad layout refused with the file and the reason.
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "levelset/layout_file.h"
 #include "tests/fixtures/temp_dir.h"
 

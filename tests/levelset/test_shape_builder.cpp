@@ -1,6 +1,6 @@
 // Shapes: body frame, resolution checks, and the same shape from any file format or unit.
 #include "geometry/block_generators.h"
-#include "geometry/input_error.h"
+#include "io/input_error.h"
 #include "geometry/mesh_export.h"
 #include "levelset/shape_builder.h"
 #include "tests/fixtures/analytic_meshes.h"

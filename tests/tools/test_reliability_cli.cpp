@@ -1,8 +1,8 @@
 // Reliability (issue: never lose, corrupt or mislabel a result): each test is named after the
 // defect it guards against.
-#include "geometry/file_digest.h"
+#include "io/file_digest.h"
 #include "levelset/bundle.h"
-#include "levelset/hdf5_file.h"
+#include "io/hdf5_file.h"
 #include "tests/fixtures/temp_dir.h"
 #include "tests/tools/cli_runner.h"
 

@@ -1,6 +1,6 @@
 // `tessera run` end to end on a small slab, and bad scenes refused with nothing written.
 #include "levelset/bundle.h"
-#include "levelset/hdf5_file.h"
+#include "io/hdf5_file.h"
 #include "tests/fixtures/temp_dir.h"
 #include "tests/tools/cli_runner.h"
 

@@ -1,0 +1,39 @@
+#include "io/folder_lock.h"
+
+#include "io/input_error.h"
+
+#include <filesystem>
+#include <string>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+
+FolderLock::FolderLock(const std::string& folder, const std::string& what) {
+  fs::create_directories(folder);
+  const fs::path path = fs::path(folder) / ".lock";
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw InputError(folder + ": cannot create its lock file .lock; choose another folder");
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    char holder[32] = {};
+    const ssize_t n = ::pread(fd_, holder, sizeof holder - 1, 0);
+    ::close(fd_);
+    fd_ = -1;
+    throw InputError(folder + ": another tessera process (pid " + std::string(n > 0 ? holder : "?") + ") is writing " + what +
+                     " there; wait for it to end, or stop it (Ctrl-C) first");
+  }
+  const std::string pid = std::to_string(::getpid());
+  if (::ftruncate(fd_, 0) == 0 && ::pwrite(fd_, pid.data(), pid.size(), 0) < 0) {
+    // the pid is only a hint for the message above
+  }
+}
+
+FolderLock::~FolderLock() {
+  if (fd_ >= 0) ::close(fd_);  // releases the lock
+}
+
+}  // namespace tessera

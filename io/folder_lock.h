@@ -1,0 +1,22 @@
+#pragma once
+#include <string>
+
+namespace tessera {
+
+/// An exclusive lock on a folder for one writer (a run, a resume, a sweep): <folder>/.lock, held
+/// with flock(2) for the life of the object. The kernel releases it when the process ends, killed
+/// or not, so a stale lock never needs removing by hand.
+class FolderLock {
+public:
+  /// Creates the folder if needed. Throws InputError naming the folder, and the process holding
+  /// it, when another process holds the lock.
+  FolderLock(const std::string& folder, const std::string& what);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+private:
+  int fd_ = -1;
+};
+
+}  // namespace tessera

@@ -1,0 +1,98 @@
+#include "io/safe_write.h"
+
+#include "io/input_error.h"
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <fstream>
+#include <system_error>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kPrefix = ".tmp-";
+
+// fsync of a file or directory; returns errno, 0 on success.
+int syncPath(const fs::path& path, int flags) {
+  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return errno;
+  const int status = ::fsync(fd) == 0 ? 0 : errno;
+  ::close(fd);
+  return status;
+}
+
+bool diskFull(int error) { return error == ENOSPC || error == EDQUOT || error == EFBIG; }
+
+std::string cause(int error, const std::string& detail) {
+  if (diskFull(error)) return "disk full or over quota (" + std::string(std::strerror(error)) + "); free some space and run again";
+  if (error == EACCES || error == EPERM || error == EROFS)
+    return "not writable (" + std::string(std::strerror(error)) + "); choose another output directory";
+  return detail.empty() ? std::string(std::strerror(error)) : detail;
+}
+
+}  // namespace
+
+void removeStaleTemporaries(const fs::path& directory) {
+  std::error_code error;
+  for (fs::directory_iterator it(directory, error), end; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(kPrefix, 0) != 0) continue;
+    const std::string rest = name.substr(std::strlen(kPrefix));
+    const auto dash = rest.find('-');
+    if (dash == 0 || dash == std::string::npos || rest.find_first_not_of("0123456789") != dash) continue;
+    const long pid = std::stol(rest.substr(0, dash));
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
+
+void writeFileSafely(const fs::path& target, const std::function<void(const fs::path&)>& write,
+                     const std::function<void(const fs::path&)>& verify) {
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  removeStaleTemporaries(dir);
+  const fs::path temporary = dir / (kPrefix + std::to_string(::getpid()) + "-" + target.filename().string());
+  const auto fail = [&](int error, const std::string& detail) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw WriteError(target.string() + ": cannot write: " + cause(error, detail));
+  };
+  errno = 0;
+  try {
+    write(temporary);
+  } catch (const std::exception& e) {
+    fail(errno, e.what());
+  }
+  const int writeError = errno;  // a writer that does not report its errors may still leave the cause here
+  if (verify) {
+    try {
+      verify(temporary);
+    } catch (const std::exception& e) {
+      fail(diskFull(writeError) ? writeError : 0, "the file written does not read back (" + std::string(e.what()) + ")");
+    }
+  }
+  if (const int error = syncPath(temporary, O_RDONLY)) fail(error, "");
+  std::error_code renamed;
+  fs::rename(temporary, target, renamed);
+  if (renamed) fail(renamed.value(), renamed.message());
+  syncPath(dir, O_RDONLY | O_DIRECTORY);  // best effort: some file systems cannot sync a directory
+}
+
+void writeTextFileSafely(const fs::path& target, const std::string& text) {
+  writeFileSafely(target, [&](const fs::path& p) {
+    std::ofstream out(p, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw std::runtime_error("short write");
+  });
+}
+
+}  // namespace tessera

@@ -1,0 +1,60 @@
+#include "levelset/assembly_checks.h"
+
+#include "io/input_error.h"
+#include "geometry/length_unit.h"
+#include "io/output_directory.h"
+
+#include <filesystem>
+
+#include <algorithm>
+
+namespace tessera {
+
+void checkBundleOutput(const std::string& directory, bool replace) {
+  namespace fs = std::filesystem;
+  if (fs::exists(directory) && !fs::is_directory(directory))
+    throw InputError(directory + ": exists and is not a directory; give a bundle directory with -o");
+  if (fs::exists(fs::path(directory) / kBundleFileName) && !replace)
+    throw InputError(directory + ": holds a bundle already; choose another -o or pass --replace");
+  requireWritableDirectory(directory);
+}
+
+double finestVoxel(const Bundle& bundle) {
+  double finest = 1e300;
+  for (const Shape& s : bundle.shapes) finest = std::min(finest, s.sdf.voxelSize);
+  return finest;
+}
+
+void refuseOverlaps(const Bundle& bundle, const AssemblyCheck& check, double tolerance, const std::string& where,
+                    const std::string& fix) {
+  if (check.overlaps.empty()) return;
+  const BodyPair& worst = check.overlaps.front();
+  throw InputError(where + "bodies '" + bundle.bodies[worst.a].name + "' and '" + bundle.bodies[worst.b].name +
+                   "' overlap by " + formatMillimetres(-worst.separation) + " (tolerance " + formatMillimetres(tolerance) + "; " +
+                   std::to_string(check.overlaps.size()) + " overlapping pair(s) in all); " + fix);
+}
+
+AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
+                                           const std::string& fix) {
+  const double voxel = finestVoxel(bundle);
+  const double tolerance = overlapTolerance ? *overlapTolerance : 0.1 * voxel;
+  const double touch = gap + 0.5 * voxel;
+  AssemblySummary summary;
+  summary.check = checkAssembly(bundle, tolerance, touch);
+  refuseOverlaps(bundle, summary.check, tolerance, "", fix);
+  for (int i : summary.check.isolated)
+    summary.warnings.push_back("body '" + bundle.bodies[i].name + "' touches no other body (nothing within " +
+                               formatMillimetres(touch) + ")");
+  const double threshold = 0.01 * 0.5 * voxel;
+  for (const VerticalLock& l : verticalLocks(bundle, 0.5 * voxel)) {
+    ++summary.free;
+    if (l.upDepth > threshold && l.downDepth > threshold) ++summary.locked;
+    else
+      summary.notes.push_back("free body '" + bundle.bodies[l.body].name + "' is not held " +
+                              (l.upDepth > threshold ? "downward" : l.downDepth > threshold ? "upward" : "up or down") +
+                              " by its neighbours");
+  }
+  return summary;
+}
+
+}  // namespace tessera

@@ -1,0 +1,261 @@
+// tessera.Simulation: one indentation test (run/run_session.h) driven from Python. Results are
+// numpy arrays in SI units; quaternions are (w, x, y, z), body to world.
+#include "python/bindings.h"
+
+#include "io/input_error.h"
+#include "run/curve_table.h"
+#include "run/run_session.h"
+
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <iostream>
+
+namespace tessera::python {
+
+namespace py = pybind11;
+
+namespace {
+
+// (n, 3) array of vectors.
+py::array_t<double> vectors(const std::vector<Eigen::Vector3d>& v) {
+  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+  auto m = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (int k = 0; k < 3; ++k) m(i, k) = v[i][k];
+  return a;
+}
+
+py::array_t<double> quaternions(const std::vector<Eigen::Quaterniond>& q) {
+  py::array_t<double> a({static_cast<py::ssize_t>(q.size()), py::ssize_t{4}});
+  auto m = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    m(i, 0) = q[i].w();
+    m(i, 1) = q[i].x();
+    m(i, 2) = q[i].y();
+    m(i, 3) = q[i].z();
+  }
+  return a;
+}
+
+template <class T>
+py::array_t<T> column(const std::vector<T>& v) {
+  py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+// The columns of the curve, named as in results.h5 (run/curve_table.h), each a numpy array.
+py::dict curveOf(const std::vector<CurveSample>& curve) {
+  py::dict d;
+  for (const CurveColumn& c : curveColumns()) {
+    std::vector<double> v;
+    v.reserve(curve.size());
+    for (const CurveSample& s : curve) v.push_back(s.*c.field);
+    d[c.name] = column(v);
+  }
+  return d;
+}
+
+// Lines of the run's preparation go to stderr, as the command line prints them.
+void logLine(const std::string& line) { std::cerr << "tessera: " << line << "\n"; }
+
+// Python's Ctrl-C: the run checks for it between steps and stops as an interrupted run does
+// (its record valid, its checkpoint written); run() then raises KeyboardInterrupt.
+bool pythonInterrupted() {
+  py::gil_scoped_acquire gil;
+  return PyErr_CheckSignals() != 0;
+}
+
+class Simulation {
+public:
+  Simulation(const std::string& scene, const std::string& bundle, const std::string& output, const std::string& preset,
+             int threads, const std::map<std::string, double>& overrides) {
+    RunRequest request;
+    request.scene = scene;
+    request.bundle = bundle;
+    request.output = output;
+    request.preset = preset;
+    request.threads = threads;
+    request.overrides.assign(overrides.begin(), overrides.end());
+    session_ = RunSession::start(request, logLine);
+  }
+  explicit Simulation(std::unique_ptr<RunSession> session) : session_(std::move(session)) {}
+
+  // Runs to the stop. `onSample(sample, control)` after each curve sample; the GIL is released
+  // while the World steps.
+  std::string run(const py::object& onSample, const py::object& onProgress) {
+    RunHooks hooks;
+    if (!onSample.is_none())
+      hooks.sample = [&](const CurveSample& s, IndentationControl& control) {
+        py::gil_scoped_acquire gil;
+        onSample(s, &control);
+      };
+    if (!onProgress.is_none())
+      hooks.progress = [&](const Progress& p) {
+        py::gil_scoped_acquire gil;
+        onProgress(p);
+      };
+    hooks.interrupted = pythonInterrupted;
+    {
+      py::gil_scoped_release release;
+      session_->run(hooks);
+    }
+    if (PyErr_Occurred()) throw py::error_already_set();
+    return session_->record().stopReason;
+  }
+
+  RunSession& session() { return *session_; }
+  const RunSession& session() const { return *session_; }
+
+private:
+  std::unique_ptr<RunSession> session_;
+};
+
+py::dict contactsOf(const World& world) {
+  std::vector<int> a, b, count, sliding;
+  std::vector<double> area, elastic;
+  std::vector<Eigen::Vector3d> force, point;
+  for (const PairContacts& p : world.pairs()) {
+    if (p.contacts.empty()) continue;
+    a.push_back(p.a);
+    b.push_back(p.b);
+    count.push_back(static_cast<int>(p.contacts.size()));
+    sliding.push_back(p.tally.sliding);
+    double sum = 0;
+    for (const NodeContact& c : p.contacts) sum += c.area;
+    area.push_back(sum);
+    elastic.push_back(p.tally.elastic);
+    force.push_back(p.forceA);
+    point.push_back(p.forcePoint);
+  }
+  py::dict d;
+  d["a"] = column(a);
+  d["b"] = column(b);
+  d["force"] = vectors(force);
+  d["point"] = vectors(point);
+  d["node_contacts"] = column(count);
+  d["sliding_nodes"] = column(sliding);
+  d["area"] = column(area);
+  d["elastic"] = column(elastic);
+  return d;
+}
+
+py::dict responseOf(const ResponseParameters& r) {
+  py::dict d;
+  d["peak_load"] = r.peakLoad;
+  d["delta_at_peak"] = r.deltaAtPeak;
+  d["stiffness"] = r.stiffness;
+  d["failure_deflection"] = r.failureDeflection >= 0 ? py::object(py::float_(r.failureDeflection)) : py::object(py::none());
+  d["energy"] = r.energy;
+  d["energy_to_end"] = r.energyToEnd;
+  d["ultimate_deflection"] = r.ultimateDeflection;
+  d["failure_mode"] = r.failureMode;
+  d["quasi_static_ratio"] = r.quasiStaticRatio;
+  d["thickness"] = r.thickness;
+  return d;
+}
+
+}  // namespace
+
+void bindSimulation(py::module_& m) {
+  py::dict units;
+  for (const CurveColumn& c : curveColumns()) units[c.name] = c.unit;
+  m.attr("curve_units") = units;
+  py::class_<CurveSample>(m, "Sample", "One point of the load-deflection record (SI units).")
+      .def_readonly("time", &CurveSample::time, "s since loading began")
+      .def_readonly("delta", &CurveSample::delta, "m, indenter travel since first contact (decreases while unloading)")
+      .def_readonly("load", &CurveSample::load, "N, the bodies' push on the indenter")
+      .def_readonly("block_displacement", &CurveSample::blockDisplacement, "m, downward, of the loaded block")
+      .def_readonly("contacts", &CurveSample::contacts)
+      .def_readonly("kinetic", &CurveSample::kinetic, "J")
+      .def_readonly("external_work", &CurveSample::externalWork, "J, done by the indenter")
+      .def_readonly("elastic", &CurveSample::elastic, "J")
+      .def_readonly("friction", &CurveSample::friction, "J")
+      .def_readonly("residual", &CurveSample::residual, "J, the energy balance's residual");
+
+  py::class_<IndentationControl>(m, "Control", "What a sample callback may change, from the next step on.")
+      .def_readwrite("indenter_speed", &IndentationControl::indenterSpeed,
+                     "m/s, downward; negative lifts the indenter, 0 holds it")
+      .def("stop", [](IndentationControl& c) { c.stop = true; }, "Stop the run after this sample (stop reason 'requested').");
+
+  py::class_<Progress>(m, "Progress")
+      .def_readonly("delta", &Progress::delta)
+      .def_readonly("load", &Progress::load)
+      .def_readonly("steps", &Progress::steps)
+      .def_readonly("eta_seconds", &Progress::etaSeconds)
+      .def_readonly("settling", &Progress::settling);
+
+  py::class_<Simulation>(m, "Simulation",
+                         "One indentation test of a slab: a scene, its bundle, the World, the record.")
+      .def(py::init<const std::string&, const std::string&, const std::string&, const std::string&, int,
+                    const std::map<std::string, double>&>(),
+           py::arg("scene"), py::arg("bundle") = "", py::arg("output") = "", py::arg("preset") = "",
+           py::arg("threads") = -1, py::arg("overrides") = std::map<std::string, double>{},
+           "scene: TOML file (docs/scene.md); bundle: instead of the scene's; output: run folder for the result "
+           "files and checkpoints ('' for none); preset: a named preset; threads: -1 the scene's, 0 all cores; "
+           "overrides: {'material.friction': 0.5, ...} over the scene's keys (SI).")
+      .def_static("resume",
+                  [](const std::string& folder, const std::string& bundle, int threads) {
+                    return Simulation(RunSession::resume(folder, bundle, "", threads, logLine));
+                  },
+                  py::arg("folder"), py::arg("bundle") = "", py::arg("threads") = -1,
+                  "The stopped run in `folder`, from its checkpoint, exactly as it started.")
+      .def("run", &Simulation::run, py::arg("on_sample") = py::none(), py::arg("on_progress") = py::none(),
+           "Settle, then load, to the protocol's stop or until on_sample(sample, control) calls control.stop(). "
+           "Returns the stop reason.")
+      .def("write_outputs", [](const Simulation& s) { s.session().writeOutputs(); },
+           "Write results.h5, curve.csv, summary.json and paraview/ into the run folder.")
+      .def_property_readonly("curve", [](const Simulation& s) { return curveOf(s.session().record().curve); },
+                             "dict of numpy arrays, one per column of results.h5's curve (units: tessera.curve_units)")
+      .def_property_readonly("response", [](const Simulation& s) { return responseOf(s.session().response()); },
+                             "P_max (N), K (N/m), W (J), failure deflection (m) and mode")
+      .def_property_readonly("stop_reason", [](const Simulation& s) { return s.session().record().stopReason; })
+      .def_property_readonly("body_names", [](const Simulation& s) { return s.session().world().bodies().name; })
+      .def_property_readonly("fixed", [](const Simulation& s) {
+        const auto& f = s.session().world().bodies().fixed;
+        return column(std::vector<int>(f.begin(), f.end()));
+      })
+      .def_property_readonly("positions", [](const Simulation& s) { return vectors(s.session().world().bodies().position); },
+                             "(n, 3) centroid positions, m")
+      .def_property_readonly("orientations",
+                             [](const Simulation& s) { return quaternions(s.session().world().bodies().orientation); },
+                             "(n, 4) unit quaternions (w, x, y, z), body to world")
+      .def_property_readonly("velocities", [](const Simulation& s) { return vectors(s.session().world().bodies().velocity); },
+                             "(n, 3) m/s")
+      .def_property_readonly("indenter", [](const Simulation& s) {
+        py::dict d;
+        const int k = s.session().state().sphere;
+        if (k < 0) return d;
+        const SphereObstacle& sphere = const_cast<World&>(s.session().world()).sphere(k);
+        d["centre"] = vectors({sphere.center})[py::int_(0)];
+        d["velocity"] = vectors({sphere.velocity})[py::int_(0)];
+        d["radius"] = sphere.radius;
+        d["reaction"] = vectors({s.session().world().sphereReaction(k)})[py::int_(0)];
+        return d;
+      }, "the indenter: centre (m), velocity (m/s), radius (m), reaction of the bodies on it (N)")
+      .def("contacts", [](const Simulation& s) { return contactsOf(s.session().world()); },
+           "Pairs in contact now: a, b (b < 0: an obstacle, -1 the indenter), force on a (N), point (m), "
+           "node_contacts, sliding_nodes, area (m^2), elastic (J)")
+      .def_property_readonly("energy", [](const Simulation& s) {
+        const EnergyBudget e = s.session().world().energy();
+        py::dict d;
+        d["kinetic"] = e.kinetic;
+        d["elastic"] = e.elastic;
+        d["gravity_work"] = e.gravityWork;
+        d["external_work"] = e.obstacleWork;
+        d["friction"] = e.friction;
+        d["damping"] = e.damping;
+        d["retired_kinetic"] = e.retiredKinetic;
+        d["projection"] = e.projection;
+        d["residual"] = e.residual();
+        return d;
+      }, "the energy budget since the start, J")
+      .def_property_readonly("time", [](const Simulation& s) { return s.session().world().time(); }, "s")
+      .def_property_readonly("steps", [](const Simulation& s) { return s.session().world().stepCount(); })
+      .def_property_readonly("time_step", [](const Simulation& s) { return s.session().world().timeStep(); }, "s")
+      .def_property_readonly("output", [](const Simulation& s) { return s.session().output(); });
+}
+
+}  // namespace tessera::python

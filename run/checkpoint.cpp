@@ -1,0 +1,427 @@
+#include "run/checkpoint.h"
+
+#include "io/input_error.h"
+#include "io/hdf5_file.h"
+#include "run/curve_table.h"
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+using h5::Handle;
+
+namespace {
+
+constexpr const char* kFormat = "tessera-checkpoint";
+constexpr std::int64_t kVersion = 3;
+
+hsize_t count(std::size_t n) { return static_cast<hsize_t>(n); }
+
+void writeVectors(hid_t g, const std::string& name, const std::vector<Eigen::Vector3d>& v) {
+  std::vector<double> flat;
+  for (const auto& x : v) flat.insert(flat.end(), {x.x(), x.y(), x.z()});
+  h5::writeDataset(g, name, flat, {count(v.size()), 3});
+}
+
+std::vector<Eigen::Vector3d> readVectors(hid_t g, const std::string& name) {
+  const auto flat = h5::readDataset<double>(g, name);
+  if (flat.size() % 3 != 0) throw std::runtime_error("'" + name + "' is not a list of 3-vectors");
+  std::vector<Eigen::Vector3d> v(flat.size() / 3);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = Eigen::Vector3d(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+  return v;
+}
+
+void writeQuaternions(hid_t g, const std::string& name, const std::vector<Eigen::Quaterniond>& q) {
+  std::vector<double> flat;
+  for (const auto& x : q) flat.insert(flat.end(), {x.w(), x.x(), x.y(), x.z()});
+  h5::writeDataset(g, name, flat, {count(q.size()), 4});
+}
+
+std::vector<Eigen::Quaterniond> readQuaternions(hid_t g, const std::string& name) {
+  const auto flat = h5::readDataset<double>(g, name);
+  if (flat.size() % 4 != 0) throw std::runtime_error("'" + name + "' is not a list of quaternions");
+  std::vector<Eigen::Quaterniond> q(flat.size() / 4);
+  for (std::size_t i = 0; i < q.size(); ++i) q[i] = Eigen::Quaterniond(flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]);
+  return q;
+}
+
+void writeFlags(hid_t g, const std::string& name, const std::vector<char>& f) {
+  h5::writeDataset(g, name, std::vector<std::uint8_t>(f.begin(), f.end()), {count(f.size())});
+}
+
+std::vector<char> readFlags(hid_t g, const std::string& name) {
+  const auto f = h5::readDataset<std::uint8_t>(g, name);
+  return std::vector<char>(f.begin(), f.end());
+}
+
+void writeDoubles(hid_t g, const std::string& name, const std::vector<double>& v) { h5::writeDataset(g, name, v, {count(v.size())}); }
+
+void writeWorld(hid_t g, const WorldState& w) {
+  writeVectors(g, "position", w.bodies.position);
+  writeQuaternions(g, "orientation", w.bodies.orientation);
+  writeVectors(g, "velocity", w.bodies.velocity);
+  writeVectors(g, "angular_momentum", w.bodies.angularMomentum);
+  writeFlags(g, "fixed", w.bodies.fixed);
+  writeFlags(g, "retired", w.retired);
+  std::vector<Eigen::Vector3d> centre, velocity;
+  std::vector<double> radius, factor;
+  for (const SphereObstacle& s : w.spheres) {
+    centre.push_back(s.center);
+    velocity.push_back(s.velocity);
+    radius.push_back(s.radius);
+    factor.push_back(s.stiffnessFactor);
+  }
+  writeVectors(g, "sphere_centre", centre);
+  writeVectors(g, "sphere_velocity", velocity);
+  writeDoubles(g, "sphere_radius", radius);
+  writeDoubles(g, "sphere_stiffness_factor", factor);
+
+  std::vector<std::int32_t> a, b, n;
+  std::vector<double> keys, energy, area, elastic, depth;
+  std::vector<Eigen::Vector3d> springs, fA, tA, fB, tB;
+  for (const PairContacts& p : w.pairs) {
+    a.push_back(p.a);
+    b.push_back(p.b);
+    n.push_back(static_cast<std::int32_t>(p.contacts.size()));
+    for (const NodeContact& c : p.contacts) {
+      keys.push_back(static_cast<double>(c.key));
+      springs.push_back(c.spring);
+      energy.push_back(c.energy);
+      area.push_back(c.area);
+    }
+    fA.push_back(p.forceA);
+    tA.push_back(p.torqueA);
+    fB.push_back(p.forceB);
+    tB.push_back(p.torqueB);
+    elastic.push_back(p.tally.elastic);
+    depth.push_back(p.maxDepth);
+  }
+  h5::writeDataset(g, "pair_a", a, {count(a.size())});
+  h5::writeDataset(g, "pair_b", b, {count(b.size())});
+  h5::writeDataset(g, "pair_contacts", n, {count(n.size())});
+  writeDoubles(g, "contact_key", keys);
+  writeVectors(g, "contact_spring", springs);
+  writeDoubles(g, "contact_energy", energy);
+  writeDoubles(g, "contact_area", area);
+  writeVectors(g, "pair_force_a", fA);
+  writeVectors(g, "pair_torque_a", tA);
+  writeVectors(g, "pair_force_b", fB);
+  writeVectors(g, "pair_torque_b", tB);
+  writeDoubles(g, "pair_elastic", elastic);
+  writeDoubles(g, "pair_max_depth", depth);
+
+  writeVectors(g, "built_position", w.builtPosition);
+  writeQuaternions(g, "built_orientation", w.builtOrientation);
+  writeVectors(g, "built_sphere_centre", w.builtSphereCentre);
+  writeVectors(g, "force", w.force);
+  writeVectors(g, "torque", w.torque);
+  writeVectors(g, "contact_force", w.contactForce);
+  writeVectors(g, "contact_torque", w.contactTorque);
+  writeVectors(g, "sphere_reaction", w.sphereReaction);
+  writeVectors(g, "damping_force", w.dampingForce);
+  writeVectors(g, "damping_torque", w.dampingTorque);
+  writeVectors(g, "start_position", w.startPosition);
+  h5::writeAttribute(g, "pairs_valid", std::int64_t{w.pairsValid});
+  h5::writeAttribute(g, "forces_valid", std::int64_t{w.forcesValid});
+  h5::writeAttribute(g, "initial_energy", w.initialEnergy);
+  h5::writeAttribute(g, "obstacle_work", w.obstacleWork);
+  h5::writeAttribute(g, "friction_dissipated", w.friction);
+  h5::writeAttribute(g, "damping_dissipated", w.damping);
+  h5::writeAttribute(g, "retired_kinetic", w.retiredKinetic);
+  h5::writeAttribute(g, "projection_energy", w.projection);
+  h5::writeAttribute(g, "most_supplied", w.mostSupplied);
+  h5::writeAttribute(g, "time", w.time);
+  h5::writeAttribute(g, "steps", std::int64_t{w.steps});
+}
+
+void readWorld(hid_t g, WorldState& w) {
+  w.bodies.position = readVectors(g, "position");
+  w.bodies.orientation = readQuaternions(g, "orientation");
+  w.bodies.velocity = readVectors(g, "velocity");
+  w.bodies.angularMomentum = readVectors(g, "angular_momentum");
+  w.bodies.fixed = readFlags(g, "fixed");
+  w.retired = readFlags(g, "retired");
+  const auto centre = readVectors(g, "sphere_centre"), velocity = readVectors(g, "sphere_velocity");
+  const auto radius = h5::readDataset<double>(g, "sphere_radius");
+  const auto factor = h5::readDataset<double>(g, "sphere_stiffness_factor");
+  if (radius.size() != centre.size() || factor.size() != centre.size() || velocity.size() != centre.size())
+    throw std::runtime_error("inconsistent indenter records");
+  w.spheres.clear();
+  for (std::size_t k = 0; k < centre.size(); ++k) w.spheres.push_back({centre[k], radius[k], velocity[k], factor[k]});
+
+  const auto a = h5::readDataset<std::int32_t>(g, "pair_a"), b = h5::readDataset<std::int32_t>(g, "pair_b");
+  const auto n = h5::readDataset<std::int32_t>(g, "pair_contacts");
+  const auto keys = h5::readDataset<double>(g, "contact_key");
+  const auto springs = readVectors(g, "contact_spring");
+  const auto energy = h5::readDataset<double>(g, "contact_energy");
+  const auto area = h5::readDataset<double>(g, "contact_area");
+  const auto fA = readVectors(g, "pair_force_a"), tA = readVectors(g, "pair_torque_a");
+  const auto fB = readVectors(g, "pair_force_b"), tB = readVectors(g, "pair_torque_b");
+  const auto elastic = h5::readDataset<double>(g, "pair_elastic"), depth = h5::readDataset<double>(g, "pair_max_depth");
+  // Every count and index is checked against the arrays before it is used.
+  if (b.size() != a.size() || n.size() != a.size() || fA.size() != a.size() || tA.size() != a.size() ||
+      fB.size() != a.size() || tB.size() != a.size() || elastic.size() != a.size() || depth.size() != a.size())
+    throw std::runtime_error("inconsistent pair records");
+  std::size_t total = 0;
+  for (std::int32_t c : n) {
+    if (c < 0) throw std::runtime_error("a negative contact count");
+    total += static_cast<std::size_t>(c);
+  }
+  if (total != keys.size() || springs.size() != total || energy.size() != total || area.size() != total)
+    throw std::runtime_error("contact counts do not match the contact records");
+  for (double key : keys)  // stored as doubles: whole numbers that fit a 32-bit key
+    if (!(key >= 0 && key < 4294967296.0 && key == std::floor(key))) throw std::runtime_error("a contact key out of range");
+  w.pairs.clear();
+  std::size_t next = 0;
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    PairContacts pair;
+    pair.a = a[p];
+    pair.b = b[p];
+    for (int c = 0; c < n[p]; ++c, ++next)
+      pair.contacts.push_back({static_cast<std::uint32_t>(keys[next]), springs[next], energy[next], area[next]});
+    pair.forceA = fA[p];
+    pair.torqueA = tA[p];
+    pair.forceB = fB[p];
+    pair.torqueB = tB[p];
+    pair.tally.elastic = elastic[p];
+    pair.maxDepth = depth[p];
+    w.pairs.push_back(std::move(pair));
+  }
+  w.builtPosition = readVectors(g, "built_position");
+  w.builtOrientation = readQuaternions(g, "built_orientation");
+  w.builtSphereCentre = readVectors(g, "built_sphere_centre");
+  w.force = readVectors(g, "force");
+  w.torque = readVectors(g, "torque");
+  w.contactForce = readVectors(g, "contact_force");
+  w.contactTorque = readVectors(g, "contact_torque");
+  w.sphereReaction = readVectors(g, "sphere_reaction");
+  w.dampingForce = readVectors(g, "damping_force");
+  w.dampingTorque = readVectors(g, "damping_torque");
+  w.startPosition = readVectors(g, "start_position");
+  w.pairsValid = h5::readIntAttribute(g, "pairs_valid") != 0;
+  w.forcesValid = h5::readIntAttribute(g, "forces_valid") != 0;
+  w.initialEnergy = h5::readDoubleAttribute(g, "initial_energy");
+  w.obstacleWork = h5::readDoubleAttribute(g, "obstacle_work");
+  w.friction = h5::readDoubleAttribute(g, "friction_dissipated");
+  w.damping = h5::readDoubleAttribute(g, "damping_dissipated");
+  w.retiredKinetic = h5::readDoubleAttribute(g, "retired_kinetic");
+  w.projection = h5::readDoubleAttribute(g, "projection_energy");
+  w.mostSupplied = h5::readDoubleAttribute(g, "most_supplied");
+  w.time = h5::readDoubleAttribute(g, "time");
+  w.steps = h5::readIntAttribute(g, "steps");
+}
+
+void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r) {
+  h5::writeAttribute(g, "phase", std::int64_t{s.phase});
+  h5::writeAttribute(g, "sphere", std::int64_t{s.sphere});
+  h5::writeAttribute(g, "load_start", s.loadStart);
+  h5::writeAttribute(g, "contact_travel", s.contactTravel);
+  h5::writeAttribute(g, "peak", s.peak);
+  h5::writeAttribute(g, "next_sample", s.nextSample);
+  h5::writeAttribute(g, "next_snapshot", s.nextSnapshot);
+  h5::writeAttribute(g, "quiet_from", s.quietFrom);
+  h5::writeAttribute(g, "travel_base", s.travelBase);
+  h5::writeAttribute(g, "path_base", s.pathBase);
+  h5::writeAttribute(g, "speed_since", s.speedSince);
+  h5::writeAttribute(g, "contact_path", s.contactPath);
+  writeVectors(g, "settled_position", s.settledPosition);
+  writeDoubles(g, "out_at", s.outAt);
+
+  h5::writeAttribute(g, "settle_time", r.settleTime);
+  h5::writeAttribute(g, "settle_steps", std::int64_t{r.settleSteps});
+  h5::writeAttribute(g, "settled", std::int64_t{r.settled});
+  h5::writeAttribute(g, "sunk_while_settling", std::int64_t{r.sunkWhileSettling});
+  h5::writeAttribute(g, "target", std::int64_t{r.target});
+  h5::writeAttribute(g, "target_name", r.targetName);
+  h5::writeAttribute(g, "thickness", r.thickness);
+  h5::writeAttribute(g, "delta_max", r.deltaMax);
+  h5::writeAttribute(g, "stop_reason", r.stopReason);
+  h5::writeAttribute(g, "steps", std::int64_t{r.steps});
+  h5::writeAttribute(g, "time_step", r.timeStep);
+  h5::writeAttribute(g, "wall_seconds", r.wallSeconds);
+  writeCurve(h5::createGroup(g, "curve").get(), r.curve);
+  std::vector<double> snapshot;
+  std::vector<Eigen::Vector3d> position;
+  std::vector<Eigen::Quaterniond> orientation;
+  for (const Snapshot& s2 : r.snapshots) {
+    snapshot.insert(snapshot.end(), {s2.delta, s2.load});
+    position.insert(position.end(), s2.position.begin(), s2.position.end());
+    orientation.insert(orientation.end(), s2.orientation.begin(), s2.orientation.end());
+  }
+  h5::writeDataset(g, "snapshot", snapshot, {count(r.snapshots.size()), 2});
+  std::vector<std::int32_t> linkCount, linkPair;
+  std::vector<Eigen::Vector3d> linkPoint, linkForce;
+  for (const Snapshot& s2 : r.snapshots) {
+    linkCount.push_back(static_cast<std::int32_t>(s2.forces.size()));
+    for (const ForceLink& l : s2.forces) {
+      linkPair.insert(linkPair.end(), {l.a, l.b});
+      linkPoint.push_back(l.point);
+      linkForce.push_back(l.force);
+    }
+  }
+  h5::writeDataset(g, "snapshot_links", linkCount, {count(linkCount.size())});
+  h5::writeDataset(g, "link_pair", linkPair, {count(linkPoint.size()), 2});
+  writeVectors(g, "link_point", linkPoint);
+  writeVectors(g, "link_force", linkForce);
+  writeVectors(g, "snapshot_position", position);
+  writeQuaternions(g, "snapshot_orientation", orientation);
+  std::vector<std::string> names;
+  std::vector<double> delta;
+  std::vector<char> retired, touching;
+  for (const FallenBody& f : r.fallen) {
+    names.push_back(f.name);
+    delta.push_back(f.delta);
+    retired.push_back(f.retired);
+    touching.push_back(f.touching);
+  }
+  h5::writeStrings(g, "fallen_names", names);
+  writeDoubles(g, "fallen_delta", delta);
+  writeFlags(g, "fallen_retired", retired);
+  writeFlags(g, "fallen_touching", touching);
+}
+
+void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t bodies) {
+  s.phase = static_cast<int>(h5::readIntAttribute(g, "phase"));
+  s.sphere = static_cast<int>(h5::readIntAttribute(g, "sphere"));
+  s.loadStart = h5::readDoubleAttribute(g, "load_start");
+  s.contactTravel = h5::readDoubleAttribute(g, "contact_travel");
+  s.peak = h5::readDoubleAttribute(g, "peak");
+  s.nextSample = h5::readDoubleAttribute(g, "next_sample");
+  s.nextSnapshot = h5::readDoubleAttribute(g, "next_snapshot");
+  s.quietFrom = h5::readDoubleAttribute(g, "quiet_from");
+  // Since the sample hook could change the indenter's velocity; before, the speed never changed.
+  const auto optional = [&](const char* name, double otherwise) {
+    return H5Aexists(g, name) > 0 ? h5::readDoubleAttribute(g, name) : otherwise;
+  };
+  s.travelBase = optional("travel_base", 0.0);
+  s.pathBase = optional("path_base", 0.0);
+  s.speedSince = optional("speed_since", s.loadStart);
+  s.contactPath = optional("contact_path", s.contactTravel);
+  s.settledPosition = readVectors(g, "settled_position");
+  s.outAt = h5::readDataset<double>(g, "out_at");
+  if ((s.phase > 0 && s.settledPosition.size() != bodies) || s.outAt.size() != s.settledPosition.size())
+    throw std::runtime_error("settled positions for a different number of bodies");
+
+  r.settleTime = h5::readDoubleAttribute(g, "settle_time");
+  r.settleSteps = h5::readIntAttribute(g, "settle_steps");
+  r.settled = h5::readIntAttribute(g, "settled") != 0;
+  if (H5Aexists(g, "sunk_while_settling") > 0) r.sunkWhileSettling = static_cast<int>(h5::readIntAttribute(g, "sunk_while_settling"));
+  r.target = static_cast<int>(h5::readIntAttribute(g, "target"));
+  r.targetName = h5::readStringAttribute(g, "target_name");
+  r.thickness = h5::readDoubleAttribute(g, "thickness");
+  r.deltaMax = h5::readDoubleAttribute(g, "delta_max");
+  r.stopReason = h5::readStringAttribute(g, "stop_reason");
+  r.steps = h5::readIntAttribute(g, "steps");
+  r.timeStep = h5::readDoubleAttribute(g, "time_step");
+  r.wallSeconds = h5::readDoubleAttribute(g, "wall_seconds");
+  r.curve = readCurve(h5::openGroup(g, "curve").get());
+  const auto snapshot = h5::readDataset<double>(g, "snapshot");
+  const auto position = readVectors(g, "snapshot_position");
+  const auto orientation = readQuaternions(g, "snapshot_orientation");
+  const auto linkCount = h5::readDataset<std::int32_t>(g, "snapshot_links");
+  const auto linkPair = h5::readDataset<std::int32_t>(g, "link_pair");
+  const auto linkPoint = readVectors(g, "link_point"), linkForce = readVectors(g, "link_force");
+  const std::size_t frames = snapshot.size() / 2;
+  if (snapshot.size() % 2 != 0 || position.size() != frames * bodies || orientation.size() != frames * bodies ||
+      linkCount.size() != frames || linkPair.size() != 2 * linkPoint.size() || linkForce.size() != linkPoint.size())
+    throw std::runtime_error("inconsistent snapshot records");
+  std::size_t links = 0;
+  for (std::int32_t c : linkCount) {
+    if (c < 0) throw std::runtime_error("a negative force-link count");
+    links += static_cast<std::size_t>(c);
+  }
+  if (links != linkPoint.size()) throw std::runtime_error("force-link counts do not match the links");
+  for (std::int32_t body : linkPair)
+    if (body < -64 || body >= static_cast<std::int32_t>(bodies)) throw std::runtime_error("a force link names no body");
+  if (s.phase < 0 || s.phase > 2 || r.target < -1 || r.target >= static_cast<int>(bodies))
+    throw std::runtime_error("protocol state out of range");
+  r.snapshots.clear();
+  std::size_t link = 0;
+  for (std::size_t k = 0; 2 * k + 1 < snapshot.size(); ++k) {
+    Snapshot s2{snapshot[2 * k], snapshot[2 * k + 1],
+                std::vector<Eigen::Vector3d>(position.begin() + k * bodies, position.begin() + (k + 1) * bodies),
+                std::vector<Eigen::Quaterniond>(orientation.begin() + k * bodies, orientation.begin() + (k + 1) * bodies),
+                {}};
+    for (int l = 0; l < linkCount[k]; ++l, ++link)
+      s2.forces.push_back({linkPair[2 * link], linkPair[2 * link + 1], linkPoint[link], linkForce[link]});
+    r.snapshots.push_back(std::move(s2));
+  }
+  const auto names = h5::readStrings(g, "fallen_names");
+  const auto delta = h5::readDataset<double>(g, "fallen_delta");
+  const auto retired = readFlags(g, "fallen_retired"), touching = readFlags(g, "fallen_touching");
+  if (delta.size() != names.size() || retired.size() != names.size() || touching.size() != names.size())
+    throw std::runtime_error("inconsistent fallen records");
+  r.fallen.clear();
+  for (std::size_t i = 0; i < names.size(); ++i) r.fallen.push_back({names[i], delta[i], retired[i] != 0, touching[i] != 0});
+}
+
+}  // namespace
+
+void writeCheckpoint(const std::string& path, const CheckpointSource& source, const WorldState& world,
+                     const IndentationState& state, const IndentationRecord& record) {
+  h5::writeFile(fs::path(path), [&](hid_t f) {
+    h5::writeAttribute(f, "format", std::string(kFormat));
+    h5::writeAttribute(f, "format_version", kVersion);
+    h5::writeAttribute(f, "generator", generatorVersion());
+    h5::writeAttribute(f, "scene", source.scene);
+    h5::writeAttribute(f, "scene_text", source.sceneText);
+    h5::writeAttribute(f, "scene_digest", source.sceneDigest);
+    h5::writeAttribute(f, "preset", source.preset);
+    h5::writeAttribute(f, "bundle", source.bundle);
+    h5::writeAttribute(f, "bundle_relative", source.bundleRelative);
+    h5::writeAttribute(f, "bundle_digest", source.bundleDigest);
+    h5::writeAttribute(f, "threads", std::int64_t{source.threads});
+    Handle w = h5::createGroup(f, "world");
+    writeWorld(w.get(), world);
+    Handle r = h5::createGroup(f, "run");
+    writeRecord(r.get(), state, record);
+  });
+}
+
+CheckpointSource readCheckpointSource(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path + ": no checkpoint to resume from (a run writes checkpoint.h5 into its output directory)");
+  try {
+    Handle f = h5::openFileReadOnly(path);
+    if (h5::readStringAttribute(f.get(), "format") != kFormat) throw InputError(path + ": not a Tessera checkpoint");
+    const auto version = h5::readIntAttribute(f.get(), "format_version");
+    if (version != kVersion)
+      throw InputError(path + ": checkpoint format version " + std::to_string(version) + " is not supported (this " +
+                       generatorVersion() + " reads version " + std::to_string(kVersion) + "; run it again from the scene)");
+    CheckpointSource s;
+    s.scene = h5::readStringAttribute(f.get(), "scene");
+    s.sceneText = h5::readStringAttribute(f.get(), "scene_text");
+    s.sceneDigest = h5::readStringAttribute(f.get(), "scene_digest");
+    s.preset = h5::readStringAttribute(f.get(), "preset");
+    s.bundle = h5::readStringAttribute(f.get(), "bundle");
+    s.bundleRelative = h5::readStringAttribute(f.get(), "bundle_relative");
+    s.bundleDigest = h5::readStringAttribute(f.get(), "bundle_digest");
+    s.threads = static_cast<int>(h5::readIntAttribute(f.get(), "threads"));
+    if (s.threads < 0 || s.threads > 4096) throw std::runtime_error("thread count out of range");
+    return s;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path + ": corrupt checkpoint (" + e.what() + ")");
+  }
+}
+
+void readCheckpoint(const std::string& path, WorldState& world, IndentationState& state, IndentationRecord& record) {
+  try {
+    Handle f = h5::openFileReadOnly(path);
+    Handle w = h5::openGroup(f.get(), "world");
+    const std::size_t bodies = world.bodies.size();
+    readWorld(w.get(), world);
+    if (world.bodies.position.size() != bodies) throw std::runtime_error("it holds a different number of bodies than the bundle");
+    Handle r = h5::openGroup(f.get(), "run");
+    readRecord(r.get(), state, record, bodies);
+    if (state.sphere < -1 || state.sphere >= static_cast<int>(world.spheres.size()) || (state.phase > 0 && state.sphere < 0))
+      throw std::runtime_error("the indenter's index is out of range");
+  } catch (const std::exception& e) {
+    throw InputError(path + ": cannot resume from this checkpoint (" + e.what() + ")");
+  }
+}
+
+}  // namespace tessera

@@ -1,0 +1,285 @@
+#include "run/indentation.h"
+
+#include "run/assembly_state.h"
+#include "run/load_point.h"
+#include "run/protocol_scale.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace tessera {
+
+namespace {
+
+Snapshot snapshotOf(const World& world, double delta, double load) {
+  Snapshot s{delta, load, world.bodies().position, world.bodies().orientation, {}};
+  for (const PairContacts& p : world.pairs())
+    if (!p.contacts.empty()) s.forces.push_back({p.a, p.b, p.forcePoint, p.forceA});
+  return s;
+}
+
+// After settling: choose the target, measure its thickness, place the indenter just above its top.
+void startLoading(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
+                  IndentationState& state) {
+  RigidBodies& bodies = world.bodies();
+  const LoadPoint load = chooseLoadPoint(bundle, scene.indenter);
+  record.target = load.body;
+  const Eigen::Vector2d at = bodies.position[record.target].head<2>() + load.offset;
+  record.targetName = bodies.name[record.target];
+  // h: the settled block's extent along the loading direction (z), from its mesh as posed.
+  double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
+  for (const auto& v : bundle.shapes[bodies.shape[record.target]].mesh.vertices) {
+    const double z = (bodies.orientation[record.target] * v + bodies.position[record.target]).z();
+    top = std::max(top, z);
+    bottom = std::min(bottom, z);
+  }
+  record.thickness = top - bottom;
+  record.deltaMax = scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * record.thickness;
+  SphereObstacle indenter;
+  indenter.radius = scene.indenter.radius > 0 ? scene.indenter.radius : scene.indenter.radiusRatio * record.thickness;
+  indenter.center = Eigen::Vector3d(at.x(), at.y(), top + indenter.radius + scene.indenter.clearance);
+  indenter.velocity = Eigen::Vector3d(0, 0, -indenterSpeed(world, scene.indenter, record.thickness));
+  indenter.stiffnessFactor = scene.indenter.stiffnessFactor;
+  state.sphere = world.addSphere(indenter);
+  state.settledPosition = bodies.position;
+  state.outAt.assign(bodies.size(), -1.0);
+  state.loadStart = world.time();
+  state.speedSince = state.loadStart;
+  state.phase = 1;
+}
+
+// At a sample: who is held, who has fallen (and since when), who has left and is retired.
+// Returns, for each body, whether it is out (listed in record.fallen).
+std::vector<char> updateFallen(World& world, const Scene& scene, IndentationRecord& record, IndentationState& state,
+                               double delta) {
+  const FallenRule rule{scene.protocol.fallenClearance};
+  const std::vector<char> supported = supportedBodies(world), touching = touchingBlocks(world),
+                          pushed = pushedThroughBodies(world, state.settledPosition);
+  const RigidBodies& bodies = world.bodies();
+  std::vector<char> out(bodies.size(), 0);
+  record.fallen.clear();
+  for (int i = 0; i < static_cast<int>(bodies.size()); ++i) {
+    if (world.isSupport(i)) continue;
+    if (world.isRetired(i)) {
+      record.fallen.push_back({bodies.name[i], state.outAt[i], true, false});
+      out[i] = 1;
+      continue;
+    }
+    const bool through = pushed[i];
+    if (supported[i] && !through) state.outAt[i] = -1.0;
+    else if (state.outAt[i] < 0) state.outAt[i] = delta;
+    if (canRetire(world, i, touching, supported, state.settledPosition[i], rule)) {
+      world.retireBody(i);
+      record.fallen.push_back({bodies.name[i], state.outAt[i], true, false});
+      out[i] = 1;
+    } else if (through || hasFallen(world, i, supported, state.settledPosition[i], rule)) {
+      record.fallen.push_back({bodies.name[i], state.outAt[i], false, through});
+      out[i] = 1;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void runIndentation(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
+                    IndentationState& state, const RunHooks& hooks) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const double wallBefore = record.wallSeconds;
+  const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  record.timeStep = world.timeStep();
+  record.settleKinetic = settleThreshold(world, scene.protocol);
+  record.settleMaxTime = settleTimeLimit(world, scene.protocol);
+  const long stepsBefore = world.stepCount();
+  double lastProgress = wall(), lastCheckpoint = wall();
+  // ETA: the steps left at this session's rate. While settling, the loading's steps from the
+  // would-be target's size (settling's own end is not known beforehand).
+  const auto eta = [&](double travelLeft, double speed) {
+    const double rate = (world.stepCount() - stepsBefore) / std::max(wall(), 1e-9);
+    return travelLeft / (speed * world.timeStep()) / std::max(rate, 1e-9);
+  };
+  const auto finishSession = [&] {
+    record.steps = world.stepCount();
+    record.wallSeconds = wallBefore + wall();
+    if (hooks.checkpoint) hooks.checkpoint(state);
+  };
+  const auto checkpointDue = [&] {
+    if (!hooks.checkpoint || world.stepCount() % 100 != 0 || wall() - lastCheckpoint < hooks.checkpointSeconds) return;
+    lastCheckpoint = wall();
+    record.steps = world.stepCount();
+    record.wallSeconds = wallBefore + wall();
+    hooks.checkpoint(state);
+  };
+
+  // 1. Settle under gravity.
+  while (state.phase == 0) {
+    if (hooks.interrupted && hooks.interrupted()) {
+      record.stopReason = "interrupted";
+      return finishSession();
+    }
+    if (world.time() >= record.settleMaxTime) break;
+    world.step();
+    if (world.stepCount() % 100 == 0 && world.stepCount() >= 1000 && world.energy().kinetic < record.settleKinetic) {
+      record.settled = true;
+      break;
+    }
+    if (hooks.progress && wall() - lastProgress >= scene.output.progressSeconds) {
+      lastProgress = wall();
+      const int target = centralFreeBody(bundle);
+      const double h = target >= 0 ? world.bodySize(target) : 0.0;
+      const double travel = scene.indenter.clearance +
+                            (scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * h);
+      const EnergyBudget e = world.energy();
+      hooks.progress({0.0, 0.0, e.kinetic, e.obstacleWork, 0, world.stepCount(),
+                      world.stepCount() / (wallBefore + wall()), eta(travel, indenterSpeed(world, scene.indenter, h)), true});
+    }
+    checkpointDue();
+  }
+  if (state.phase == 0) {
+    record.settleTime = world.time();
+    record.settleSteps = world.stepCount();
+    // An assembly that does not stand under its own weight (supports, friction) is not a test.
+    const RigidBodies& b = world.bodies();
+    const std::vector<Eigen::Vector3d>& built = world.startPositions();
+    for (int i = 0; i < static_cast<int>(b.size()); ++i)
+      if (!b.fixed[i] && built[i].z() - b.position[i].z() > scene.protocol.fallenClearance * world.bodySize(i))
+        ++record.sunkWhileSettling;
+    if (record.sunkWhileSettling > 0 && hooks.warning)
+      hooks.warning(std::to_string(record.sunkWhileSettling) + " free bodies sank by more than " +
+                    std::to_string(scene.protocol.fallenClearance).substr(0, 4) +
+                    " of their size while settling: the assembly does not stand under its own weight with these "
+                    "supports and this friction; check the fixed bodies and material.friction");
+    startLoading(world, bundle, scene, record, state);
+  }
+
+  // 2. Push at constant speed (or as the sample hook steers the indenter).
+  RigidBodies& bodies = world.bodies();
+  const bool steered = state.speedSince != state.loadStart;  // resumed after the hook changed the speed
+  const double speed = steered ? indenterSpeed(world, scene.indenter, record.thickness) : -world.sphere(state.sphere).velocity.z();
+  record.indenterSpeed = speed;
+  record.indenterRadius = world.sphere(state.sphere).radius;
+  const double travelMax = record.deltaMax + scene.indenter.clearance + record.indenterRadius;
+  bool warnedQuasiStatic = false;
+  std::vector<char> out;  // bodies out at the last sample
+  const auto sample = [&](double delta, double load) {
+    out = updateFallen(world, scene, record, state, delta);
+    const EnergyBudget e = world.energy();
+    const ContactCounts c = countContacts(world, record.target);
+    CurveSample s;
+    s.time = world.time() - state.loadStart;
+    s.delta = delta;
+    s.load = load;
+    s.blockDisplacement = state.settledPosition[record.target].z() - bodies.position[record.target].z();
+    s.indenterPenetration = c.indenterDepth;
+    s.contacts = static_cast<double>(c.all);
+    s.blockContacts = static_cast<double>(c.blocks);
+    s.slidingContacts = static_cast<double>(c.blocksSliding);
+    s.loadedContacts = static_cast<double>(c.loaded);
+    s.loadedSliding = static_cast<double>(c.loadedSliding);
+    s.kinetic = e.kinetic;
+    s.externalWork = e.obstacleWork;
+    s.elastic = e.elastic;
+    s.friction = e.friction;
+    s.damping = e.damping;
+    s.gravityWork = e.gravityWork;
+    s.retiredKinetic = e.retiredKinetic;
+    s.projection = e.projection;
+    s.residual = e.residual();
+    record.curve.push_back(s);
+  };
+  while (state.phase == 1) {
+    if (hooks.interrupted && hooks.interrupted()) {
+      record.stopReason = "interrupted";
+      return finishSession();
+    }
+    world.step();
+    // Travel (down) and path since loading began; with the protocol's constant speed both are speed x t.
+    const double velocity = -world.sphere(state.sphere).velocity.z();
+    const double travel = state.travelBase + velocity * (world.time() - state.speedSince);
+    const double path = state.pathBase + std::abs(velocity) * (world.time() - state.speedSince);
+    const double load = world.sphereReaction(state.sphere).z();
+    if (state.contactTravel < 0 && load > 0) {
+      state.contactTravel = travel;
+      state.contactPath = path;
+    }
+    const double delta = state.contactTravel < 0 ? 0.0 : travel - state.contactTravel;
+    const double along = state.contactTravel < 0 ? 0.0 : path - state.contactPath;  // = delta while only going down
+    state.peak = std::max(state.peak, load);
+
+    bool sampled = false, requested = false;
+    if (state.contactTravel >= 0 && along >= state.nextSample) {
+      sample(delta, load);
+      sampled = true;
+      // Quasi-static check while loading up to the peak (past the first 5 % of h of contact).
+      const CurveSample& last = record.curve.back();
+      if (!warnedQuasiStatic && load >= state.peak && delta > 0.05 * record.thickness && last.externalWork > 0 &&
+          last.kinetic > scene.protocol.quasiStaticLimit * last.externalWork) {
+        warnedQuasiStatic = true;
+        if (hooks.warning)
+          hooks.warning("loading too fast: kinetic energy " + std::to_string(last.kinetic / last.externalWork).substr(0, 6) +
+                        " x the indenter's work at delta = " + std::to_string(delta * 1e3).substr(0, 5) +
+                        " mm (limit protocol.quasi_static_limit); lower indenter.speed or indenter.speed_ratio");
+      }
+      state.nextSample += scene.output.sampleEvery;
+      // The load gone: below 1 % of the peak since quietFrom.
+      if (state.peak > 0 && load < 0.01 * state.peak) {
+        if (state.quietFrom < 0) state.quietFrom = along;
+      } else {
+        state.quietFrom = -1;
+      }
+      if (hooks.sample) {
+        IndentationControl control{velocity, false};
+        hooks.sample(record.curve.back(), control);
+        requested = control.stop;
+        if (control.indenterSpeed != velocity) {
+          if (!std::isfinite(control.indenterSpeed))
+            throw std::invalid_argument("the sample hook set a non-finite indenter speed");
+          state.travelBase = travel;
+          state.pathBase = path;
+          state.speedSince = world.time();
+          world.sphere(state.sphere).velocity = Eigen::Vector3d(0, 0, -control.indenterSpeed);
+        }
+      }
+    }
+    if (state.contactTravel >= 0 && along >= state.nextSnapshot) {
+      record.snapshots.push_back(snapshotOf(world, delta, load));
+      state.nextSnapshot += scene.output.snapshotEvery;
+    }
+
+    if (hooks.progress && wall() - lastProgress >= scene.output.progressSeconds) {
+      lastProgress = wall();
+      // Travel left: to first contact (the clearance) and on to delta_max.
+      const double left = state.contactTravel < 0 ? scene.indenter.clearance - travel + record.deltaMax
+                                                  : record.deltaMax - delta;
+      const EnergyBudget e = world.energy();
+      hooks.progress({delta, load, e.kinetic, e.obstacleWork, static_cast<long>(countContacts(world, record.target).all),
+                      world.stepCount(), world.stepCount() / (wallBefore + wall()), eta(std::max(left, 0.0), speed), false});
+    }
+    const bool reachedMax = (state.contactTravel >= 0 && delta >= record.deltaMax) ||
+                            travel > travelMax + record.deltaMax;  // the latter: never touched anything
+    const bool failed = scene.protocol.stopOnFailure && sampled && state.quietFrom >= 0 &&
+                        along - state.quietFrom >= scene.protocol.quietTravel * record.thickness &&
+                        restingBodies(world, out, scene.protocol.restSpeedRatio * speed);
+    if (reachedMax || failed || requested) {
+      record.stopReason = requested ? "requested" : failed ? "failure" : "delta_max";
+      // The state at the stop closes the curve.
+      if (state.contactTravel >= 0 && (record.curve.empty() || record.curve.back().time < world.time() - state.loadStart))
+        sample(delta, load);
+      if (!record.curve.empty() && (record.snapshots.empty() || record.snapshots.back().delta != record.curve.back().delta))
+        record.snapshots.push_back(snapshotOf(world, delta, load));
+      state.phase = 2;
+      break;
+    }
+    checkpointDue();
+  }
+  finishSession();
+}
+
+}  // namespace tessera

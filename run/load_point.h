@@ -1,0 +1,22 @@
+#pragma once
+#include "levelset/bundle.h"
+#include "run/scene.h"
+
+namespace tessera {
+
+/// Where the indenter comes down, decided once from the bundle's poses, before any work (so a
+/// resumed run loads the same body): the body it loads and the plan offset (x, y) from that body's
+/// centroid. indenter.point: the body whose surface is highest on the vertical through it; else
+/// indenter.target (default: centralFreeBody) with indenter.offset. After settling, the indenter
+/// comes down at the body's settled centroid plus the offset. Throws std::invalid_argument for an
+/// unknown or fixed target, a point on no body or on a fixed one, or an offset off the target.
+struct LoadPoint {
+  int body = -1;
+  Eigen::Vector2d offset{0, 0};  ///< m, in plan from the body's centroid
+};
+LoadPoint chooseLoadPoint(const Bundle& bundle, const IndenterSettings& indenter);
+
+/// The free body nearest the bodies' mean centroid in plan (x, y): the default target.
+int centralFreeBody(const Bundle& bundle);
+
+}  // namespace tessera

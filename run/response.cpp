@@ -1,0 +1,122 @@
+#include "run/response.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tessera {
+
+namespace {
+
+ContactState contactStateAt(const CurveSample& s) {
+  return {s.delta, s.blockDisplacement, s.indenterPenetration, s.blockContacts > 0 ? s.slidingContacts / s.blockContacts : 0.0,
+          s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0};
+}
+
+// Trapezoidal area under P(delta) over samples [0, last].
+double areaUpTo(const std::vector<CurveSample>& c, std::size_t last) {
+  double w = 0;
+  for (std::size_t i = 1; i <= last && i < c.size(); ++i) w += 0.5 * (c[i].load + c[i - 1].load) * (c[i].delta - c[i - 1].delta);
+  return w;
+}
+
+// Sudden drops after the peak (slip events): within a travel `window`, the load falls by at least
+// `fraction` of its value where the fall starts, and by at least `floor` x P_max (so that the
+// noise of a near-zero load is not one); one drop per such fall (the search restarts after it).
+std::vector<LoadDrop> loadDrops(const std::vector<CurveSample>& c, std::size_t peak, double fraction, double floor,
+                                double window) {
+  std::vector<LoadDrop> drops;
+  std::size_t from = peak;
+  for (std::size_t i = peak + 1; i < c.size(); ++i) {
+    while (c[i].delta - c[from].delta > window) ++from;
+    std::size_t top = from;
+    for (std::size_t k = from; k <= i; ++k)
+      if (c[k].load > c[top].load) top = k;
+    if (c[top].load - c[i].load < std::max(fraction * c[top].load, floor * c[peak].load)) continue;
+    // Follow the fall to its bottom, then look for the next one from there.
+    while (i + 1 < c.size() && c[i + 1].load < c[i].load) ++i;
+    drops.push_back({c[top].delta, c[top].load, c[i].load});
+    from = i;
+  }
+  return drops;
+}
+
+}  // namespace
+
+ResponseParameters analyseResponse(const IndentationRecord& record, const ResponseSettings& settings) {
+  ResponseParameters r;
+  const auto& c = record.curve;
+  r.thickness = record.thickness;
+  if (c.empty()) {
+    r.failureMode = "no contact";
+    return r;
+  }
+  // Peak.
+  std::size_t peak = 0;
+  for (std::size_t i = 1; i < c.size(); ++i)
+    if (c[i].load > c[peak].load) peak = i;
+  r.peakLoad = c[peak].load;
+  r.deltaAtPeak = c[peak].delta;
+  r.atPeak = contactStateAt(c[peak]);
+
+  // K: least squares P = K delta + b over the fit window.
+  r.fitFrom = 0.0;
+  r.fitTo = std::min(settings.stiffnessFitRatio * record.thickness, 0.5 * r.deltaAtPeak);
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const CurveSample& s : c)
+    if (s.delta >= r.fitFrom && s.delta <= r.fitTo) {
+      n += 1;
+      sx += s.delta;
+      sy += s.load;
+      sxx += s.delta * s.delta;
+      sxy += s.delta * s.load;
+    }
+  if (n >= 2 && n * sxx - sx * sx > 0) r.stiffness = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+
+  // Failure deflection: the load first below the fraction of P_max after the peak.
+  std::size_t failure = c.size() - 1;
+  for (std::size_t i = peak + 1; i < c.size(); ++i)
+    if (c[i].load < settings.failureLoadFraction * r.peakLoad) {
+      failure = i;
+      r.failureDeflection = c[i].delta;
+      break;
+    }
+  r.atFailure = contactStateAt(c[failure]);
+
+  // Ultimate deflection: after the peak, where the load falls below 1 % of the peak for good.
+  std::size_t last = c.size() - 1;
+  for (std::size_t i = c.size(); i-- > peak;)
+    if (c[i].load > 0.01 * r.peakLoad) {
+      last = std::min(i + 1, c.size() - 1);
+      break;
+    }
+  r.ultimateDeflection = c[last].delta;
+
+  r.energy = areaUpTo(c, failure);
+  r.energyToEnd = areaUpTo(c, c.size() - 1);
+  r.drops = loadDrops(c, peak, 0.1, 0.02, 0.05 * record.thickness);
+  r.end = c.back();
+
+  // Quasi-static check before the peak, once the indenter has done 1 % of its work up to the peak
+  // (before that the ratio only measures the settling's leftover motion against almost nothing).
+  for (std::size_t i = 0; i <= peak; ++i)
+    if (c[i].externalWork > 0.01 * c[peak].externalWork)
+      r.quasiStaticRatio = std::max(r.quasiStaticRatio, c[i].kinetic / c[i].externalWork);
+  r.quasiStatic = r.quasiStaticRatio <= settings.quasiStaticLimit;
+
+  // Failure mode from the final state.
+  const int fallen = static_cast<int>(record.fallen.size());
+  const bool loadedOut = std::any_of(record.fallen.begin(), record.fallen.end(),
+                                     [&](const FallenBody& f) { return f.name == record.targetName; });
+  const bool finished = record.stopReason == "delta_max" || record.stopReason == "failure";
+  if (fallen == 0) r.failureMode = finished ? "no failure" : "none yet (run incomplete)";
+  else if (settings.freeBodies > 1 && fallen >= settings.freeBodies) r.failureMode = "collapse";
+  else if (fallen == 1 && loadedOut) r.failureMode = "loaded block out";
+  else r.failureMode = std::to_string(fallen) + (fallen == 1 ? " block out" : " blocks out");
+
+  if (settings.youngsModulus > 0 && settings.spanLength > 0)
+    r.peakLoadNormalised = r.peakLoad / (settings.youngsModulus * settings.spanLength * settings.spanLength);
+  if (r.thickness > 0) r.deltaAtPeakNormalised = r.deltaAtPeak / r.thickness;
+  return r;
+}
+
+}  // namespace tessera

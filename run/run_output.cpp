@@ -1,0 +1,249 @@
+#include "run/run_output.h"
+
+#include "io/safe_write.h"
+#include "levelset/assembly_export.h"
+#include "io/hdf5_file.h"
+#include "run/curve_table.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void writeResultsH5(hid_t f, const Scene& scene, const Bundle& bundle, const ContactParameters& contact,
+                    const IndentationRecord& record) {
+  h5::writeAttribute(f, "format", std::string("tessera-results"));
+  h5::writeAttribute(f, "format_version", std::int64_t{2});
+  h5::writeAttribute(f, "generator", generatorVersion());
+  h5::writeAttribute(f, "scene_file", scene.path);
+  h5::writeAttribute(f, "bundle", scene.bundle);
+  h5::writeAttribute(f, "bundle_generator", bundle.generator);
+  h5::writeAttribute(f, "youngs_modulus", contact.youngsModulus);
+  h5::writeAttribute(f, "normal_stiffness", contact.normalStiffness());
+  h5::writeAttribute(f, "friction", contact.friction);
+  h5::writeAttribute(f, "time_step", record.timeStep);
+  h5::writeAttribute(f, "stop_reason", record.stopReason);
+
+  h5::writeAttribute(f, "target", record.targetName);
+  h5::writeAttribute(f, "thickness", record.thickness);
+  writeCurve(h5::createGroup(f, "curve").get(), record.curve);
+
+  h5::Handle snaps = h5::createGroup(f, "snapshots");
+  std::vector<std::string> names;
+  for (const Body& b : bundle.bodies) names.push_back(b.name);
+  h5::writeStrings(snaps.get(), "body_names", names);
+  std::vector<double> delta, load;
+  for (const Snapshot& s : record.snapshots) {
+    delta.push_back(s.delta);
+    load.push_back(s.load);
+  }
+  h5::writeDataset(snaps.get(), "delta", delta, {delta.size()});
+  h5::writeDataset(snaps.get(), "load", load, {load.size()});
+  std::vector<double> position, orientation;
+  for (const Snapshot& s : record.snapshots)
+    for (std::size_t i = 0; i < s.position.size(); ++i) {
+      position.insert(position.end(), {s.position[i].x(), s.position[i].y(), s.position[i].z()});
+      orientation.insert(orientation.end(), {s.orientation[i].w(), s.orientation[i].x(), s.orientation[i].y(), s.orientation[i].z()});
+    }
+  const hsize_t frames = record.snapshots.size(), bodies = bundle.bodies.size();
+  h5::writeDataset(snaps.get(), "position", position, {frames, bodies, 3});
+  h5::writeDataset(snaps.get(), "orientation", orientation, {frames, bodies, 4});
+  // Force chains: links of snapshot k are rows force_offset[k] .. force_offset[k+1]-1.
+  std::vector<std::int32_t> offset{0}, pair;
+  std::vector<double> point, force;
+  for (const Snapshot& s : record.snapshots) {
+    for (const ForceLink& l : s.forces) {
+      pair.insert(pair.end(), {l.a, l.b});
+      point.insert(point.end(), {l.point.x(), l.point.y(), l.point.z()});
+      force.insert(force.end(), {l.force.x(), l.force.y(), l.force.z()});
+    }
+    offset.push_back(static_cast<std::int32_t>(pair.size() / 2));
+  }
+  h5::writeDataset(snaps.get(), "force_offset", offset, {offset.size()});
+  h5::writeDataset(snaps.get(), "force_pair", pair, {pair.size() / 2, 2});
+  h5::writeDataset(snaps.get(), "force_point", point, {point.size() / 3, 3});
+  h5::writeDataset(snaps.get(), "force", force, {force.size() / 3, 3});
+
+  h5::Handle fallen = h5::createGroup(f, "fallen");
+  std::vector<std::string> fallenNames;
+  std::vector<double> fallenDelta;
+  std::vector<std::uint8_t> fallenRetired, fallenTouching;
+  for (const FallenBody& b : record.fallen) {
+    fallenNames.push_back(b.name);
+    fallenDelta.push_back(b.delta);
+    fallenRetired.push_back(b.retired);
+    fallenTouching.push_back(b.touching);
+  }
+  h5::writeStrings(fallen.get(), "names", fallenNames);
+  h5::writeDataset(fallen.get(), "delta", fallenDelta, {fallenDelta.size()});
+  h5::writeDataset(fallen.get(), "retired", fallenRetired, {fallenRetired.size()});
+  h5::writeDataset(fallen.get(), "touching", fallenTouching, {fallenTouching.size()});
+}
+
+}  // namespace
+
+void writeSweepTable(const std::string& path, const std::vector<std::string>& keys,
+                     const std::vector<std::vector<double>>& values, const std::vector<std::string>& columns,
+                     const std::vector<std::vector<double>>& table, const std::vector<std::string>& cases,
+                     const std::vector<std::string>& failureModes, const std::vector<std::string>& stopReasons) {
+  h5::writeFile(fs::path(path), [&](hid_t f) {
+    h5::writeAttribute(f, "format", std::string("tessera-sweep"));
+    h5::writeAttribute(f, "generator", generatorVersion());
+    h5::writeStrings(f, "keys", keys);
+    h5::writeStrings(f, "columns", columns);
+    std::vector<double> v, t;
+    for (const auto& row : values) v.insert(v.end(), row.begin(), row.end());
+    for (const auto& row : table) t.insert(t.end(), row.begin(), row.end());
+    h5::writeDataset(f, "values", v, {values.size(), keys.size()});
+    h5::writeDataset(f, "table", t, {table.size(), columns.size()});
+    h5::writeStrings(f, "case", cases);
+    h5::writeStrings(f, "failure_mode", failureModes);
+    h5::writeStrings(f, "stop_reason", stopReasons);
+  });
+}
+
+void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
+                     const ContactParameters& contact, const IndentationRecord& record,
+                     const ResponseParameters& response) {
+  const fs::path dir(directory);
+  fs::create_directories(dir / "paraview");
+
+  h5::writeFile(dir / "results.h5", [&](hid_t f) { writeResultsH5(f, scene, bundle, contact, record); });
+
+  {
+    std::string out =
+        "delta_mm,load_N,time_s,kinetic_J,external_work_J,contacts,block_displacement_mm,indenter_penetration_mm,"
+           "sliding_fraction,loaded_sliding_fraction\n";
+    char line[320];
+    for (const CurveSample& s : record.curve) {
+      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g\n", s.delta * 1e3, s.load,
+                    s.time, s.kinetic, s.externalWork, s.contacts, s.blockDisplacement * 1e3, s.indenterPenetration * 1e3,
+                    s.blockContacts > 0 ? s.slidingContacts / s.blockContacts : 0.0,
+                    s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0);
+      out += line;
+    }
+    writeTextFileSafely(dir / "curve.csv", out);
+  }
+
+  nlohmann::json fallen = nlohmann::json::array();
+  for (const FallenBody& b : record.fallen)
+    fallen.push_back({{"name", b.name}, {"delta_mm", b.delta * 1e3}, {"retired", b.retired}, {"touching", b.touching}});
+  nlohmann::json shapes = nlohmann::json::array();
+  for (const Shape& shape : bundle.shapes)
+    shapes.push_back({{"name", shape.name},
+                      {"level_set", levelSetPath(shape, scene.solver.exactConvexLevelSets)},
+                      {"voxel_mm", shape.resolution.voxelSize * 1e3},
+                      {"node_spacing_mm", shape.resolution.nodeSpacing * 1e3},
+                      {"nodes", shape.nodes.size()}});
+  nlohmann::json drops = nlohmann::json::array();
+  for (const LoadDrop& d : response.drops)
+    drops.push_back({{"delta_mm", d.delta * 1e3}, {"load_before_N", d.before}, {"load_after_N", d.after}});
+  const auto contactState = [](const ContactState& c) {
+    return nlohmann::json{{"delta_mm", c.delta * 1e3},
+                          {"block_displacement_mm", c.blockDisplacement * 1e3},
+                          {"indenter_penetration_mm", c.indenterPenetration * 1e3},
+                          {"sliding_fraction", c.slidingFraction},
+                          {"loaded_sliding_fraction", c.loadedSlidingFraction}};
+  };
+  const CurveSample& end = response.end;
+  const bool failed = response.failureDeflection >= 0;
+  const nlohmann::json summary = {
+      {"generator", generatorVersion()},
+      {"scene", scene.path},
+      {"bundle", scene.bundle},
+      {"target", record.targetName},
+      {"stop_reason", record.stopReason.empty() ? std::string("running") : record.stopReason},
+      {"response",
+       {{"peak_load_N", response.peakLoad},
+        {"delta_at_peak_mm", response.deltaAtPeak * 1e3},
+        {"stiffness_N_per_mm", response.stiffness * 1e-3},
+        {"stiffness_fit_window_mm", {response.fitFrom * 1e3, response.fitTo * 1e3}},
+        {"failure_deflection_mm", failed ? nlohmann::json(response.failureDeflection * 1e3) : nlohmann::json(nullptr)},
+        {"failure_load_fraction", scene.protocol.failureLoadFraction},
+        {"block_displacement_at_failure_mm",
+         failed ? nlohmann::json(response.atFailure.blockDisplacement * 1e3) : nlohmann::json(nullptr)},
+        {"loading_energy_mJ", response.energy * 1e3},
+        {"loading_energy_to_end_mJ", response.energyToEnd * 1e3},
+        {"ultimate_deflection_mm", response.ultimateDeflection * 1e3},
+        {"failure_mode", response.failureMode},
+        {"fallen", fallen},
+        {"load_drops", drops},
+        {"at_peak", contactState(response.atPeak)},
+        {"at_failure", failed ? contactState(response.atFailure) : nlohmann::json(nullptr)},
+        {"end", {{"delta_mm", end.delta * 1e3}, {"load_N", end.load}, {"block_displacement_mm", end.blockDisplacement * 1e3}}},
+        {"energy",
+         {{"work_mJ", end.externalWork * 1e3},
+          {"elastic_mJ", end.elastic * 1e3},
+          {"kinetic_mJ", end.kinetic * 1e3},
+          {"friction_mJ", end.friction * 1e3},
+          {"damping_mJ", end.damping * 1e3},
+          {"gravity_mJ", end.gravityWork * 1e3},
+          {"retired_kinetic_mJ", end.retiredKinetic * 1e3},
+          {"projection_mJ", end.projection * 1e3},
+          {"residual_mJ", end.residual * 1e3}}},
+        {"quasi_static_ratio", response.quasiStaticRatio},
+        {"quasi_static", response.quasiStatic},
+        {"peak_load_normalised", response.peakLoadNormalised},
+        {"delta_at_peak_normalised", response.deltaAtPeakNormalised},
+        {"thickness_mm", response.thickness * 1e3},
+        {"delta_max_mm", record.deltaMax * 1e3}}},
+      {"material",
+       {{"youngs_modulus_GPa", contact.youngsModulus * 1e-9},
+        {"friction", contact.friction},
+        {"normal_stiffness_N_per_m3", contact.normalStiffness()},
+        {"tangential_stiffness_N_per_m3", contact.tangentialStiffness()},
+        {"indenter_stiffness_factor", scene.indenter.stiffnessFactor},
+        {"indenter_radius_mm", record.indenterRadius * 1e3},
+        {"indenter_speed_mm_per_s", record.indenterSpeed * 1e3},
+        {"span_length_mm", contact.spanLength * 1e3},
+        {"span_interfaces", contact.spanInterfaces}}},
+      {"shapes", shapes},
+      {"run",
+       {{"time_step_s", record.timeStep},
+        {"steps", record.steps},
+        {"settle_time_s", record.settleTime},
+        {"settle_steps", record.settleSteps},
+        {"settled", record.settled},
+        {"settle_kinetic_J", record.settleKinetic},
+        {"settle_max_time_s", record.settleMaxTime},
+        {"sunk_while_settling", record.sunkWhileSettling},
+        {"wall_seconds", record.wallSeconds},
+        {"samples", record.curve.size()},
+        {"snapshots", record.snapshots.size()}}},
+  };
+  writeTextFileSafely(dir / "summary.json", summary.dump(2) + "\n");
+
+  std::vector<std::string> files;
+  std::vector<double> times;
+  for (std::size_t k = 0; k < record.snapshots.size(); ++k) {
+    const Snapshot& s = record.snapshots[k];
+    char blocks[32], forces[32];
+    std::snprintf(blocks, sizeof blocks, "blocks_%04zu.vtu", k);
+    std::snprintf(forces, sizeof forces, "forces_%04zu.vtu", k);
+    // Frames are final once written (a resumed run writes the same ones): write each once.
+    if (!fs::exists(dir / "paraview" / blocks))
+      writeBlocksVtu(bundle, s.position, s.orientation, (dir / "paraview" / blocks).string());
+    if (!fs::exists(dir / "paraview" / forces)) {
+      std::vector<Eigen::Vector3d> point, force;
+      std::vector<double> magnitude;
+      for (const ForceLink& l : s.forces) {
+        point.push_back(l.point);
+        force.push_back(l.force);
+        magnitude.push_back(l.force.norm());
+      }
+      writePointsVtu((dir / "paraview" / forces).string(), point, {{"force", force}}, {{"magnitude", magnitude}});
+    }
+    files.insert(files.end(), {blocks, forces});
+    times.insert(times.end(), 2, s.delta * 1e3);  // ParaView's "time" axis: delta in mm
+  }
+  writePvd((dir / "paraview" / "slab.pvd").string(), files, times);
+}
+
+}  // namespace tessera

@@ -1,0 +1,250 @@
+// The scene-file parser: fills the plain settings structs, refuses anything it does not know.
+#include "run/scene.h"
+
+#include "io/input_error.h"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// One table of the scene: each key read once, with its range; leftovers are unknown keys.
+class Table {
+public:
+  Table(const std::string& file, const std::string& name, const toml::table* table)
+      : file_(file), name_(name), table_(table) {}
+
+  void number(const std::string& key, double& value, double lo, double hi, const std::string& unit) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    const std::optional<double> v = node->value<double>();
+    if (!v) fail(key, "must be a number" + suffix(unit));
+    if (!std::isfinite(*v)) fail(key, "must be a finite number" + suffix(unit) + ", got " + (std::isnan(*v) ? "nan" : "inf"));
+    if (*v < lo || *v > hi) {
+      std::ostringstream range;
+      range << "must be in [" << lo << ", " << hi << "]" << suffix(unit) << ", got " << *v;
+      fail(key, range.str());
+    }
+    value = *v;
+  }
+
+  void integer(const std::string& key, int& value, int lo, int hi) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    const std::optional<std::int64_t> v = node->value<std::int64_t>();
+    if (!v || !node->is_integer() || *v < lo || *v > hi)
+      fail(key, "must be a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    value = static_cast<int>(*v);
+  }
+
+  void boolean(const std::string& key, bool& value) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    if (!node->is_boolean()) fail(key, "must be true or false");
+    value = *node->value<bool>();
+  }
+
+  void text(const std::string& key, std::string& value) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    if (!node->is_string()) fail(key, "must be a string");
+    value = *node->value<std::string>();
+  }
+
+  template <int N>
+  bool vector(const std::string& key, Eigen::Matrix<double, N, 1>& value, const std::string& unit) {
+    const toml::node* node = find(key);
+    if (!node) return false;
+    const std::string what = "must be an array of " + std::to_string(N) + " numbers" + suffix(unit);
+    const toml::array* a = node->as_array();
+    if (!a || a->size() != N) fail(key, what);
+    for (int k = 0; k < N; ++k) {
+      const std::optional<double> v = (*a)[k].value<double>();
+      if (!v || !std::isfinite(*v)) fail(key, what + (v ? " (finite)" : ""));
+      value[k] = *v;
+    }
+    return true;
+  }
+
+  /// Every key of the table must have been read.
+  void finish() const {
+    if (!table_) return;
+    for (const auto& [key, node] : *table_)
+      if (!read_.count(std::string(key.str())))
+        throw InputError(file_ + ": unknown key '" + where(std::string(key.str())) +
+                         "'; see docs/scene.md for the keys of [" + name_ + "]");
+  }
+
+private:
+  const toml::node* find(const std::string& key) {
+    read_[key] = true;
+    return table_ ? table_->get(key) : nullptr;
+  }
+  std::string where(const std::string& key) const { return name_.empty() ? key : name_ + "." + key; }
+  static std::string suffix(const std::string& unit) { return unit.empty() ? "" : " (" + unit + ")"; }
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw InputError(file_ + ": " + where(key) + " " + problem);
+  }
+
+  std::string file_, name_;
+  const toml::table* table_;
+  std::map<std::string, bool> read_;
+};
+
+}  // namespace
+
+Scene readScene(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path + ": no such scene file; see assets/scenes/default.toml for an example");
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in && !in.eof()) throw InputError(path + ": cannot read the scene file");
+  return readSceneText(text, path);
+}
+
+Scene readSceneText(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << e.source().begin;
+    throw InputError(path + ": not valid TOML (" + std::string(e.description()) + " at " + where.str() + ")");
+  }
+  Scene scene;
+  scene.path = path;
+  const std::set<std::string> sections{"material", "span", "indenter", "protocol", "damping", "solver", "output",
+                                       "resolution"};
+  for (const auto& [key, node] : root)
+    if (!node.is_table() && std::string(key.str()) != "bundle")
+      throw InputError(path + ": unknown key '" + std::string(key.str()) + "'; top-level keys: bundle and the tables [" +
+                       "material], [span], [indenter], [protocol], [damping], [solver], [output], [resolution]");
+    else if (node.is_table() && !sections.count(std::string(key.str())))
+      throw InputError(path + ": unknown table [" + std::string(key.str()) + "]; see docs/scene.md");
+
+  Table top(path, "", &root);
+  top.text("bundle", scene.bundle);
+  if (scene.bundle.empty()) throw InputError(path + ": bundle = \"...\" is missing: the slab to load (a bundle directory)");
+  if (fs::path(scene.bundle).is_relative()) scene.bundle = (fs::path(path).parent_path() / scene.bundle).string();
+
+  Table material(path, "material", root["material"].as_table());
+  material.number("youngs_modulus", scene.contact.youngsModulus, 1e3, 1e13, "Pa");
+  material.number("density", scene.solver.density, 1e-3, 1e5, "kg/m^3");
+  material.number("friction", scene.contact.friction, 0, 1e3, "Coulomb coefficient");
+  material.number("tangential_ratio", scene.contact.tangentialRatio, 0, 100, "k_t / k_n");
+  material.number("tangential_stiffness", scene.contact.tangentialStiffnessAbsolute, 0, 1e20,
+                  "N/m^3; 0 = tangential_ratio x k_n");
+  material.number("normal_viscosity", scene.contact.normalViscosity, 0, 1e12, "Pa s / m");
+  if (scene.contact.tangentialStiffnessAbsolute > 0 && root["material"]["tangential_ratio"])
+    throw InputError(path + ": give material.tangential_stiffness (N/m^3) or material.tangential_ratio (k_t / k_n), not both");
+  material.finish();
+
+  scene.contact.spanLength = 0;  // from the bundle unless given
+  scene.contact.spanInterfaces = 0;
+  Table span(path, "span", root["span"].as_table());
+  span.number("length", scene.contact.spanLength, 1e-6, 1e3, "m");
+  span.integer("interfaces", scene.contact.spanInterfaces, 1, 100000);
+  span.finish();
+
+  Table indenter(path, "indenter", root["indenter"].as_table());
+  indenter.number("radius", scene.indenter.radius, 0, 10, "m; 0 = radius_ratio x the loaded block's thickness");
+  indenter.number("radius_ratio", scene.indenter.radiusRatio, 1e-3, 100, "of the loaded block's thickness");
+  indenter.number("speed", scene.indenter.speed, 0, 100, "m/s; 0 = speed_ratio x sqrt(E / density) x (h / L)^2");
+  indenter.number("speed_ratio", scene.indenter.speedRatio, 1e-9, 1, "of sqrt(E / density) x (h / L)^2");
+  indenter.text("target", scene.indenter.target);
+  indenter.vector<2>("offset", scene.indenter.offset, "m, in plan from the target's centroid");
+  scene.indenter.atPoint = indenter.vector<2>("point", scene.indenter.point, "m, x and y on the slab's upper surface");
+  if (scene.indenter.atPoint && (!scene.indenter.target.empty() || root["indenter"]["offset"]))
+    throw InputError(path + ": give indenter.point (x, y) or indenter.target with indenter.offset, not both");
+  indenter.number("clearance", scene.indenter.clearance, 0, 1, "m");
+  indenter.number("stiffness_factor", scene.indenter.stiffnessFactor, 1e-3, 10, "x the blocks' k_n and k_t");
+  indenter.finish();
+
+  Table protocol(path, "protocol", root["protocol"].as_table());
+  protocol.number("settle_kinetic", scene.protocol.settleKinetic, 0, 1e6, "J; 0 = settle_kinetic_ratio x sum m g h");
+  protocol.number("settle_kinetic_ratio", scene.protocol.settleKineticRatio, 1e-15, 1, "of the free bodies' sum m g h");
+  protocol.number("settle_max_time", scene.protocol.settleMaxTime, 0, 1e3, "s; 0 = settle_max_time_ratio x L^2 / (c t)");
+  protocol.number("settle_max_time_ratio", scene.protocol.settleMaxTimeRatio, 1e-3, 1e6, "of L^2 / (c t)");
+  protocol.number("delta_max", scene.protocol.deltaMax, 0, 10, "m; 0 = delta_max_ratio x the loaded block's thickness");
+  protocol.number("delta_max_ratio", scene.protocol.deltaMaxRatio, 1e-3, 100, "of the loaded block's thickness");
+  protocol.number("failure_load_fraction", scene.protocol.failureLoadFraction, 1e-3, 0.99, "of P_max");
+  protocol.boolean("stop_on_failure", scene.protocol.stopOnFailure);
+  protocol.number("quiet_travel", scene.protocol.quietTravel, 0, 100, "of the loaded block's thickness");
+  protocol.number("rest_speed_ratio", scene.protocol.restSpeedRatio, 0, 1, "of the indenter's speed");
+  protocol.number("fallen_clearance", scene.protocol.fallenClearance, 1e-3, 10, "of each body's size");
+  protocol.number("stiffness_fit_ratio", scene.protocol.stiffnessFitRatio, 1e-3, 10, "of the loaded block's thickness");
+  protocol.number("quasi_static_limit", scene.protocol.quasiStaticLimit, 1e-9, 1, "kinetic energy / indenter work");
+  if (root["protocol"]["fallen_distance"])
+    throw InputError(path + ": protocol.fallen_distance is gone: a body now falls when no block contact holds it "
+                            "(docs/physics.md, \"Failure\"); remove the key, or tune protocol.fallen_clearance (a ratio)");
+  protocol.finish();
+
+  Table damping(path, "damping", root["damping"].as_table());
+  damping.number("local", scene.solver.localDamping, 0, 0.99, "fraction");
+  damping.number("viscous", scene.solver.viscousDamping, 0, 1e9, "1/s");
+  damping.finish();
+
+  Table solver(path, "solver", root["solver"].as_table());
+  solver.number("time_step", scene.solver.timeStep, 0, 1, "s; 0 = automatic");
+  solver.number("time_step_factor", scene.solver.timeStepFactor, 1e-4, 1, "of the stability limit");
+  solver.integer("threads", scene.solver.threads, 0, 1024);
+  solver.vector<3>("gravity", scene.solver.gravity, "m/s^2");
+  if (!(scene.solver.gravity.norm() <= 1000))  // 100 g; also NaN
+    throw InputError(path + ": solver.gravity must be at most 1000 m/s^2 (100 g) in size, e.g. [0, 0, -9.81]; 0 turns it off");
+  solver.number("max_penetration", scene.solver.maxPenetration, 0, 1, "m; 0 = a quarter of the thinnest block");
+  solver.number("broad_phase_margin", scene.solver.broadPhaseMargin, 0, 1, "m; 0 = 0.157 x the thinnest block");
+  solver.boolean("exact_convex_level_sets", scene.solver.exactConvexLevelSets);
+  solver.finish();
+
+  Table resolution(path, "resolution", root["resolution"].as_table());
+  resolution.number("node_spacing", scene.resolution.nodeSpacing, 0, 1, "m; 0 = the bundle's");
+  resolution.number("voxel", scene.resolution.voxelSize, 0, 1, "m; 0 = the bundle's");
+  resolution.number("node_spacing_ratio", scene.resolution.nodeSpacingRatio, 0, 10,
+                    "of each shape's thinnest extent; 0 = the bundle's");
+  resolution.number("voxel_ratio", scene.resolution.voxelRatio, 0, 10, "of each shape's thinnest extent; 0 = the bundle's");
+  resolution.finish();
+
+  Table output(path, "output", root["output"].as_table());
+  output.number("sample_every", scene.output.sampleEvery, 1e-9, 1, "m of travel");
+  output.number("snapshot_every", scene.output.snapshotEvery, 1e-9, 1, "m of travel");
+  output.number("progress_seconds", scene.output.progressSeconds, 0, 1e6, "s");
+  output.number("checkpoint_seconds", scene.output.checkpointSeconds, 0, 1e6, "s");
+  output.finish();
+  return scene;
+}
+
+std::string sceneWithOverrides(const std::string& path, const std::vector<std::pair<std::string, double>>& overrides) {
+  readScene(path);  // the base scene must be valid
+  toml::table root = toml::parse_file(path);
+  const std::string bundle = root["bundle"].value_or(std::string());
+  if (fs::path(bundle).is_relative())
+    root.insert_or_assign("bundle", fs::absolute(fs::path(path).parent_path() / bundle).lexically_normal().string());
+  for (const auto& [key, value] : overrides) {
+    const auto dot = key.find('.');
+    if (dot == std::string::npos) throw InputError("sweep key '" + key + "': give it as table.key, e.g. material.friction");
+    const std::string table = key.substr(0, dot), name = key.substr(dot + 1);
+    if (!root.contains(table)) root.insert(table, toml::table{});
+    toml::table* t = root[table].as_table();
+    if (!t) throw InputError("sweep key '" + key + "': [" + table + "] is not a table of the scene");
+    if (name == "interfaces" || name == "threads") t->insert_or_assign(name, static_cast<std::int64_t>(std::llround(value)));
+    else t->insert_or_assign(name, value);
+    // k_t is given one way or the other: the swept one replaces the scene's.
+    if (key == "material.tangential_stiffness") t->erase("tangential_ratio");
+    if (key == "material.tangential_ratio") t->erase("tangential_stiffness");
+  }
+  std::ostringstream out;
+  out << root << "\n";
+  return out.str();
+}
+
+}  // namespace tessera

@@ -1,0 +1,86 @@
+"""The Python module against the command line and against the physics it stands for."""
+import numpy as np
+import pytest
+
+import tessera
+from conftest import BLOCK, SCENE
+
+
+def load_unload(slab, turn_at, **options):
+    """Load to delta = turn_at, then lift the indenter at the same speed until the load is gone."""
+    sim = tessera.Simulation(SCENE, bundle=slab, **options)
+    state = {"lifting": False, "turned_at": None}
+
+    def on_sample(sample, control):
+        if not state["lifting"] and sample.delta >= turn_at:
+            state["lifting"] = True
+            state["turned_at"] = len(sim.curve["delta"])
+            control.indenter_speed = -control.indenter_speed
+        elif state["lifting"] and sample.load <= 0:
+            control.stop()
+
+    assert sim.run(on_sample) == "requested"
+    return sim, state["turned_at"]
+
+
+def test_import_names_the_version():
+    assert tessera.__version__.count(".") == 2
+
+
+def test_loading_branch_equals_the_command_line_run(slab, cli_run):
+    sim, turned = load_unload(slab, 0.3e-3)
+    cli = tessera.open_run(cli_run).curve
+    for column in ("time", "delta", "load", "block_displacement", "external_work", "elastic_energy", "friction_dissipated"):
+        ours = sim.curve[column][:turned]
+        theirs = cli[column][:turned]
+        scale = max(np.abs(theirs).max(), 1e-300)
+        assert np.abs(ours - theirs).max() <= 1e-12 * scale, column
+
+
+def test_unloading_returns_the_indenter_and_balances_energy(slab):
+    sim, turned = load_unload(slab, 0.3e-3)
+    delta, load = sim.curve["delta"], sim.curve["load"]
+    assert delta[turned - 1] >= 0.3e-3
+    assert np.all(np.diff(delta[turned:]) < 0), "delta decreases while lifting"
+    assert load[-1] <= 0 < load[turned - 1]
+    # Unloading gives back less than loading took (friction, damping): a hysteresis loop.
+    assert sim.curve["external_work"][-1] < sim.curve["external_work"][turned - 1]
+    e = sim.energy
+    assert abs(e["residual"]) < 0.02 * max(sim.curve["external_work"])
+    assert sim.indenter["velocity"][2] > 0, "lifting at the end"
+
+
+def test_results_as_arrays_in_si_units(slab):
+    sim, _ = load_unload(slab, 0.1e-3)
+    n = len(sim.body_names)
+    assert sim.positions.shape == (n, 3) and sim.orientations.shape == (n, 4)
+    assert np.allclose(np.linalg.norm(sim.orientations, axis=1), 1.0)
+    c = sim.contacts()
+    assert len(c["a"]) > 0 and c["force"].shape == (len(c["a"]), 3)
+    assert np.all(c["area"] > 0) and np.all(c["node_contacts"] > 0)
+    # Newton's third law over the whole slab at rest: the contact forces on the free block and the
+    # fixed ones, with the indenter's reaction, balance its weight (to the dynamics left).
+    assert sim.time_step > 0 and sim.steps > 0
+
+
+def test_a_run_folder_written_from_python_reads_back(slab, tmp_path):
+    out = str(tmp_path / "run")
+    sim, _ = load_unload(slab, 0.1e-3, output=out)
+    folder = tessera.open_run(out)
+    assert folder.summary["stop_reason"] == "requested"
+    assert np.array_equal(folder.curve["load"], sim.curve["load"])
+
+
+def test_overrides_change_the_scene(slab):
+    soft = tessera.Simulation(SCENE, bundle=slab, overrides={"material.youngs_modulus": 2.1e9})
+    stiff = tessera.Simulation(SCENE, bundle=slab)
+    assert soft.time_step > stiff.time_step  # dt goes as 1 / sqrt(k_n)
+
+
+def test_bad_input_is_a_value_error_naming_the_problem(slab, tmp_path):
+    with pytest.raises(ValueError, match="no such scene file"):
+        tessera.Simulation(str(tmp_path / "missing.toml"), bundle=slab)
+    with pytest.raises(tessera.InputError, match="material.nonsense"):
+        tessera.Simulation(SCENE, bundle=slab, overrides={"material.nonsense": 1.0})
+    with pytest.raises(ValueError, match="overlap"):
+        tessera.tile(BLOCK, "mm", str(tmp_path / "tight"), grid=(3, 3), pitch=8e-3)

@@ -1,0 +1,84 @@
+// The protocol's defaults are ratios (docs/scene.md, "Scale"): the paper's values on its slab, in
+// proportion elsewhere.
+#include "run/load_point.h"
+#include "run/protocol_scale.h"
+#include "tests/fixtures/scenes.h"
+
+#include <catch2/catch.hpp>
+
+using namespace tessera;
+
+TEST_CASE("settle threshold: 1e-9 of the free bodies' sum m g h, or the absolute value given") {
+  const Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
+  SolverSettings settings;
+  World world(slab, ContactParameters{}, settings);
+  const double m = settings.density * slab.shapes[0].mass.volume;  // one free body: the centre
+  ProtocolSettings protocol;
+  REQUIRE(settleThreshold(world, protocol) == Approx(1e-9 * m * 9.81 * 3.18e-3).epsilon(1e-6));
+  protocol.settleKinetic = 1e-12;
+  REQUIRE(settleThreshold(world, protocol) == 1e-12);
+}
+
+TEST_CASE("settle time limit: the longer of a plate's period scale and a block's fall time, or the absolute value given") {
+  const Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
+  ProtocolSettings protocol;
+  // The paper's span: the fall time, 2 sqrt(2 t / g) = 0.0509 s, just above the plate's 0.05 s.
+  const double fall = 2 * std::sqrt(2 * 3.18e-3 / 9.81);
+  REQUIRE(settleTimeLimit(World(slab, ContactParameters{}, SolverSettings{}), protocol) == Approx(fall).epsilon(1e-6));
+  ContactParameters wide;
+  wide.spanLength *= 3;  // 9 x the period scale
+  REQUIRE(settleTimeLimit(World(slab, wide, SolverSettings{}), protocol) == Approx(0.45).epsilon(1e-6));
+  protocol.settleMaxTime = 0.01;
+  REQUIRE(settleTimeLimit(World(slab, ContactParameters{}, SolverSettings{}), protocol) == 0.01);
+}
+
+TEST_CASE("indenter speed: 30 mm/s on the paper's slab, the same at any scale, as sqrt(E) and (h / L)^2") {
+  const Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
+  ContactParameters paper;  // E = 4.2 GPa, L = 50 mm
+  IndenterSettings indenter;
+  REQUIRE(indenterSpeed(World(slab, paper, SolverSettings{}), indenter, 3.18e-3) == Approx(0.03).epsilon(1e-12));
+  ContactParameters large = paper;
+  large.spanLength *= 10;
+  REQUIRE(indenterSpeed(World(slab, large, SolverSettings{}), indenter, 31.8e-3) == Approx(0.03).epsilon(1e-12));
+  ContactParameters stiff = paper;
+  stiff.youngsModulus *= 4;
+  REQUIRE(indenterSpeed(World(slab, stiff, SolverSettings{}), indenter, 3.18e-3) == Approx(0.06).epsilon(1e-12));
+  ContactParameters wide = paper;
+  wide.spanLength *= 2;
+  REQUIRE(indenterSpeed(World(slab, wide, SolverSettings{}), indenter, 3.18e-3) == Approx(0.0075).epsilon(1e-12));
+  indenter.speed = 0.006;
+  REQUIRE(indenterSpeed(World(slab, paper, SolverSettings{}), indenter, 3.18e-3) == 0.006);
+}
+
+TEST_CASE("loading anywhere: the central body by default, a point on the upper surface, a target with an offset") {
+  const Bundle slab = test::smallSlab(5, 0.25e-3, 0.6e-3);
+  const auto index = [&](const std::string& name) {
+    for (std::size_t i = 0; i < slab.bodies.size(); ++i)
+      if (slab.bodies[i].name == name) return static_cast<int>(i);
+    return -1;
+  };
+  IndenterSettings indenter;
+  REQUIRE(chooseLoadPoint(slab, indenter).body == index("r2c2"));
+  // A point 2 mm off the centre of block r1c2 (row 1, column 2: at (0, -10) mm).
+  indenter.atPoint = true;
+  indenter.point = Eigen::Vector2d(2e-3, -10e-3 + 1e-3);
+  const LoadPoint atPoint = chooseLoadPoint(slab, indenter);
+  REQUIRE(atPoint.body == index("r1c2"));
+  REQUIRE((slab.bodies[atPoint.body].position.head<2>() + atPoint.offset - indenter.point).norm() < 1e-15);
+  indenter.point = Eigen::Vector2d(-20e-3, 0);  // the fixed ring
+  REQUIRE_THROWS_WITH(chooseLoadPoint(slab, indenter), Catch::Contains("fixed body 'r2c0'"));
+  indenter.point = Eigen::Vector2d(0.2, 0);
+  REQUIRE_THROWS_WITH(chooseLoadPoint(slab, indenter), Catch::Contains("lies on no body"));
+  // A target and an offset in plan.
+  indenter.atPoint = false;
+  indenter.target = "r3c1";
+  indenter.offset = Eigen::Vector2d(1e-3, 2e-3);
+  const LoadPoint offset = chooseLoadPoint(slab, indenter);
+  REQUIRE(offset.body == index("r3c1"));
+  REQUIRE(offset.offset == indenter.offset);
+  indenter.offset = Eigen::Vector2d(8e-3, 0);
+  REQUIRE_THROWS_WITH(chooseLoadPoint(slab, indenter), Catch::Contains("off the body 'r3c1'"));
+  indenter.offset.setZero();
+  indenter.target = "r0c0";
+  REQUIRE_THROWS_WITH(chooseLoadPoint(slab, indenter), Catch::Contains("is a fixed body"));
+}

@@ -1,0 +1,82 @@
+// Scene files: what they set, and bad ones refused naming the file, the key and the range.
+#include "io/input_error.h"
+#include "run/scene.h"
+#include "tests/fixtures/temp_dir.h"
+
+#include <catch2/catch.hpp>
+
+using namespace tessera;
+using Catch::Matchers::Contains;
+
+namespace {
+Scene sceneFrom(const test::TempDir& dir, const std::string& text) {
+  test::writeFile(dir / "scene.toml", text);
+  return readScene(dir / "scene.toml");
+}
+}  // namespace
+
+TEST_CASE("a scene file fills the settings, with defaults for what it leaves out") {
+  test::TempDir dir;
+  const Scene s = sceneFrom(dir, R"(bundle = "slab"
+[material]
+youngs_modulus = 10e9
+friction = 0.5
+[span]
+length = 0.05
+interfaces = 6
+[indenter]
+speed = 0.01
+target = "r3c3"
+[damping]
+local = 0.2
+[solver]
+threads = 2
+gravity = [0.0, 0.0, 0.0]
+)");
+  REQUIRE(s.bundle == dir / "slab");
+  REQUIRE(s.contact.youngsModulus == 10e9);
+  REQUIRE(s.contact.friction == 0.5);
+  REQUIRE(s.contact.spanInterfaces == 6);
+  REQUIRE(s.indenter.speed == 0.01);
+  REQUIRE(s.indenter.radius == 0);  // default: radius_ratio x h, 2.5 mm on the paper's block
+  REQUIRE(s.indenter.radiusRatio * 3.18e-3 == Approx(2.5e-3).epsilon(1e-12));
+  REQUIRE(s.indenter.target == "r3c3");
+  REQUIRE(s.solver.localDamping == 0.2);
+  REQUIRE(s.solver.threads == 2);
+  REQUIRE(s.solver.gravity.norm() == 0.0);
+  REQUIRE(s.protocol.deltaMax == 0);  // default: 2 h of the loaded block
+  REQUIRE(s.protocol.deltaMaxRatio == 2.0);
+}
+
+TEST_CASE("the shipped default scene reads") {
+  const Scene s = readScene(TESSERA_ASSETS "/scenes/default.toml");
+  REQUIRE(s.contact.youngsModulus == 4.2e9);
+  REQUIRE(s.contact.friction == 0.23);
+  REQUIRE(s.indenter.radius == 2.5e-3);
+}
+
+TEST_CASE("bad scene files are refused with the key and the reason") {
+  test::TempDir dir;
+  const auto refused = [&](const std::string& text, const std::string& problem) {
+    INFO(text);
+    REQUIRE_THROWS_WITH(sceneFrom(dir, text), Contains("scene.toml") && Contains(problem));
+  };
+  refused("bundle = \"b\"\n[material]\nyoungs_modulus = -4.2e9\n", "material.youngs_modulus must be in [1000, 1e+13] (Pa), got -4.2e+09");
+  refused("bundle = \"b\"\n[material]\nfriction = -0.1\n", "material.friction must be in [0");
+  refused("bundle = \"b\"\n[material]\nyoungs = 4.2e9\n", "unknown key 'material.youngs'");
+  refused("bundle = \"b\"\ncolour = 1\n", "unknown key 'colour'");
+  refused("bundle = \"b\"\n[materials]\n", "unknown table [materials]");
+  refused("[material]\nfriction = 0.2\n", "bundle = \"...\" is missing");
+  refused("bundle = \"b\"\n[indenter]\nspeed = \"fast\"\n", "indenter.speed must be a number");
+  refused("bundle = \"b\"\n[solver]\nthreads = 1.5\n", "solver.threads must be a whole number");
+  refused("bundle = \"b\"\n[material\n", "not valid TOML");
+  REQUIRE_THROWS_WITH(readScene(dir / "none.toml"), Contains("none.toml") && Contains("no such scene file"));
+}
+
+TEST_CASE("a scene can re-prepare the shapes at another resolution") {
+  test::TempDir dir;
+  const Scene s = sceneFrom(dir, "bundle = \"b\"\n[resolution]\nnode_spacing = 0.3e-3\nvoxel = 0.125e-3\n");
+  REQUIRE(s.resolution.nodeSpacing == 0.3e-3);
+  REQUIRE(s.resolution.voxelSize == 0.125e-3);
+  REQUIRE_THROWS_WITH(sceneFrom(dir, "bundle = \"b\"\n[resolution]\nnodes = 1\n"), Contains("unknown key 'resolution.nodes'"));
+}
