@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
-# Installs the Debian packages Tessera needs (only those missing), then configures and builds.
+# Installs the Debian packages Tessera needs (only those missing), then configures, builds and
+# installs: the `tessera` command into PREFIX/bin, the plot scripts and assets into
+# PREFIX/share/tessera, the libraries into PREFIX/lib and the Python package `tessera` where that
+# prefix's Python imports from (for ~/.local: the user site of Python 3.x, shared by every Python
+# of that version; for another prefix: PREFIX/lib/python3/dist-packages, Debian's).
 # Usage: scripts/setup.sh [--with-yade] [--with-sanitizers]   (run as root, or with sudo available)
 #        --with-yade also installs YADE, the peer LS-DEM code of bench/peer_yade.sh (large; not
 #        needed to build, run or test Tessera); --with-sanitizers clang and its sanitizer and fuzzer
 #        runtimes (scripts/sanitize.sh)
-# Env:   BUILD_DIR (default: build), BUILD_TYPE (default: Release), JOBS (default: nproc)
+# Env:   BUILD_DIR (default: build), BUILD_TYPE (default: Release), JOBS (default: nproc),
+#        PREFIX (default: ~/.local; NO_INSTALL=1 builds only)
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -25,6 +30,8 @@ packages=(
   libtomlplusplus-dev                           # scene files (TOML)
   catch2                                        # tests
   python3-matplotlib python3-numpy              # PNG rendering
+  python3-dev pybind11-dev                      # the Python module
+  python3-pytest python3-h5py                   # its tests; tessera.open_run reads results.h5
   libbenchmark-dev                              # benchmarks (bench/)
 )
 for option in "$@"; do
@@ -60,5 +67,16 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
+prefix=${PREFIX:-"$HOME/.local"}
+if [ "$prefix" = "$HOME/.local" ]; then
+  python_dir=$(/usr/bin/python3 -c 'import site; print(site.getusersitepackages())')
+else
+  python_dir="$prefix/lib/python3/dist-packages"
+fi
+cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" -DCMAKE_INSTALL_PREFIX="$prefix" \
+  -DTESSERA_PYTHON_DIR="$python_dir" -DPython3_EXECUTABLE=/usr/bin/python3
 cmake --build "$build_dir" -j "$jobs"
+if [ "${NO_INSTALL:-0}" != 1 ]; then
+  cmake --install "$build_dir" > /dev/null
+  echo "setup: installed $prefix/bin/tessera and the Python package tessera in $python_dir" >&2
+fi
