@@ -15,6 +15,7 @@
 #include "bench/default_slab.h"
 #include "run/indentation.h"
 #include "run/response.h"
+#include "run/run_session.h"
 #include "solver/world.h"
 
 #include <atomic>
@@ -39,10 +40,12 @@ struct Outcome {
 
 // A short indentation (to 0.5 mm at 30 mm/s, local damping 0.3) at time-step factor f.
 Outcome indent(const Bundle& slab, double youngsModulus, double friction, double factor) {
-  ContactParameters contact;
-  contact.youngsModulus = youngsModulus;
-  contact.friction = friction;
   Scene scene;
+  scene.contact.youngsModulus = youngsModulus;
+  scene.contact.friction = friction;
+  scene.contact.spanLength = 0;  // the slab's
+  scene.contact.spanInterfaces = 0;
+  const ContactParameters contact = resolveSpan(scene.contact, slab, "stability_map");
   scene.solver.threads = 1;
   scene.solver.localDamping = 0.3;
   scene.solver.timeStepFactor = factor;
@@ -57,11 +60,7 @@ Outcome indent(const Bundle& slab, double youngsModulus, double friction, double
   IndentationRecord record;
   IndentationState state;
   try {
-    RunHooks quiet;
-    quiet.progress = [](const Progress&) {};
-    quiet.interrupted = [] { return false; };
-    quiet.checkpoint = [](const IndentationState&) {};
-    runIndentation(world, slab, scene, record, state, quiet);
+    runIndentation(world, slab, scene, record, state, RunHooks{});
     o.stable = !record.curve.empty();
     if (o.stable) {
       o.load = record.curve.back().load;

@@ -10,7 +10,7 @@ namespace tessera {
 /// Axis-aligned box of sides a (x), b (y), h (z).
 TriangleMesh makeBox(double a, double b, double h);
 
-/// The planar-faced TIS block (DESIGN §4): square mid-section of side a in the plane z = 0,
+/// The planar-faced TIS block: square mid-section of side a in the plane z = 0,
 /// thickness h; the faces normal to x lean outward by theta (the block widens in x upwards), the
 /// faces normal to y lean inward (it narrows in y upwards), so the same block turned 90 degrees
 /// about z interlocks with it. Faces: x = ±(a/2 + z tan(theta)), y = ±(a/2 - z tan(theta)),

@@ -39,7 +39,7 @@ struct ShapeLimits {
 /// Checks a resolution against a shape of the given body-frame extents (m). Throws InputError for
 /// values that cannot give a meaningful shape; adds warnings for under-resolved ones:
 ///  - voxel and spacing must be positive and finite;
-///  - error if the thinnest dimension spans fewer than 3 voxels, warning below 10 (DESIGN §4);
+///  - error if the thinnest dimension spans fewer than 3 voxels, warning below 10;
 ///  - warning if the thinnest dimension spans fewer than 2 node spacings;
 void checkResolution(const Eigen::Vector3d& extents, const ShapeResolution& resolution,
                      const std::string& label, PrepLog& log);

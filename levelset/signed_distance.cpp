@@ -39,7 +39,7 @@ DenseSdf buildSignedDistance(const TriangleMesh& mesh, const SignedDistanceOptio
   for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
   const std::vector<openvdb::Vec4I> quads;
 
-  // Interior band "infinite": every voxel inside gets its exact distance (DESIGN §11).
+  // Interior band "infinite": every voxel inside gets its exact distance.
   const float exteriorBand = static_cast<float>(options.exteriorBandVoxels);
   const openvdb::FloatGrid::Ptr grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(
       *transform, points, triangles, quads, exteriorBand, std::numeric_limits<float>::max());

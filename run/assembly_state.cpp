@@ -7,7 +7,7 @@ namespace tessera {
 std::vector<char> touchingBlocks(const World& world) {
   std::vector<char> touching(world.bodies().size(), 0);
   for (const PairContacts& p : world.pairs())
-    if (p.b >= 0 && !p.contacts.empty()) touching[p.a] = touching[p.b] = 1;
+    if (p.kind == PairKind::Bodies && !p.contacts.empty()) touching[p.a] = touching[p.b] = 1;
   return touching;
 }
 
@@ -21,7 +21,7 @@ std::vector<char> supportedBodies(const World& world) {
     return i;
   };
   for (const PairContacts& p : world.pairs())
-    if (p.b >= 0 && !p.contacts.empty()) parent[root(p.a)] = root(p.b);
+    if (p.kind == PairKind::Bodies && !p.contacts.empty()) parent[root(p.a)] = root(p.b);
   std::vector<char> held(n, 0), supported(n, 0);
   for (int i = 0; i < n; ++i)
     if (world.isSupport(i)) held[root(i)] = 1;
@@ -53,7 +53,7 @@ std::vector<char> pushedThroughBodies(const World& world, const std::vector<Eige
   std::vector<double> sum(n, 0.0);
   std::vector<int> touching(n, 0);
   for (const PairContacts& p : world.pairs())
-    if (p.b >= 0 && !p.contacts.empty()) {
+    if (p.kind == PairKind::Bodies && !p.contacts.empty()) {
       sum[p.a] += drop(p.b);
       sum[p.b] += drop(p.a);
       ++touching[p.a];
@@ -72,8 +72,8 @@ ContactCounts countContacts(const World& world, int loaded) {
   for (const PairContacts& p : world.pairs()) {
     const long n = static_cast<long>(p.contacts.size());
     c.all += n;
-    if (p.b < 0) {
-      if (n > 0 && world.isSphere(p.b)) c.indenterDepth = std::max(c.indenterDepth, p.maxDepth);
+    if (p.kind != PairKind::Bodies) {
+      if (n > 0 && p.kind == PairKind::Sphere) c.indenterDepth = std::max(c.indenterDepth, p.maxDepth);
       continue;
     }
     c.blocks += n;

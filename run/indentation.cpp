@@ -213,8 +213,13 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     const double along = state.contactTravel < 0 ? 0.0 : path - state.contactPath;  // = delta while only going down
     state.peak = std::max(state.peak, load);
 
+    // A sample every sampleEvery of path, and, when the indenter goes slower than half the
+    // protocol's speed (a hold), every 2 sampleEvery / speed of time: the sample hook keeps hearing.
     bool sampled = false, requested = false;
-    if (state.contactTravel >= 0 && along >= state.nextSample) {
+    const bool pathDue = along >= state.nextSample;
+    const bool timeDue = !record.curve.empty() &&
+                         world.time() - state.loadStart - record.curve.back().time >= 2 * scene.output.sampleEvery / speed;
+    if (state.contactTravel >= 0 && (pathDue || timeDue)) {
       sample(delta, load);
       sampled = true;
       // Quasi-static check while loading up to the peak (past the first 5 % of h of contact).
@@ -227,7 +232,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
                         " x the indenter's work at delta = " + std::to_string(delta * 1e3).substr(0, 5) +
                         " mm (limit protocol.quasi_static_limit); lower indenter.speed or indenter.speed_ratio");
       }
-      state.nextSample += scene.output.sampleEvery;
+      state.nextSample = pathDue ? state.nextSample + scene.output.sampleEvery : along + scene.output.sampleEvery;
       // The load gone: below 1 % of the peak since quietFrom.
       if (state.peak > 0 && load < 0.01 * state.peak) {
         if (state.quietFrom < 0) state.quietFrom = along;

@@ -111,7 +111,7 @@ void writeSweepTable(const std::string& path, const std::vector<std::string>& ke
 
 void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
                      const ContactParameters& contact, const IndentationRecord& record,
-                     const ResponseParameters& response) {
+                     const ResponseParameters& response, const std::string& stateDigest) {
   const fs::path dir(directory);
   fs::create_directories(dir / "paraview");
 
@@ -160,6 +160,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
       {"bundle", scene.bundle},
       {"target", record.targetName},
       {"stop_reason", record.stopReason.empty() ? std::string("running") : record.stopReason},
+      {"state_digest", stateDigest},
       {"response",
        {{"peak_load_N", response.peakLoad},
         {"delta_at_peak_mm", response.deltaAtPeak * 1e3},

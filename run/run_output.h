@@ -10,10 +10,11 @@ namespace tessera {
 
 /// Writes a run's results into `directory` (docs/outputs.md): results.h5, curve.csv,
 /// summary.json and paraview/ (blocks at every snapshot, slab.pvd). Each file is written to a
-/// temporary name and renamed, so a file is either complete or absent.
+/// temporary name and renamed, so a file is either complete or absent. `stateDigest`: of the
+/// World's state as written (state_digest.h), in summary.json.
 void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
                      const ContactParameters& contact, const IndentationRecord& record,
-                     const ResponseParameters& response);
+                     const ResponseParameters& response, const std::string& stateDigest);
 
 /// The table of a sweep as HDF5: `keys` (K strings), `values` (C x K: each case's swept values),
 /// `columns` (names) and `table` (C x columns, numbers), `case`, `failure_mode`, `stop_reason` (C strings).

@@ -10,6 +10,7 @@
 #include "run/load_point.h"
 #include "run/presets.h"
 #include "run/run_output.h"
+#include "run/state_digest.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -220,7 +221,7 @@ void RunSession::writeOutputs() const {
   if (output_.empty()) return;
   // A scene changed by a preset or overrides is kept beside its results (its name in them).
   if (derivedScene(source_) && !fs::exists(scene_.path)) writeTextFileSafely(scene_.path, source_.sceneText);
-  writeRunOutputs(output_, scene_, bundle_, contact_, record_, response());
+  writeRunOutputs(output_, scene_, bundle_, contact_, record_, response(), stateDigest(*world_));
 }
 
 void RunSession::run(RunHooks hooks) {

@@ -231,11 +231,11 @@ std::string sceneWithOverrides(const std::string& path, const std::vector<std::p
     root.insert_or_assign("bundle", fs::absolute(fs::path(path).parent_path() / bundle).lexically_normal().string());
   for (const auto& [key, value] : overrides) {
     const auto dot = key.find('.');
-    if (dot == std::string::npos) throw InputError("sweep key '" + key + "': give it as table.key, e.g. material.friction");
+    if (dot == std::string::npos) throw InputError("scene key '" + key + "': give it as table.key, e.g. material.friction");
     const std::string table = key.substr(0, dot), name = key.substr(dot + 1);
     if (!root.contains(table)) root.insert(table, toml::table{});
     toml::table* t = root[table].as_table();
-    if (!t) throw InputError("sweep key '" + key + "': [" + table + "] is not a table of the scene");
+    if (!t) throw InputError("scene key '" + key + "': [" + table + "] is not a table of the scene");
     if (name == "interfaces" || name == "threads") t->insert_or_assign(name, static_cast<std::int64_t>(std::llround(value)));
     else t->insert_or_assign(name, value);
     // k_t is given one way or the other: the swept one replaces the scene's.

@@ -144,7 +144,11 @@ struct PlanesInFrame {
 
 }  // namespace
 
-void evaluatePair(const ContactScene& scene, PairContacts& pair) {
+namespace {
+
+// Clears the pair's last evaluation (its contacts become the history) and says whether its
+// candidate nodes are to be rebuilt.
+bool beginEvaluation(PairContacts& pair) {
   std::swap(pair.contacts, pair.previous);
   pair.contacts.clear();
   pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = pair.forcePoint = Eigen::Vector3d::Zero();
@@ -154,100 +158,119 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = !pair.candidatesValid;
   if (rebuild) pair.candidates.clear();
   pair.candidatesValid = true;
+  return rebuild;
+}
+
+// A body's nodes (full area) against an analytic obstacle moving as `other`; phiAndNormal(x, n)
+// gives phi at a world point and, inside, the obstacle's outward normal.
+template <class PhiAndNormal>
+void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& acc, bool rebuild,
+                   const Eigen::AlignedBox3d& region, const Motion& other, PhiAndNormal&& phiAndNormal) {
+  const RigidBodies& bodies = *scene.bodies;
+  const int m = pair.a;
+  const ShapeModel& sm = (*scene.shapes)[bodies.shape[m]];
+  const Eigen::Matrix3d RM = bodies.orientation[m].toRotationMatrix();
+  const Motion node = motionOf(bodies, m);
+  visitSide(sm.nodes, region, 0, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
+    ++pair.evaluations;
+    const Eigen::Vector3d x = RM * sm.nodes.position[key] + node.position;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    const double phi = phiAndNormal(x, normal);
+    if (phi < 0) acc.add(key, x, RM * sm.nodes.normal[key], sm.nodes.area[key], normal, -phi, node, other, true);
+    return phi;
+  });
+  acc.finish();
+}
+
+}  // namespace
+
+void evaluatePair(const ContactScene& scene, PairContacts& pair) {
+  switch (pair.kind) {
+    case PairKind::Bodies: return evaluateBodyPair(scene, pair);
+    case PairKind::Sphere: return evaluateSpherePair(scene, pair);
+    case PairKind::Plane: return evaluatePlanePair(scene, pair);
+  }
+}
+
+void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
+  const bool rebuild = beginEvaluation(pair);
   Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a], scene.kn, scene.kt};
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
-
-  if (pair.b >= 0) {
-    // Body against body, both ways with half weights.
-    for (std::uint32_t side = 0; side < 2; ++side) {
-      const int m = side == 0 ? pair.a : pair.b, o = side == 0 ? pair.b : pair.a;
-      const ShapeModel& sm = shapes[bodies.shape[m]];
-      const ShapeModel& so = shapes[bodies.shape[o]];
-      const Eigen::Matrix3d RM = bodies.orientation[m].toRotationMatrix(), RO = bodies.orientation[o].toRotationMatrix();
-      const Eigen::Matrix3d toO = RO.transpose() * RM;  // M body -> O body
-      const Eigen::Vector3d shift = RO.transpose() * (bodies.position[m] - bodies.position[o]);
-      const Motion node = motionOf(bodies, m), other = motionOf(bodies, o);
-      // Only nodes inside the other body's box (and band) can be inside the other body.
-      Eigen::AlignedBox3d region;
-      if (rebuild) {
-        region = regionInFrame(so.nodes.box, bodies.orientation[o], other.position, bodies.orientation[m], node.position);
-        region.min().array() -= scene.candidateBand;
-        region.max().array() += scene.candidateBand;
-      }
-      if (!so.planes.empty()) {
-        // A convex other side: its planes moved into M's frame once, n' = toO^T n, d' = d - n . shift,
-        // so that a candidate is tested as it is: phi = max_f (n'_f . p - d'_f).
-        const PlanesInFrame planes(so.planes, toO, shift);
-        visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
-          ++pair.evaluations;
-          const int rank = static_cast<int>(key & kRankMask);
-          const Eigen::Vector3d& p = sm.nodes.position[rank];
-          int best;
-          const double phi = planes.phi(p, best);
-          if (phi < 0)
-            acc.add(key, RM * p + node.position, RM * sm.nodes.normal[rank], 0.5 * sm.nodes.area[rank],
-                    RM * planes.normal[best], -phi, node, other, side == 0);
-          return phi;
-        });
-        continue;
-      }
+  for (std::uint32_t side = 0; side < 2; ++side) {
+    const int m = side == 0 ? pair.a : pair.b, o = side == 0 ? pair.b : pair.a;
+    const ShapeModel& sm = shapes[bodies.shape[m]];
+    const ShapeModel& so = shapes[bodies.shape[o]];
+    const Eigen::Matrix3d RM = bodies.orientation[m].toRotationMatrix(), RO = bodies.orientation[o].toRotationMatrix();
+    const Eigen::Matrix3d toO = RO.transpose() * RM;  // M body -> O body
+    const Eigen::Vector3d shift = RO.transpose() * (bodies.position[m] - bodies.position[o]);
+    const Motion node = motionOf(bodies, m), other = motionOf(bodies, o);
+    // Only nodes inside the other body's box (and band) can be inside the other body.
+    Eigen::AlignedBox3d region;
+    if (rebuild) {
+      region = regionInFrame(so.nodes.box, bodies.orientation[o], other.position, bodies.orientation[m], node.position);
+      region.min().array() -= scene.candidateBand;
+      region.max().array() += scene.candidateBand;
+    }
+    if (!so.planes.empty()) {
+      // A convex other side: its planes moved into M's frame once, n' = toO^T n, d' = d - n . shift,
+      // so that a candidate is tested as it is: phi = max_f (n'_f . p - d'_f).
+      const PlanesInFrame planes(so.planes, toO, shift);
       visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
         ++pair.evaluations;
         const int rank = static_cast<int>(key & kRankMask);
-        const Eigen::Vector3d xO = toO * sm.nodes.position[rank] + shift;
-        Eigen::Vector3d normalO = Eigen::Vector3d::Zero();
-        const double phi = so.gridLevelSet(xO, normalO);
+        const Eigen::Vector3d& p = sm.nodes.position[rank];
+        int best;
+        const double phi = planes.phi(p, best);
         if (phi < 0)
-          acc.add(key, RO * xO + other.position, RM * sm.nodes.normal[rank], 0.5 * sm.nodes.area[rank], RO * normalO,
-                  -phi, node, other, side == 0);
+          acc.add(key, RM * p + node.position, RM * sm.nodes.normal[rank], 0.5 * sm.nodes.area[rank],
+                  RM * planes.normal[best], -phi, node, other, side == 0);
         return phi;
       });
+      continue;
     }
-    acc.finish();
-    return;
-  }
-
-  // Body against an analytic obstacle, full weights.
-  const int m = pair.a;
-  const int obstacle = -1 - pair.b;
-  const int sphereCount = static_cast<int>(scene.spheres->size());
-  const ShapeModel& sm = shapes[bodies.shape[m]];
-  const Eigen::Quaterniond& qM = bodies.orientation[m];
-  const Eigen::Matrix3d RM = qM.toRotationMatrix();
-  const Motion node = motionOf(bodies, m);
-  const auto visitObstacle = [&](const Eigen::AlignedBox3d& region, const Motion& other, auto&& phiAndNormal) {
-    visitSide(sm.nodes, region, 0, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
+    visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
       ++pair.evaluations;
-      const Eigen::Vector3d x = RM * sm.nodes.position[key] + node.position;
-      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-      const double phi = phiAndNormal(x, normal);
-      if (phi < 0) acc.add(key, x, RM * sm.nodes.normal[key], sm.nodes.area[key], normal, -phi, node, other, true);
+      const int rank = static_cast<int>(key & kRankMask);
+      const Eigen::Vector3d xO = toO * sm.nodes.position[rank] + shift;
+      Eigen::Vector3d normalO = Eigen::Vector3d::Zero();
+      const double phi = so.gridLevelSet(xO, normalO);
+      if (phi < 0)
+        acc.add(key, RO * xO + other.position, RM * sm.nodes.normal[rank], 0.5 * sm.nodes.area[rank], RO * normalO,
+                -phi, node, other, side == 0);
       return phi;
     });
-  };
-  if (obstacle < sphereCount) {
-    const SphereObstacle& sphere = (*scene.spheres)[obstacle];
-    acc.kn *= sphere.stiffnessFactor;
-    acc.kt *= sphere.stiffnessFactor;
-    const Eigen::Vector3d centre = qM.conjugate() * (sphere.center - node.position);
-    const double reach = sphere.radius + scene.candidateBand;
-    visitObstacle(Eigen::AlignedBox3d(centre.array() - reach, centre.array() + reach),
-                  Motion{sphere.center, sphere.velocity, Eigen::Vector3d::Zero()},
-                  [&](const Eigen::Vector3d& x, Eigen::Vector3d& normal) {
-                    const double phi = sphere.phi(x);
-                    if (phi < 0) normal = sphere.normal(x);
-                    return phi;
-                  });
-  } else {
-    const PlaneObstacle& plane = (*scene.planes)[obstacle - sphereCount];
-    visitObstacle(sm.nodes.box, Motion{plane.point, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()},
-                  [&](const Eigen::Vector3d& x, Eigen::Vector3d& normal) {
-                    normal = plane.normal;
-                    return plane.phi(x);
-                  });
   }
   acc.finish();
+}
+
+void evaluateSpherePair(const ContactScene& scene, PairContacts& pair) {
+  const bool rebuild = beginEvaluation(pair);
+  const SphereObstacle& sphere = (*scene.spheres)[-1 - pair.b];
+  Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a],
+                  scene.kn * sphere.stiffnessFactor, scene.kt * sphere.stiffnessFactor};
+  const Eigen::Vector3d& position = scene.bodies->position[pair.a];
+  const Eigen::Vector3d centre = scene.bodies->orientation[pair.a].conjugate() * (sphere.center - position);
+  const double reach = sphere.radius + scene.candidateBand;
+  visitObstacle(scene, pair, acc, rebuild, Eigen::AlignedBox3d(centre.array() - reach, centre.array() + reach),
+                Motion{sphere.center, sphere.velocity, Eigen::Vector3d::Zero()},
+                [&](const Eigen::Vector3d& x, Eigen::Vector3d& normal) {
+                  const double phi = sphere.phi(x);
+                  if (phi < 0) normal = sphere.normal(x);
+                  return phi;
+                });
+}
+
+void evaluatePlanePair(const ContactScene& scene, PairContacts& pair) {
+  const bool rebuild = beginEvaluation(pair);
+  const PlaneObstacle& plane = (*scene.planes)[-1 - pair.b - static_cast<int>(scene.spheres->size())];
+  Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a], scene.kn, scene.kt};
+  const ShapeModel& sm = (*scene.shapes)[scene.bodies->shape[pair.a]];
+  visitObstacle(scene, pair, acc, rebuild, sm.nodes.box, Motion{plane.point, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()},
+                [&](const Eigen::Vector3d& x, Eigen::Vector3d& normal) {
+                  normal = plane.normal;
+                  return plane.phi(x);
+                });
 }
 
 }  // namespace tessera

@@ -45,11 +45,16 @@ struct NodeContact {
   double area;             ///< m^2, its effective (projected) area
 };
 
+/// What the other side of a pair is: a body, or an analytic obstacle (each has its own collide
+/// function below).
+enum class PairKind : std::uint8_t { Bodies, Sphere, Plane };
+
 /// One candidate pair and its contact state. `b` >= 0 is a body; `b` < 0 an obstacle: sphere
-/// -1 - k, or plane -1 - spheres - k. Forces from the last evaluation; torques about each body's
-/// centroid; for an obstacle, forceB is the reaction on it.
+/// -1 - k, or plane -1 - spheres - k (the numbering of the result files). Forces from the last
+/// evaluation; torques about each body's centroid; for an obstacle, forceB is the reaction on it.
 struct PairContacts {
   int a = -1, b = -1;
+  PairKind kind = PairKind::Bodies;  ///< pairKind(b, spheres)
   std::vector<NodeContact> contacts, previous;
   /// Keys (as in NodeContact) of the nodes within the candidate band of the other side when the
   /// broad phase was last built; only these can touch until it is built again. Sorted.
@@ -76,11 +81,23 @@ struct ContactScene {
   double candidateBand = 0.0;
 };
 
-/// Evaluates one pair: for two bodies, the nodes of each in the other's level set, each node with
-/// half its area (so the pair does not depend on which body is a, and a flat face-on-face contact
-/// carries exactly k_n d); for an obstacle, the body's nodes with their full area. Keeps the
-/// springs of nodes still in contact, drops the others. Visits only the pair's candidate nodes,
-/// rebuilding them first when they are not valid. Thread-safe for distinct pairs.
+/// The kind of the pair (a, b) in a World with `spheres` spheres.
+inline PairKind pairKind(int b, int spheres) {
+  return b >= 0 ? PairKind::Bodies : -1 - b < spheres ? PairKind::Sphere : PairKind::Plane;
+}
+
+/// Evaluates one pair, by its kind. Each keeps the springs of nodes still in contact and drops
+/// the others, and visits only the pair's candidate nodes, rebuilding them first when they are
+/// not valid. Thread-safe for distinct pairs.
 void evaluatePair(const ContactScene& scene, PairContacts& pair);
+/// Two bodies: the nodes of each in the other's level set (its exact planes when convex, else its
+/// grid), each node with half its area, so that the pair does not depend on which body is a and a
+/// flat face-on-face contact carries exactly k_n d.
+void evaluateBodyPair(const ContactScene& scene, PairContacts& pair);
+/// A body against a sphere (the indenter): the body's nodes with their full area, the sphere's
+/// stiffnesses scaled by its stiffnessFactor.
+void evaluateSpherePair(const ContactScene& scene, PairContacts& pair);
+/// A body against a plane: the body's nodes with their full area.
+void evaluatePlanePair(const ContactScene& scene, PairContacts& pair);
 
 }  // namespace tessera

@@ -197,6 +197,7 @@ void World::restore(const WorldState& s) {
   spheres_ = s.spheres;
   planes_ = s.planes;
   pairs_ = s.pairs;
+  for (PairContacts& p : pairs_) p.kind = pairKind(p.b, static_cast<int>(spheres_.size()));
   builtPosition_ = s.builtPosition;
   builtSphereCentre_ = s.builtSphereCentre;
   builtOrientation_ = s.builtOrientation;
@@ -307,6 +308,7 @@ void World::updatePairs() {
       PairContacts pair;
       pair.a = a;
       pair.b = b;
+      pair.kind = pairKind(b, sphereCount);
       next.push_back(std::move(pair));
     }
   }
@@ -333,18 +335,19 @@ void World::evaluateForces() {
   std::fill(contactForce_.begin(), contactForce_.end(), Eigen::Vector3d::Zero());
   std::fill(contactTorque_.begin(), contactTorque_.end(), Eigen::Vector3d::Zero());
   std::fill(sphereReaction_.begin(), sphereReaction_.end(), Eigen::Vector3d::Zero());
-  const int sphereCount = static_cast<int>(spheres_.size());
   for (const PairContacts& pair : pairs_) {
     friction_ += pair.tally.friction;
     damping_ += pair.tally.viscous;
     projection_ += pair.tally.projection;
     contactForce_[pair.a] += pair.forceA;
     contactTorque_[pair.a] += pair.torqueA;
-    if (pair.b >= 0) {
-      contactForce_[pair.b] += pair.forceB;
-      contactTorque_[pair.b] += pair.torqueB;
-    } else if (-1 - pair.b < sphereCount) {
-      sphereReaction_[-1 - pair.b] += pair.forceB;
+    switch (pair.kind) {
+      case PairKind::Bodies:
+        contactForce_[pair.b] += pair.forceB;
+        contactTorque_[pair.b] += pair.torqueB;
+        break;
+      case PairKind::Sphere: sphereReaction_[-1 - pair.b] += pair.forceB; break;
+      case PairKind::Plane: break;  // fixed: its reaction is not needed
     }
   }
 

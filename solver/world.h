@@ -68,8 +68,6 @@ public:
   int addSphere(const SphereObstacle& sphere);  ///< returns its index
   int addPlane(const PlaneObstacle& plane);
   SphereObstacle& sphere(int k) { return spheres_[k]; }
-  /// A pair's `b` < 0 names an obstacle: is it a sphere (else a plane)?
-  bool isSphere(int b) const { return b < 0 && -1 - b < static_cast<int>(spheres_.size()); }
 
   /// Body state; change velocities or poses freely between steps.
   RigidBodies& bodies() { return bodies_; }

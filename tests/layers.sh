@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The layers point one way, and the kernel links no file format.
+#   io <- geometry <- levelset <- solver (kernel) <- run <- tools, python
+# Each folder's sources may include only their own folder and the folders below; the kernel
+# (solver/) only the data types of geometry/ and levelset/ (headers), never io/, and its shared
+# library needs no HDF5, OpenVDB, assimp, CGAL, TOML or JSON.
+# Usage: layers.sh SOURCE_DIR KERNEL_LIBRARY
+set -euo pipefail
+source_dir=$1 kernel=$2
+declare -A allowed=(
+  [io]="io"
+  [geometry]="io geometry"
+  [levelset]="io geometry levelset"
+  [solver]="geometry levelset solver"
+  [run]="io geometry levelset solver run"
+  [tools]="io geometry levelset solver run tools"
+  [python]="io geometry levelset solver run python"
+)
+status=0
+for folder in "${!allowed[@]}"; do
+  while IFS= read -r line; do
+    file=${line%%:*}
+    included=$(sed -E 's/.*#include "([a-z_]+)\/.*/\1/' <<<"$line")
+    if [[ " ${allowed[$folder]} " != *" $included "* ]]; then
+      echo "layers: $file includes $included/, above or beside $folder/ (${line#*:})"
+      status=1
+    fi
+  done < <(cd "$source_dir" && grep -H -E '^#include "[a-z_]+/' "$folder"/*.h "$folder"/*.cpp 2>/dev/null || true)
+done
+# The kernel: no file-format headers in its sources, none among the libraries it needs.
+if grep -l -E '#include <(hdf5|toml\+\+|nlohmann|openvdb|assimp|CGAL)' "$source_dir"/solver/*.h "$source_dir"/solver/*.cpp; then
+  echo "layers: the kernel (solver/) includes a file-format library"
+  status=1
+fi
+needed=$(readelf -d "$kernel" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p')
+for library in $needed; do
+  case "$library" in
+    libtbb*|libstdc++*|libm.*|libgcc_s*|libc.*) ;;
+    *) echo "layers: the kernel $kernel needs $library (only TBB and the C/C++ runtime are allowed)"; status=1 ;;
+  esac
+done
+[ $status = 0 ] && echo "layers: one way; the kernel needs only: $(echo $needed | tr '\n' ' ')"
+exit $status

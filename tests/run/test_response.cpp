@@ -1,0 +1,106 @@
+// Response analysis on synthetic curves whose K, P_max, failure deflection and W are known.
+#include "run/response.h"
+
+#include <catch2/catch.hpp>
+
+#include <functional>
+
+using namespace tessera;
+
+namespace {
+
+const double kStep = 0.04e-3;  // m between samples
+const double kH = 3.18e-3;     // m, the block's thickness
+
+// Samples delta = i kStep, i = 0..n, of P(delta); kinetic energy 1e-3 of the work so far.
+IndentationRecord recordOf(int n, const std::function<double(double)>& load) {
+  IndentationRecord r;
+  r.thickness = kH;
+  r.targetName = "centre";
+  r.stopReason = "delta_max";
+  double work = 0;
+  for (int i = 0; i <= n; ++i) {
+    CurveSample s;
+    s.delta = i * kStep;
+    s.load = load(s.delta);
+    if (i > 0) work += 0.5 * (s.load + r.curve.back().load) * kStep;
+    s.externalWork = work;
+    s.kinetic = 1e-3 * work;
+    r.curve.push_back(s);
+  }
+  return r;
+}
+
+// Up at K = 100 N/mm to 100 N at 1 mm, down linearly to 0 at 2 mm, then nothing.
+double triangle(double delta) {
+  const double mm = delta * 1e3;
+  return mm <= 1 ? 100 * mm : mm <= 2 ? 100 * (2 - mm) : 0.0;
+}
+
+}  // namespace
+
+TEST_CASE("response: K, P_max, failure deflection and W of a triangular curve") {
+  const IndentationRecord record = recordOf(75, triangle);  // to 3 mm
+  ResponseSettings settings;
+  settings.youngsModulus = 4.2e9;
+  settings.spanLength = 50e-3;
+  settings.freeBodies = 25;
+  const ResponseParameters r = analyseResponse(record, settings);
+  REQUIRE(r.peakLoad == Approx(100.0).epsilon(1e-12));
+  REQUIRE(r.deltaAtPeak == Approx(1e-3).epsilon(1e-12));
+  // The fit window ends at 0.4 mm (stiffnessFitRatio x h), before delta_peak / 2 = 0.5 mm.
+  REQUIRE(r.fitTo == Approx(0.4e-3).epsilon(1e-9));
+  REQUIRE(r.stiffness == Approx(100e3).epsilon(1e-9));
+  // Failure: the first sample below 10 N after the peak is 1.92 mm (8 N; 1.88 mm has 12 N).
+  REQUIRE(r.failureDeflection == Approx(1.92e-3).epsilon(1e-12));
+  // W = 50 N mm + integral of 100 (2 - d) from 1 to 1.92 mm = 50 + 49.68 N mm (trapezoids exact on lines).
+  REQUIRE(r.energy == Approx(99.68e-3).epsilon(1e-9));
+  REQUIRE(r.energyToEnd == Approx(100e-3).epsilon(1e-9));
+  REQUIRE(r.ultimateDeflection == Approx(2e-3).epsilon(1e-9));
+  REQUIRE(r.quasiStaticRatio == Approx(1e-3).epsilon(1e-9));
+  REQUIRE(r.quasiStatic);
+  REQUIRE(r.failureMode == "no failure");
+  REQUIRE(r.peakLoadNormalised == Approx(100.0 / (4.2e9 * 50e-3 * 50e-3)).epsilon(1e-12));
+  REQUIRE(r.deltaAtPeakNormalised == Approx(1e-3 / kH).epsilon(1e-12));
+}
+
+TEST_CASE("response: a plateau and one sudden drop is one load drop, from where the fall starts") {
+  const IndentationRecord record = recordOf(75, [](double delta) {
+    const double mm = delta * 1e3;
+    return mm <= 1 ? 100 * mm : mm < 2 - 1e-9 ? 100.0 : 50.0;
+  });
+  const ResponseParameters r = analyseResponse(record, ResponseSettings{});
+  REQUIRE(r.drops.size() == 1);
+  REQUIRE(r.drops[0].before == Approx(100.0));
+  REQUIRE(r.drops[0].after == Approx(50.0));
+  REQUIRE(r.drops[0].delta >= 1e-3);
+  REQUIRE(r.drops[0].delta < 2e-3);
+  REQUIRE(r.failureDeflection < 0);  // never below 10 N
+  REQUIRE(r.energy == Approx(r.energyToEnd));
+}
+
+TEST_CASE("response: the failure mode follows the bodies out, and an unfinished run says so") {
+  IndentationRecord record = recordOf(75, triangle);
+  ResponseSettings settings;
+  settings.freeBodies = 3;
+  record.fallen = {{"centre", 2e-3, true, false}};
+  REQUIRE(analyseResponse(record, settings).failureMode == "loaded block out");
+  record.fallen.push_back({"r1c2", 2.1e-3, false, false});
+  REQUIRE(analyseResponse(record, settings).failureMode == "2 blocks out");
+  record.fallen.push_back({"r2c2", 2.2e-3, false, true});
+  REQUIRE(analyseResponse(record, settings).failureMode == "collapse");
+  record.fallen.clear();
+  record.stopReason = "interrupted";
+  REQUIRE(analyseResponse(record, settings).failureMode == "none yet (run incomplete)");
+  record.stopReason = "requested";  // the sample hook ended it: a finished run
+  REQUIRE(analyseResponse(record, settings).failureMode == "no failure");
+  REQUIRE(analyseResponse(IndentationRecord{}, settings).failureMode == "no contact");
+}
+
+TEST_CASE("response: a loading that goes too fast is flagged") {
+  IndentationRecord record = recordOf(75, triangle);
+  for (CurveSample& s : record.curve) s.kinetic = 0.05 * s.externalWork;
+  const ResponseParameters r = analyseResponse(record, ResponseSettings{});
+  REQUIRE(r.quasiStaticRatio == Approx(0.05));
+  REQUIRE_FALSE(r.quasiStatic);
+}

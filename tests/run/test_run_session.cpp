@@ -1,0 +1,201 @@
+// The run of one scene in process (run/run_session.h): checkpoint round trips, the sample hook
+// steering the indenter, presets and overrides, determinism across thread counts.
+#include "io/input_error.h"
+#include "run/presets.h"
+#include "run/run_session.h"
+#include "run/state_digest.h"
+#include "tests/fixtures/scenes.h"
+#include "tests/fixtures/temp_dir.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+
+using namespace tessera;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// A 3 x 3 slab of the default block and the default scene on it, loaded to 0.6 mm.
+struct SmallTest {
+  test::TempDir dir;
+  std::string scene = dir / "scene.toml";
+  SmallTest() {
+    writeBundle(dir / "slab", test::smallSlab(3, 0.25e-3, 1.0e-3));
+    test::writeFile(scene, "bundle = \"slab\"\n[material]\nyoungs_modulus = 4.2e9\nfriction = 0.23\n"
+                           "[indenter]\nradius = 2.5e-3\nspeed = 0.03\n[protocol]\ndelta_max = 0.6e-3\n"
+                           "[damping]\nlocal = 0.3\n[output]\ncheckpoint_seconds = 1e5\n");
+  }
+  RunRequest request(const std::string& output = "") const {
+    RunRequest r;
+    r.scene = scene;
+    r.output = output;
+    r.threads = 1;
+    return r;
+  }
+};
+
+void requireSameCurve(const std::vector<CurveSample>& a, const std::vector<CurveSample>& b) {
+  REQUIRE(a.size() == b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    INFO("sample " << i);
+    REQUIRE(a[i].time == b[i].time);
+    REQUIRE(a[i].delta == b[i].delta);
+    REQUIRE(a[i].load == b[i].load);
+    REQUIRE(a[i].externalWork == b[i].externalWork);
+    REQUIRE(a[i].residual == b[i].residual);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("checkpoint round trip: a run stopped mid-loading and resumed in process ends bit-identical") {
+  SmallTest t;
+  auto whole = RunSession::start(t.request(), {});
+  whole->run({});
+  REQUIRE(whole->record().stopReason == "delta_max");
+  const long steps = whole->record().steps;
+
+  auto first = RunSession::start(t.request(t.dir / "run"), {});
+  RunHooks stopHalfway;
+  stopHalfway.interrupted = [&] { return first->world().stepCount() >= steps / 2; };
+  first->run(stopHalfway);
+  REQUIRE(first->record().stopReason == "interrupted");
+  REQUIRE(first->state().phase == 1);  // stopped while loading
+  REQUIRE_FALSE(first->record().curve.empty());
+  first.reset();  // releases the folder
+
+  auto resumed = RunSession::resume(t.dir / "run", "", "", -1, {});
+  REQUIRE(resumed->world().stepCount() == steps / 2);
+  resumed->run({});
+  REQUIRE(resumed->record().stopReason == "delta_max");
+  REQUIRE(resumed->world().stepCount() == steps);
+  requireSameCurve(resumed->record().curve, whole->record().curve);
+  const RigidBodies &a = resumed->world().bodies(), &b = whole->world().bodies();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    REQUIRE(a.position[i] == b.position[i]);
+    REQUIRE(a.orientation[i].coeffs() == b.orientation[i].coeffs());
+    REQUIRE(a.angularMomentum[i] == b.angularMomentum[i]);
+  }
+}
+
+TEST_CASE("sample hook: a run it does not steer is the protocol's run; a hold does no work and keeps delta") {
+  SmallTest t;
+  auto plain = RunSession::start(t.request(), {});
+  plain->run({});
+
+  auto held = RunSession::start(t.request(), {});
+  const double hold = 0.2e-3;
+  double speed = 0;
+  int heldSamples = 0;
+  std::vector<std::size_t> during;
+  RunHooks hooks;
+  hooks.sample = [&](const CurveSample& s, IndentationControl& c) {
+    if (speed == 0) speed = c.indenterSpeed;
+    if (c.indenterSpeed != 0 && heldSamples == 0 && s.delta >= hold) c.indenterSpeed = 0;  // hold
+    else if (c.indenterSpeed == 0) {
+      during.push_back(held->record().curve.size() - 1);
+      if (++heldSamples == 10) c.indenterSpeed = speed;  // and go on
+    }
+  };
+  held->run(hooks);
+  REQUIRE(held->record().stopReason == "delta_max");
+  REQUIRE(during.size() == 10);
+  const auto& curve = held->record().curve;
+  const CurveSample& start = curve[during.front() - 1];  // the sample at which the hold began
+  for (std::size_t i : during) {
+    INFO("held sample " << i);
+    REQUIRE(curve[i].delta == start.delta);                 // the indenter still
+    REQUIRE(curve[i].externalWork == start.externalWork);  // and doing no work
+    REQUIRE(curve[i].load <= start.load * 1.001);           // the slab relaxes under it
+  }
+  REQUIRE(curve[during.back()].time - start.time > 0);
+  // Up to the hold the run is the protocol's, to the last bit.
+  const std::size_t before = during.front();
+  requireSameCurve(std::vector<CurveSample>(curve.begin(), curve.begin() + before),
+                   std::vector<CurveSample>(plain->record().curve.begin(), plain->record().curve.begin() + before));
+}
+
+TEST_CASE("sample hook: stop() ends the run as requested, a finished run") {
+  SmallTest t;
+  auto session = RunSession::start(t.request(), {});
+  RunHooks hooks;
+  hooks.sample = [](const CurveSample& s, IndentationControl& c) { c.stop = s.delta >= 0.1e-3; };
+  session->run(hooks);
+  REQUIRE(session->record().stopReason == "requested");
+  REQUIRE(session->record().curve.back().delta >= 0.1e-3);
+  REQUIRE(session->record().curve.back().delta < 0.1e-3 + 2 * 10e-6);
+  REQUIRE(session->state().phase == 2);
+  REQUIRE(session->response().failureMode == "no failure");
+}
+
+TEST_CASE("presets and overrides reach the scene, and the span is resolved once") {
+  SmallTest t;
+  for (const Preset& preset : presets()) {
+    INFO("preset " << preset.name);
+    RunRequest r = t.request();
+    r.preset = preset.name;
+    const std::string text = "# x\n" + sceneWithOverrides(t.scene, preset.overrides);
+    const Scene scene = readSceneText(text, t.scene);
+    const Scene base = readScene(t.scene);
+    REQUIRE(scene.contact.friction == base.contact.friction);  // presets set accuracy, not the material
+    REQUIRE(RunSession::start(r, {})->source().preset == preset.name);
+  }
+  RunRequest r = t.request();
+  r.overrides = {{"material.friction", 0.5}, {"indenter.speed", 0.01}};
+  auto session = RunSession::start(r, {});
+  REQUIRE(session->scene().contact.friction == 0.5);
+  REQUIRE(session->scene().indenter.speed == 0.01);
+  // The span: the bundle's (3 x 3 grid: L = 1 pitch, M = 2), unless the scene sets one.
+  REQUIRE(session->contact().spanLength == Approx(10e-3));
+  REQUIRE(session->contact().spanInterfaces == 2);
+  r.overrides = {{"span.length", 0.02}, {"span.interfaces", 4}};
+  REQUIRE(RunSession::start(r, {})->contact().spanLength == 0.02);
+  r.overrides = {{"material.nonsense", 1}};
+  REQUIRE_THROWS_AS(RunSession::start(r, {}), InputError);
+  Bundle noSpan = test::smallSlab(3, 0.25e-3, 1.0e-3);
+  noSpan.spanLength = 0;
+  noSpan.spanInterfaces = 0;
+  ContactParameters unset;
+  unset.spanLength = 0;
+  unset.spanInterfaces = 0;
+  REQUIRE_THROWS_WITH(resolveSpan(unset, noSpan, "s.toml"), Contains("s.toml") && Contains("[span]"));
+}
+
+TEST_CASE("a run folder holds one run: a second start is refused while the first holds it, and after") {
+  SmallTest t;
+  auto first = RunSession::start(t.request(t.dir / "run"), {});
+  REQUIRE_THROWS_WITH(RunSession::start(t.request(t.dir / "run"), {}), Contains("another tessera process"));
+  first->run({});
+  first.reset();
+  REQUIRE_THROWS_WITH(RunSession::start(t.request(t.dir / "run"), {}), Contains("holds a run already"));
+}
+
+TEST_CASE("determinism: the 7 x 7 slab ends in the same state, digest in summary.json, with 1, 2 and 4 threads") {
+  test::TempDir dir;
+  writeBundle(dir / "slab", test::smallSlab(7, 0.25e-3, 0.6e-3));
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[indenter]\nradius = 2.5e-3\nspeed = 0.03\n"
+                                      "[protocol]\ndelta_max = 0.15e-3\n[damping]\nlocal = 0.3\n");
+  std::vector<std::string> digests;
+  std::vector<CurveSample> first;
+  for (int threads : {1, 2, 4}) {
+    RunRequest r;
+    r.scene = dir / "scene.toml";
+    r.threads = threads;
+    r.output = dir / ("run" + std::to_string(threads));
+    auto session = RunSession::start(r, {});
+    session->run({});
+    REQUIRE(session->record().stopReason == "delta_max");
+    std::ifstream in(r.output + "/summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(in);
+    REQUIRE(summary["state_digest"] == stateDigest(session->world()));
+    digests.push_back(summary["state_digest"]);
+    if (first.empty()) first = session->record().curve;
+    else requireSameCurve(session->record().curve, first);
+  }
+  REQUIRE(digests[0].size() == 16);
+  REQUIRE(digests[1] == digests[0]);
+  REQUIRE(digests[2] == digests[0]);
+}
