@@ -235,6 +235,12 @@ void writeAttribute(hid_t object, const std::string& name, const std::string& va
   writeScalarAttribute(object, name, type.get(), value.empty() ? "" : value.data());
 }
 
+void writeDatasetAttribute(hid_t parent, const std::string& dataset, const std::string& name, const std::string& value) {
+  Handle d(H5Dopen2(parent, dataset.c_str(), H5P_DEFAULT));
+  if (d.get() < 0) throw std::runtime_error("HDF5: no dataset '" + dataset + "' for its attribute '" + name + "'");
+  writeAttribute(d.get(), name, value);
+}
+
 void writeAttribute(hid_t object, const std::string& name, double value) {
   writeScalarAttribute(object, name, H5T_NATIVE_DOUBLE, &value);
 }

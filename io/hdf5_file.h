@@ -55,6 +55,8 @@ void writeStrings(hid_t parent, const std::string& name, const std::vector<std::
 std::vector<std::string> readStrings(hid_t parent, const std::string& name);
 
 void writeAttribute(hid_t object, const std::string& name, const std::string& value);
+/// The string attribute `name` = `value` on the dataset `dataset` of `parent` (e.g. its "unit").
+void writeDatasetAttribute(hid_t parent, const std::string& dataset, const std::string& name, const std::string& value);
 void writeAttribute(hid_t object, const std::string& name, double value);
 void writeAttribute(hid_t object, const std::string& name, std::int64_t value);
 std::string readStringAttribute(hid_t object, const std::string& name);

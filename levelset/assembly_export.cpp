@@ -4,6 +4,7 @@
 #include "levelset/assembly.h"
 #include "levelset/layout_file.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -23,7 +24,7 @@ constexpr int kVtkTriangle = 5;
 
 void writeAtomically(const fs::path& target, const std::function<void(std::ostream&)>& write) {
   writeFileSafely(target, [&](const fs::path& temporary) {
-    std::ofstream out(temporary);
+    std::ofstream out(temporary, std::ios::binary);
     out.precision(17);
     write(out);
     out.close();
@@ -31,46 +32,88 @@ void writeAtomically(const fs::path& target, const std::function<void(std::ostre
   });
 }
 
+// One data array of a VTU file, its values kept as raw bytes for the appended block.
+struct VtuArray {
+  std::string type;  // VTK's name: Float64, Int64, Int32, UInt8
+  std::string name;
+  int components = 1;
+  std::string bytes;
+};
+
 template <class T>
-void dataArray(std::ostream& out, const char* type, const char* name, int components, const std::vector<T>& values) {
-  out << "<DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\"" << components
-      << "\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < values.size(); ++i) out << +values[i] << ((i + 1) % 12 == 0 ? '\n' : ' ');
-  out << "\n</DataArray>\n";
+VtuArray vtuArray(const char* type, const std::string& name, int components, const std::vector<T>& values) {
+  return {type, name, components, std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T))};
 }
 
-// An ASCII VTK XML UnstructuredGrid with one cell type.
+// A VTK XML UnstructuredGrid with one cell type, every array in one appended block of raw
+// little-endian bytes, each preceded by its byte count as UInt64 (VTK file formats, "Appended
+// data"): 5-7 times faster to read than ASCII and a third of its size. Field data (the body
+// names) is ASCII: VTK reads string arrays only so.
 void writeVtu(std::ostream& out, const std::vector<double>& points, const std::vector<std::int64_t>& connectivity,
-              int cellType, int pointsPerCell, const std::function<void(std::ostream&)>& pointData,
-              const std::function<void(std::ostream&)>& cellData) {
+              int cellType, int pointsPerCell, const std::vector<VtuArray>& pointData,
+              const std::vector<VtuArray>& cellData, const std::vector<std::string>& names = {}) {
   const std::size_t cells = connectivity.size() / pointsPerCell;
-  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\""
-      << points.size() / 3 << "\" NumberOfCells=\"" << cells << "\">\n<PointData>\n";
-  pointData(out);
-  out << "</PointData>\n<CellData>\n";
-  cellData(out);
-  out << "</CellData>\n<Points>\n";
-  dataArray(out, "Float64", "Points", 3, points);
-  out << "</Points>\n<Cells>\n";
-  dataArray(out, "Int64", "connectivity", 1, connectivity);
   std::vector<std::int64_t> offsets(cells);
   for (std::size_t c = 0; c < cells; ++c) offsets[c] = static_cast<std::int64_t>((c + 1) * pointsPerCell);
-  dataArray(out, "Int64", "offsets", 1, offsets);
-  dataArray(out, "UInt8", "types", 1, std::vector<std::uint8_t>(cells, static_cast<std::uint8_t>(cellType)));
-  out << "</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  const VtuArray pointArray = vtuArray("Float64", "Points", 3, points);
+  const std::vector<VtuArray> cellArrays{vtuArray("Int64", "connectivity", 1, connectivity),
+                                         vtuArray("Int64", "offsets", 1, offsets),
+                                         vtuArray("UInt8", "types", 1, std::vector<std::uint8_t>(cells, static_cast<std::uint8_t>(cellType)))};
+  std::uint64_t offset = 0;
+  std::string appended;
+  const auto declare = [&](const VtuArray& a) {
+    out << "<DataArray type=\"" << a.type << "\" Name=\"" << a.name << "\" NumberOfComponents=\"" << a.components
+        << "\" format=\"appended\" offset=\"" << offset << "\"/>\n";
+    const std::uint64_t size = a.bytes.size();
+    appended.append(reinterpret_cast<const char*>(&size), sizeof size);
+    appended += a.bytes;
+    offset += sizeof size + size;
+  };
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n<UnstructuredGrid>\n";
+  if (!names.empty()) {
+    out << "<FieldData>\n<DataArray type=\"String\" Name=\"body_names\" NumberOfTuples=\"" << names.size()
+        << "\" format=\"ascii\">\n";
+    for (const std::string& n : names) {
+      for (unsigned char c : n) out << +c << ' ';
+      out << "0\n";
+    }
+    out << "</DataArray>\n</FieldData>\n";
+  }
+  out << "<Piece NumberOfPoints=\"" << points.size() / 3 << "\" NumberOfCells=\"" << cells << "\">\n<PointData>\n";
+  for (const VtuArray& a : pointData) declare(a);
+  out << "</PointData>\n<CellData>\n";
+  for (const VtuArray& a : cellData) declare(a);
+  out << "</CellData>\n<Points>\n";
+  declare(pointArray);
+  out << "</Points>\n<Cells>\n";
+  for (const VtuArray& a : cellArrays) declare(a);
+  out << "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  out.write(appended.data(), static_cast<std::streamsize>(appended.size()));
+  out << "\n</AppendedData>\n</VTKFile>\n";
+}
+
+std::vector<double> flatten(const std::vector<Eigen::Vector3d>& v) {
+  std::vector<double> flat;
+  flat.reserve(3 * v.size());
+  for (const auto& x : v) flat.insert(flat.end(), {x.x(), x.y(), x.z()});
+  return flat;
 }
 
 }  // namespace
 
 std::size_t writeBlocksVtu(const Bundle& bundle, const std::vector<Eigen::Vector3d>& position,
-                           const std::vector<Eigen::Quaterniond>& orientation, const std::string& path) {
+                           const std::vector<Eigen::Quaterniond>& orientation, const std::string& path,
+                           const std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>>& bodyVectors) {
   std::vector<double> points;
   std::vector<std::int64_t> triangles;
   std::vector<std::int32_t> bodyOfCell, shapeOfCell;
   std::vector<std::uint8_t> fixedOfCell;
+  std::vector<std::vector<double>> vectorsOfCell(bodyVectors.size());
+  std::vector<std::string> names;
   for (int b = 0; b < static_cast<int>(bundle.bodies.size()); ++b) {
     const Body& body = bundle.bodies[b];
+    names.push_back(body.name);
     const Shape& shape = bundle.shapes[body.shape];
     const auto base = static_cast<std::int64_t>(points.size() / 3);
     for (const auto& v : shape.mesh.vertices) {
@@ -82,17 +125,41 @@ std::size_t writeBlocksVtu(const Bundle& bundle, const std::vector<Eigen::Vector
       bodyOfCell.push_back(b);
       shapeOfCell.push_back(body.shape);
       fixedOfCell.push_back(body.fixed ? 1 : 0);
+      for (std::size_t k = 0; k < bodyVectors.size(); ++k) {
+        const Eigen::Vector3d& v = bodyVectors[k].second[b];
+        vectorsOfCell[k].insert(vectorsOfCell[k].end(), {v.x(), v.y(), v.z()});
+      }
     }
   }
-  writeAtomically(path, [&](std::ostream& out) {
-    writeVtu(out, points, triangles, kVtkTriangle, 3, [](std::ostream&) {},
-             [&](std::ostream& o) {
-               dataArray(o, "Int32", "body_id", 1, bodyOfCell);
-               dataArray(o, "Int32", "shape_id", 1, shapeOfCell);
-               dataArray(o, "UInt8", "fixed", 1, fixedOfCell);
-             });
-  });
+  std::vector<VtuArray> cellData{vtuArray("Int32", "body_id", 1, bodyOfCell), vtuArray("Int32", "shape_id", 1, shapeOfCell),
+                                 vtuArray("UInt8", "fixed", 1, fixedOfCell)};
+  for (std::size_t k = 0; k < bodyVectors.size(); ++k)
+    cellData.push_back(vtuArray("Float64", bodyVectors[k].first, 3, vectorsOfCell[k]));
+  writeAtomically(path, [&](std::ostream& out) { writeVtu(out, points, triangles, kVtkTriangle, 3, {}, cellData, names); });
   return bodyOfCell.size();
+}
+
+void writeSphereVtu(const Eigen::Vector3d& centre, double radius, const std::string& path) {
+  // A UV sphere: 24 meridians, 12 parallels (poles included), triangles outward.
+  const int meridians = 24, parallels = 12;
+  std::vector<double> points;
+  for (int i = 0; i <= parallels; ++i) {
+    const double theta = M_PI * i / parallels;
+    for (int j = 0; j < meridians; ++j) {
+      const double phi = 2 * M_PI * j / meridians;
+      const Eigen::Vector3d x = centre + radius * Eigen::Vector3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                                                 std::cos(theta));
+      points.insert(points.end(), {x.x(), x.y(), x.z()});
+    }
+  }
+  std::vector<std::int64_t> triangles;
+  const auto at = [&](int i, int j) { return static_cast<std::int64_t>(i * meridians + (j % meridians)); };
+  for (int i = 0; i < parallels; ++i)
+    for (int j = 0; j < meridians; ++j) {
+      if (i > 0) triangles.insert(triangles.end(), {at(i, j), at(i + 1, j), at(i, j + 1)});
+      if (i + 1 < parallels) triangles.insert(triangles.end(), {at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
+    }
+  writeAtomically(path, [&](std::ostream& out) { writeVtu(out, points, triangles, kVtkTriangle, 3, {}, {}); });
 }
 
 void writePvd(const std::string& path, const std::vector<std::string>& files, const std::vector<double>& times) {
@@ -110,22 +177,12 @@ void writePvd(const std::string& path, const std::vector<std::string>& files, co
 void writePointsVtu(const std::string& path, const std::vector<Eigen::Vector3d>& points,
                     const std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>>& vectors,
                     const std::vector<std::pair<std::string, std::vector<double>>>& scalars) {
-  std::vector<double> flat;
-  for (const auto& p : points) flat.insert(flat.end(), {p.x(), p.y(), p.z()});
   std::vector<std::int64_t> cells(points.size());
   for (std::size_t i = 0; i < cells.size(); ++i) cells[i] = static_cast<std::int64_t>(i);
-  writeAtomically(path, [&](std::ostream& out) {
-    writeVtu(out, flat, cells, kVtkVertex, 1,
-             [&](std::ostream& o) {
-               for (const auto& [name, values] : vectors) {
-                 std::vector<double> v;
-                 for (const auto& x : values) v.insert(v.end(), {x.x(), x.y(), x.z()});
-                 dataArray(o, "Float64", name.c_str(), 3, v);
-               }
-               for (const auto& [name, values] : scalars) dataArray(o, "Float64", name.c_str(), 1, values);
-             },
-             [](std::ostream&) {});
-  });
+  std::vector<VtuArray> pointData;
+  for (const auto& [name, values] : vectors) pointData.push_back(vtuArray("Float64", name, 3, flatten(values)));
+  for (const auto& [name, values] : scalars) pointData.push_back(vtuArray("Float64", name, 1, values));
+  writeAtomically(path, [&](std::ostream& out) { writeVtu(out, flatten(points), cells, kVtkVertex, 1, pointData, {}); });
 }
 
 ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath, const std::string& directory) {
@@ -163,13 +220,9 @@ ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath
   for (std::size_t i = 0; i < vertexCells.size(); ++i) vertexCells[i] = static_cast<std::int64_t>(i);
   writeAtomically(dir / "nodes.vtu", [&](std::ostream& out) {
     writeVtu(out, nodePoints, vertexCells, kVtkVertex, 1,
-             [&](std::ostream& o) {
-               dataArray(o, "Int32", "body_id", 1, bodyOfNode);
-               dataArray(o, "Float64", "area", 1, areas);
-               dataArray(o, "Float64", "normal", 3, normals);
-               dataArray(o, "UInt8", "kind", 1, kinds);
-             },
-             [](std::ostream&) {});
+             {vtuArray("Int32", "body_id", 1, bodyOfNode), vtuArray("Float64", "area", 1, areas),
+              vtuArray("Float64", "normal", 3, normals), vtuArray("UInt8", "kind", 1, kinds)},
+             {});
   });
 
   writeAtomically(dir / "assembly.pvd", [&](std::ostream& out) {

@@ -22,9 +22,15 @@ struct ExportSummary {
 ExportSummary exportAssembly(const Bundle& bundle, const std::string& bundlePath, const std::string& directory);
 
 /// Writes blocks.vtu-style triangles of every body at the given poses (body centroid position
-/// and orientation per body, as in Bundle::bodies) to `path`; returns the triangle count.
+/// and orientation per body, as in Bundle::bodies) to `path`; returns the triangle count. Cell
+/// data body_id, shape_id, fixed and, per body, each of `bodyVectors` (e.g. displacement, m, and
+/// velocity, m/s); field data body_names. Arrays appended as raw binary.
 std::size_t writeBlocksVtu(const Bundle& bundle, const std::vector<Eigen::Vector3d>& position,
-                           const std::vector<Eigen::Quaterniond>& orientation, const std::string& path);
+                           const std::vector<Eigen::Quaterniond>& orientation, const std::string& path,
+                           const std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>>& bodyVectors = {});
+
+/// Writes a sphere (triangles) of `radius` at `centre` (m) to `path`: the indenter in a series.
+void writeSphereVtu(const Eigen::Vector3d& centre, double radius, const std::string& path);
 
 /// Writes a ParaView collection (.pvd) of `files` (relative to the .pvd) at the given times; files
 /// at the same time become parts 0, 1, ... of that time step.

@@ -116,7 +116,7 @@ private:
 py::dict contactsOf(const World& world) {
   std::vector<int> a, b, count, sliding;
   std::vector<double> area, elastic;
-  std::vector<Eigen::Vector3d> force, point;
+  std::vector<Eigen::Vector3d> force, normal, point;
   for (const PairContacts& p : world.pairs()) {
     if (p.contacts.empty()) continue;
     a.push_back(p.a);
@@ -128,12 +128,14 @@ py::dict contactsOf(const World& world) {
     area.push_back(sum);
     elastic.push_back(p.tally.elastic);
     force.push_back(p.forceA);
+    normal.push_back(p.normalForceA);
     point.push_back(p.forcePoint);
   }
   py::dict d;
   d["a"] = column(a);
   d["b"] = column(b);
   d["force"] = vectors(force);
+  d["normal_force"] = vectors(normal);
   d["point"] = vectors(point);
   d["node_contacts"] = column(count);
   d["sliding_nodes"] = column(sliding);
@@ -236,8 +238,8 @@ void bindSimulation(py::module_& m) {
         return d;
       }, "the indenter: centre (m), velocity (m/s), radius (m), reaction of the bodies on it (N)")
       .def("contacts", [](const Simulation& s) { return contactsOf(s.session().world()); },
-           "Pairs in contact now: a, b (b < 0: an obstacle, -1 the indenter), force on a (N), point (m), "
-           "node_contacts, sliding_nodes, area (m^2), elastic (J)")
+           "Pairs in contact now: a, b (b < 0: an obstacle, -1 the indenter), force on a (N), its normal_force "
+           "part (N; the rest is friction), point (m), node_contacts, sliding_nodes, area (m^2), elastic (J)")
       .def_property_readonly("energy", [](const Simulation& s) {
         const EnergyBudget e = s.session().world().energy();
         py::dict d;

@@ -244,28 +244,41 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
   h5::writeAttribute(g, "wall_seconds", r.wallSeconds);
   writeCurve(h5::createGroup(g, "curve").get(), r.curve);
   std::vector<double> snapshot;
-  std::vector<Eigen::Vector3d> position;
+  std::vector<Eigen::Vector3d> position, velocity, indenter;
   std::vector<Eigen::Quaterniond> orientation;
   for (const Snapshot& s2 : r.snapshots) {
     snapshot.insert(snapshot.end(), {s2.delta, s2.load});
     position.insert(position.end(), s2.position.begin(), s2.position.end());
     orientation.insert(orientation.end(), s2.orientation.begin(), s2.orientation.end());
+    velocity.insert(velocity.end(), s2.velocity.begin(), s2.velocity.end());
+    indenter.push_back(s2.indenter);
   }
+  writeVectors(g, "snapshot_velocity", velocity);
+  writeVectors(g, "snapshot_indenter", indenter);
   h5::writeDataset(g, "snapshot", snapshot, {count(r.snapshots.size()), 2});
-  std::vector<std::int32_t> linkCount, linkPair;
-  std::vector<Eigen::Vector3d> linkPoint, linkForce;
+  std::vector<std::int32_t> linkCount, linkPair, linkNodes, linkSliding;
+  std::vector<Eigen::Vector3d> linkPoint, linkForce, linkNormal;
+  std::vector<double> linkArea;
   for (const Snapshot& s2 : r.snapshots) {
     linkCount.push_back(static_cast<std::int32_t>(s2.forces.size()));
     for (const ForceLink& l : s2.forces) {
       linkPair.insert(linkPair.end(), {l.a, l.b});
       linkPoint.push_back(l.point);
       linkForce.push_back(l.force);
+      linkNormal.push_back(l.normalForce);
+      linkNodes.push_back(l.nodeContacts);
+      linkArea.push_back(l.area);
+      linkSliding.push_back(l.slidingNodes);
     }
   }
   h5::writeDataset(g, "snapshot_links", linkCount, {count(linkCount.size())});
   h5::writeDataset(g, "link_pair", linkPair, {count(linkPoint.size()), 2});
   writeVectors(g, "link_point", linkPoint);
   writeVectors(g, "link_force", linkForce);
+  writeVectors(g, "link_normal_force", linkNormal);
+  h5::writeDataset(g, "link_node_contacts", linkNodes, {count(linkNodes.size())});
+  writeDoubles(g, "link_area", linkArea);
+  h5::writeDataset(g, "link_sliding_nodes", linkSliding, {count(linkSliding.size())});
   writeVectors(g, "snapshot_position", position);
   writeQuaternions(g, "snapshot_orientation", orientation);
   std::vector<std::string> names;
@@ -293,13 +306,13 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   s.nextSnapshot = h5::readDoubleAttribute(g, "next_snapshot");
   s.quietFrom = h5::readDoubleAttribute(g, "quiet_from");
   // Since the sample hook could change the indenter's velocity; before, the speed never changed.
-  const auto optional = [&](const char* name, double otherwise) {
+  const auto optionalAttribute = [&](const char* name, double otherwise) {
     return H5Aexists(g, name) > 0 ? h5::readDoubleAttribute(g, name) : otherwise;
   };
-  s.travelBase = optional("travel_base", 0.0);
-  s.pathBase = optional("path_base", 0.0);
-  s.speedSince = optional("speed_since", s.loadStart);
-  s.contactPath = optional("contact_path", s.contactTravel);
+  s.travelBase = optionalAttribute("travel_base", 0.0);
+  s.pathBase = optionalAttribute("path_base", 0.0);
+  s.speedSince = optionalAttribute("speed_since", s.loadStart);
+  s.contactPath = optionalAttribute("contact_path", s.contactTravel);
   s.settledPosition = readVectors(g, "settled_position");
   s.outAt = h5::readDataset<double>(g, "out_at");
   if ((s.phase > 0 && s.settledPosition.size() != bodies) || s.outAt.size() != s.settledPosition.size())
@@ -334,6 +347,25 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
     links += static_cast<std::size_t>(c);
   }
   if (links != linkPoint.size()) throw std::runtime_error("force-link counts do not match the links");
+  // Written since the per-contact records and the ParaView fields (absent in older checkpoints:
+  // zeros). Each of the right size or absent.
+  const auto optionalDataset = [&](const char* name, std::size_t size, auto read, auto zero) {
+    using T = decltype(read(name));
+    if (H5Lexists(g, name, H5P_DEFAULT) <= 0) return T(size, zero);
+    T v = read(name);
+    if (v.size() != size) throw std::runtime_error(std::string("inconsistent ") + name);
+    return v;
+  };
+  const auto vectors = [&](const char* n) { return readVectors(g, n); };
+  const auto ints = [&](const char* n) { return h5::readDataset<std::int32_t>(g, n); };
+  const auto doubles = [&](const char* n) { return h5::readDataset<double>(g, n); };
+  const Eigen::Vector3d none = Eigen::Vector3d::Zero();
+  const auto linkNormal = optionalDataset("link_normal_force", links, vectors, none);
+  const auto linkNodes = optionalDataset("link_node_contacts", links, ints, 0);
+  const auto linkArea = optionalDataset("link_area", links, doubles, 0.0);
+  const auto linkSliding = optionalDataset("link_sliding_nodes", links, ints, 0);
+  const auto velocity = optionalDataset("snapshot_velocity", frames * bodies, vectors, none);
+  const auto indenter = optionalDataset("snapshot_indenter", frames, vectors, none);
   for (std::int32_t body : linkPair)
     if (body < -64 || body >= static_cast<std::int32_t>(bodies)) throw std::runtime_error("a force link names no body");
   if (s.phase < 0 || s.phase > 2 || r.target < -1 || r.target >= static_cast<int>(bodies))
@@ -344,9 +376,12 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
     Snapshot s2{snapshot[2 * k], snapshot[2 * k + 1],
                 std::vector<Eigen::Vector3d>(position.begin() + k * bodies, position.begin() + (k + 1) * bodies),
                 std::vector<Eigen::Quaterniond>(orientation.begin() + k * bodies, orientation.begin() + (k + 1) * bodies),
-                {}};
+                {},
+                std::vector<Eigen::Vector3d>(velocity.begin() + k * bodies, velocity.begin() + (k + 1) * bodies),
+                indenter[k]};
     for (int l = 0; l < linkCount[k]; ++l, ++link)
-      s2.forces.push_back({linkPair[2 * link], linkPair[2 * link + 1], linkPoint[link], linkForce[link]});
+      s2.forces.push_back({linkPair[2 * link], linkPair[2 * link + 1], linkPoint[link], linkForce[link], linkNormal[link],
+                           linkNodes[link], linkArea[link], linkSliding[link]});
     r.snapshots.push_back(std::move(s2));
   }
   const auto names = h5::readStrings(g, "fallen_names");

@@ -38,8 +38,7 @@ void writeCurve(hid_t group, const std::vector<CurveSample>& curve) {
     values.reserve(curve.size());
     for (const CurveSample& s : curve) values.push_back(s.*c.field);
     h5::writeDataset(group, c.name, values, {curve.size()});
-    h5::Handle dataset(H5Dopen2(group, c.name, H5P_DEFAULT));
-    h5::writeAttribute(dataset.get(), "unit", std::string(c.unit));
+    h5::writeDatasetAttribute(group, c.name, "unit", c.unit);
   }
 }
 

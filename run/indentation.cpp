@@ -17,10 +17,16 @@ namespace tessera {
 
 namespace {
 
-Snapshot snapshotOf(const World& world, double delta, double load) {
-  Snapshot s{delta, load, world.bodies().position, world.bodies().orientation, {}};
-  for (const PairContacts& p : world.pairs())
-    if (!p.contacts.empty()) s.forces.push_back({p.a, p.b, p.forcePoint, p.forceA});
+Snapshot snapshotOf(World& world, int sphere, double delta, double load) {
+  Snapshot s{delta, load, world.bodies().position, world.bodies().orientation, {}, world.bodies().velocity,
+             world.sphere(sphere).center};
+  for (const PairContacts& p : world.pairs()) {
+    if (p.contacts.empty()) continue;
+    double area = 0;
+    for (const NodeContact& c : p.contacts) area += c.area;
+    s.forces.push_back({p.a, p.b, p.forcePoint, p.forceA, p.normalForceA, static_cast<int>(p.contacts.size()), area,
+                        p.tally.sliding});
+  }
   return s;
 }
 
@@ -254,7 +260,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
       }
     }
     if (state.contactTravel >= 0 && along >= state.nextSnapshot) {
-      record.snapshots.push_back(snapshotOf(world, delta, load));
+      record.snapshots.push_back(snapshotOf(world, state.sphere, delta, load));
       state.nextSnapshot += scene.output.snapshotEvery;
     }
 
@@ -278,7 +284,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
       if (state.contactTravel >= 0 && (record.curve.empty() || record.curve.back().time < world.time() - state.loadStart))
         sample(delta, load);
       if (!record.curve.empty() && (record.snapshots.empty() || record.snapshots.back().delta != record.curve.back().delta))
-        record.snapshots.push_back(snapshotOf(world, delta, load));
+        record.snapshots.push_back(snapshotOf(world, state.sphere, delta, load));
       state.phase = 2;
       break;
     }

@@ -32,20 +32,26 @@ struct CurveSample {
   double residual = 0;            ///< J, EnergyBudget::residual
 };
 
-/// The resultant contact force of one pair at a snapshot (a force-chain link).
+/// The contact of one pair at a snapshot (a force-chain link).
 struct ForceLink {
   int a = -1, b = -1;            ///< bodies; b < 0: the indenter
   Eigen::Vector3d point{0, 0, 0};  ///< m, mean contact point weighted by normal force
   Eigen::Vector3d force{0, 0, 0};  ///< N, on body a
+  Eigen::Vector3d normalForce{0, 0, 0};  ///< N, its part along the contact normals (force - normalForce: friction)
+  int nodeContacts = 0;          ///< node contacts of the pair
+  double area = 0;               ///< m^2, their effective (projected) area
+  int slidingNodes = 0;          ///< of them, at the Coulomb cap
 };
 
 /// Body poses and contact forces at one moment (for the ParaView time series).
 struct Snapshot {
   double delta = 0;  ///< m
   double load = 0;   ///< N
-  std::vector<Eigen::Vector3d> position;
-  std::vector<Eigen::Quaterniond> orientation;
+  std::vector<Eigen::Vector3d> position;        ///< m, each body's centroid
+  std::vector<Eigen::Quaterniond> orientation;  ///< body to world
   std::vector<ForceLink> forces;
+  std::vector<Eigen::Vector3d> velocity;        ///< m/s, each body's centroid
+  Eigen::Vector3d indenter{0, 0, 0};            ///< m, the indenter's centre
 };
 
 /// A block out of the slab (assembly_state.h): fallen (no chain of block contacts holds it to a

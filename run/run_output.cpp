@@ -17,14 +17,33 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A dataset of `dims` with its unit (and, where it helps, a note on what it holds).
+template <class T>
+void writeWithUnit(hid_t g, const std::string& name, const std::vector<T>& data, const std::vector<hsize_t>& dims,
+                   const std::string& unit, const std::string& note = "") {
+  h5::writeDataset(g, name, data, dims);
+  h5::writeDatasetAttribute(g, name, "unit", unit);
+  if (!note.empty()) h5::writeDatasetAttribute(g, name, "note", note);
+}
+
+std::vector<double> flatten(const std::vector<Eigen::Vector3d>& v) {
+  std::vector<double> flat;
+  flat.reserve(3 * v.size());
+  for (const Eigen::Vector3d& x : v) flat.insert(flat.end(), {x.x(), x.y(), x.z()});
+  return flat;
+}
+
 void writeResultsH5(hid_t f, const Scene& scene, const Bundle& bundle, const ContactParameters& contact,
-                    const IndentationRecord& record) {
+                    const IndentationRecord& record, const RunProvenance& provenance) {
   h5::writeAttribute(f, "format", std::string("tessera-results"));
-  h5::writeAttribute(f, "format_version", std::int64_t{2});
+  h5::writeAttribute(f, "format_version", std::int64_t{3});
   h5::writeAttribute(f, "generator", generatorVersion());
   h5::writeAttribute(f, "scene_file", scene.path);
+  h5::writeAttribute(f, "scene_text", provenance.sceneText);
+  h5::writeAttribute(f, "state_digest", provenance.stateDigest);
   h5::writeAttribute(f, "bundle", scene.bundle);
   h5::writeAttribute(f, "bundle_generator", bundle.generator);
+  h5::writeAttribute(f, "units", std::string("SI: m, N, J, s, kg; attribute 'unit' on every dataset"));
   h5::writeAttribute(f, "youngs_modulus", contact.youngsModulus);
   h5::writeAttribute(f, "normal_stiffness", contact.normalStiffness());
   h5::writeAttribute(f, "friction", contact.friction);
@@ -36,40 +55,56 @@ void writeResultsH5(hid_t f, const Scene& scene, const Bundle& bundle, const Con
   writeCurve(h5::createGroup(f, "curve").get(), record.curve);
 
   h5::Handle snaps = h5::createGroup(f, "snapshots");
+  const hid_t g = snaps.get();
   std::vector<std::string> names;
   for (const Body& b : bundle.bodies) names.push_back(b.name);
-  h5::writeStrings(snaps.get(), "body_names", names);
-  std::vector<double> delta, load;
+  h5::writeStrings(g, "body_names", names);
+  std::vector<double> delta, load, position, orientation, velocity, indenter;
   for (const Snapshot& s : record.snapshots) {
     delta.push_back(s.delta);
     load.push_back(s.load);
-  }
-  h5::writeDataset(snaps.get(), "delta", delta, {delta.size()});
-  h5::writeDataset(snaps.get(), "load", load, {load.size()});
-  std::vector<double> position, orientation;
-  for (const Snapshot& s : record.snapshots)
     for (std::size_t i = 0; i < s.position.size(); ++i) {
       position.insert(position.end(), {s.position[i].x(), s.position[i].y(), s.position[i].z()});
       orientation.insert(orientation.end(), {s.orientation[i].w(), s.orientation[i].x(), s.orientation[i].y(), s.orientation[i].z()});
     }
+    const std::vector<double> v = flatten(s.velocity);
+    velocity.insert(velocity.end(), v.begin(), v.end());
+    indenter.insert(indenter.end(), {s.indenter.x(), s.indenter.y(), s.indenter.z()});
+  }
   const hsize_t frames = record.snapshots.size(), bodies = bundle.bodies.size();
-  h5::writeDataset(snaps.get(), "position", position, {frames, bodies, 3});
-  h5::writeDataset(snaps.get(), "orientation", orientation, {frames, bodies, 4});
-  // Force chains: links of snapshot k are rows force_offset[k] .. force_offset[k+1]-1.
-  std::vector<std::int32_t> offset{0}, pair;
-  std::vector<double> point, force;
+  writeWithUnit(g, "delta", delta, {frames}, "m");
+  writeWithUnit(g, "load", load, {frames}, "N");
+  writeWithUnit(g, "position", position, {frames, bodies, 3}, "m", "each body's centroid");
+  writeWithUnit(g, "orientation", orientation, {frames, bodies, 4}, "1", "unit quaternion (w, x, y, z), body frame to world");
+  writeWithUnit(g, "velocity", velocity, {frames, bodies, 3}, "m/s", "each body's centroid");
+  writeWithUnit(g, "indenter", indenter, {frames, 3}, "m", "the indenter's centre");
+  // Contacts: the records of snapshot k are rows force_offset[k] .. force_offset[k+1]-1.
+  std::vector<std::int32_t> offset{0}, pair, nodes;
+  std::vector<double> point, force, normal, tangential, area, sliding;
   for (const Snapshot& s : record.snapshots) {
     for (const ForceLink& l : s.forces) {
       pair.insert(pair.end(), {l.a, l.b});
       point.insert(point.end(), {l.point.x(), l.point.y(), l.point.z()});
       force.insert(force.end(), {l.force.x(), l.force.y(), l.force.z()});
+      const Eigen::Vector3d t = l.force - l.normalForce;
+      normal.insert(normal.end(), {l.normalForce.x(), l.normalForce.y(), l.normalForce.z()});
+      tangential.insert(tangential.end(), {t.x(), t.y(), t.z()});
+      nodes.push_back(l.nodeContacts);
+      area.push_back(l.area);
+      sliding.push_back(l.nodeContacts > 0 ? static_cast<double>(l.slidingNodes) / l.nodeContacts : 0.0);
     }
     offset.push_back(static_cast<std::int32_t>(pair.size() / 2));
   }
-  h5::writeDataset(snaps.get(), "force_offset", offset, {offset.size()});
-  h5::writeDataset(snaps.get(), "force_pair", pair, {pair.size() / 2, 2});
-  h5::writeDataset(snaps.get(), "force_point", point, {point.size() / 3, 3});
-  h5::writeDataset(snaps.get(), "force", force, {force.size() / 3, 3});
+  const hsize_t links = pair.size() / 2;
+  writeWithUnit(g, "force_offset", offset, {offset.size()}, "1", "snapshot k's contacts are rows offset[k] to offset[k+1]-1");
+  writeWithUnit(g, "force_pair", pair, {links, 2}, "1", "bodies (a, b) by index into body_names; b = -1: the indenter");
+  writeWithUnit(g, "force_point", point, {links, 3}, "m", "contact points weighted by normal force");
+  writeWithUnit(g, "force", force, {links, 3}, "N", "the pair's contact force on a");
+  writeWithUnit(g, "force_normal", normal, {links, 3}, "N", "its part along the contact normals");
+  writeWithUnit(g, "force_tangential", tangential, {links, 3}, "N", "its friction part: force - force_normal");
+  writeWithUnit(g, "force_node_contacts", nodes, {links}, "count", "node contacts of the pair");
+  writeWithUnit(g, "force_area", area, {links}, "m^2", "their effective (projected) area");
+  writeWithUnit(g, "force_sliding_fraction", sliding, {links}, "1", "of the node contacts, the fraction at the Coulomb cap");
 
   h5::Handle fallen = h5::createGroup(f, "fallen");
   std::vector<std::string> fallenNames;
@@ -82,9 +117,9 @@ void writeResultsH5(hid_t f, const Scene& scene, const Bundle& bundle, const Con
     fallenTouching.push_back(b.touching);
   }
   h5::writeStrings(fallen.get(), "names", fallenNames);
-  h5::writeDataset(fallen.get(), "delta", fallenDelta, {fallenDelta.size()});
-  h5::writeDataset(fallen.get(), "retired", fallenRetired, {fallenRetired.size()});
-  h5::writeDataset(fallen.get(), "touching", fallenTouching, {fallenTouching.size()});
+  writeWithUnit(fallen.get(), "delta", fallenDelta, {fallenDelta.size()}, "m", "indenter travel when it left the assembly");
+  writeWithUnit(fallen.get(), "retired", fallenRetired, {fallenRetired.size()}, "1", "taken out of the computation");
+  writeWithUnit(fallen.get(), "touching", fallenTouching, {fallenTouching.size()}, "1", "pushed through, still touching blocks");
 }
 
 }  // namespace
@@ -111,11 +146,11 @@ void writeSweepTable(const std::string& path, const std::vector<std::string>& ke
 
 void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
                      const ContactParameters& contact, const IndentationRecord& record,
-                     const ResponseParameters& response, const std::string& stateDigest) {
+                     const ResponseParameters& response, const RunProvenance& provenance) {
   const fs::path dir(directory);
   fs::create_directories(dir / "paraview");
 
-  h5::writeFile(dir / "results.h5", [&](hid_t f) { writeResultsH5(f, scene, bundle, contact, record); });
+  h5::writeFile(dir / "results.h5", [&](hid_t f) { writeResultsH5(f, scene, bundle, contact, record, provenance); });
 
   {
     std::string out =
@@ -160,7 +195,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
       {"bundle", scene.bundle},
       {"target", record.targetName},
       {"stop_reason", record.stopReason.empty() ? std::string("running") : record.stopReason},
-      {"state_digest", stateDigest},
+      {"state_digest", provenance.stateDigest},
       {"response",
        {{"peak_load_N", response.peakLoad},
         {"delta_at_peak_mm", response.deltaAtPeak * 1e3},
@@ -221,28 +256,52 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   };
   writeTextFileSafely(dir / "summary.json", summary.dump(2) + "\n");
 
+  // The ParaView series: per snapshot the blocks (displacement from the bundle's pose, velocity),
+  // the contacts as points at their force centres, and the indenter.
+  std::vector<Eigen::Vector3d> built;
+  for (const Body& b : bundle.bodies) built.push_back(b.position);
+  // ParaView's time axis: delta in mm, or the snapshot's number when the indenter went back up.
+  bool rising = true;
+  for (std::size_t k = 1; k < record.snapshots.size(); ++k) rising = rising && record.snapshots[k].delta > record.snapshots[k - 1].delta;
   std::vector<std::string> files;
   std::vector<double> times;
   for (std::size_t k = 0; k < record.snapshots.size(); ++k) {
     const Snapshot& s = record.snapshots[k];
-    char blocks[32], forces[32];
+    char blocks[32], forces[32], indenter[32];
     std::snprintf(blocks, sizeof blocks, "blocks_%04zu.vtu", k);
     std::snprintf(forces, sizeof forces, "forces_%04zu.vtu", k);
+    std::snprintf(indenter, sizeof indenter, "indenter_%04zu.vtu", k);
     // Frames are final once written (a resumed run writes the same ones): write each once.
-    if (!fs::exists(dir / "paraview" / blocks))
-      writeBlocksVtu(bundle, s.position, s.orientation, (dir / "paraview" / blocks).string());
+    if (!fs::exists(dir / "paraview" / blocks)) {
+      std::vector<Eigen::Vector3d> displacement(s.position.size());
+      for (std::size_t i = 0; i < s.position.size(); ++i) displacement[i] = s.position[i] - built[i];
+      writeBlocksVtu(bundle, s.position, s.orientation, (dir / "paraview" / blocks).string(),
+                     {{"displacement", displacement}, {"velocity", s.velocity}});
+    }
     if (!fs::exists(dir / "paraview" / forces)) {
-      std::vector<Eigen::Vector3d> point, force;
-      std::vector<double> magnitude;
+      std::vector<Eigen::Vector3d> point, force, normal, tangential;
+      std::vector<double> magnitude, a, b, nodes, area, sliding;
       for (const ForceLink& l : s.forces) {
         point.push_back(l.point);
         force.push_back(l.force);
+        normal.push_back(l.normalForce);
+        tangential.push_back(l.force - l.normalForce);
         magnitude.push_back(l.force.norm());
+        a.push_back(l.a);
+        b.push_back(l.b);
+        nodes.push_back(l.nodeContacts);
+        area.push_back(l.area);
+        sliding.push_back(l.nodeContacts > 0 ? static_cast<double>(l.slidingNodes) / l.nodeContacts : 0.0);
       }
-      writePointsVtu((dir / "paraview" / forces).string(), point, {{"force", force}}, {{"magnitude", magnitude}});
+      writePointsVtu((dir / "paraview" / forces).string(), point,
+                     {{"force", force}, {"normal_force", normal}, {"tangential_force", tangential}},
+                     {{"magnitude", magnitude}, {"body_a", a}, {"body_b", b}, {"node_contacts", nodes}, {"area", area},
+                      {"sliding_fraction", sliding}});
     }
-    files.insert(files.end(), {blocks, forces});
-    times.insert(times.end(), 2, s.delta * 1e3);  // ParaView's "time" axis: delta in mm
+    if (!fs::exists(dir / "paraview" / indenter))
+      writeSphereVtu(s.indenter, record.indenterRadius, (dir / "paraview" / indenter).string());
+    files.insert(files.end(), {blocks, forces, indenter});
+    times.insert(times.end(), 3, rising ? s.delta * 1e3 : static_cast<double>(k));
   }
   writePvd((dir / "paraview" / "slab.pvd").string(), files, times);
 }

@@ -10,11 +10,14 @@ namespace tessera {
 
 /// Writes a run's results into `directory` (docs/outputs.md): results.h5, curve.csv,
 /// summary.json and paraview/ (blocks at every snapshot, slab.pvd). Each file is written to a
-/// temporary name and renamed, so a file is either complete or absent. `stateDigest`: of the
-/// World's state as written (state_digest.h), in summary.json.
+/// temporary name and renamed, so a file is either complete or absent.
+struct RunProvenance {
+  std::string sceneText;    ///< the scene the run read (with a preset's or override's keys), kept in results.h5
+  std::string stateDigest;  ///< of the World's state as written (state_digest.h), in summary.json and results.h5
+};
 void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
                      const ContactParameters& contact, const IndentationRecord& record,
-                     const ResponseParameters& response, const std::string& stateDigest);
+                     const ResponseParameters& response, const RunProvenance& provenance);
 
 /// The table of a sweep as HDF5: `keys` (K strings), `values` (C x K: each case's swept values),
 /// `columns` (names) and `table` (C x columns, numbers), `case`, `failure_mode`, `stop_reason` (C strings).

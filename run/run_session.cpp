@@ -221,7 +221,7 @@ void RunSession::writeOutputs() const {
   if (output_.empty()) return;
   // A scene changed by a preset or overrides is kept beside its results (its name in them).
   if (derivedScene(source_) && !fs::exists(scene_.path)) writeTextFileSafely(scene_.path, source_.sceneText);
-  writeRunOutputs(output_, scene_, bundle_, contact_, record_, response(), stateDigest(*world_));
+  writeRunOutputs(output_, scene_, bundle_, contact_, record_, response(), {source_.sceneText, stateDigest(*world_)});
 }
 
 void RunSession::run(RunHooks hooks) {

@@ -81,6 +81,7 @@ struct Accumulator {
     weight += normalForce;
     const Eigen::Vector3d fA = nodeBodyIsA ? f : Eigen::Vector3d(-f);
     pair.forceA += fA;
+    pair.normalForceA += (nodeBodyIsA ? normalForce : -normalForce) * normal;
     pair.torqueA += (x - centreA).cross(fA);
   }
 
@@ -151,7 +152,7 @@ namespace {
 bool beginEvaluation(PairContacts& pair) {
   std::swap(pair.contacts, pair.previous);
   pair.contacts.clear();
-  pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = pair.forcePoint = Eigen::Vector3d::Zero();
+  pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = pair.normalForceA = pair.forcePoint = Eigen::Vector3d::Zero();
   pair.tally = ContactTally{};
   pair.maxDepth = 0.0;
   pair.evaluations = 0;

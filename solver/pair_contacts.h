@@ -61,6 +61,7 @@ struct PairContacts {
   std::vector<std::uint32_t> candidates;
   bool candidatesValid = false;  ///< false: the next evaluation visits every node in range and rebuilds them
   Eigen::Vector3d forceA{0, 0, 0}, torqueA{0, 0, 0}, forceB{0, 0, 0}, torqueB{0, 0, 0};
+  Eigen::Vector3d normalForceA{0, 0, 0};  ///< N, the part of forceA along the contact normals (forceA minus it: friction)
   Eigen::Vector3d forcePoint{0, 0, 0};  ///< m, world: contact points weighted by normal force (force chains)
   ContactTally tally;          ///< stored and dissipated energy, sliding nodes, of the last evaluation
   double maxDepth = 0.0;       ///< m, deepest node penetration

@@ -84,3 +84,23 @@ def test_bad_input_is_a_value_error_naming_the_problem(slab, tmp_path):
         tessera.Simulation(SCENE, bundle=slab, overrides={"material.nonsense": 1.0})
     with pytest.raises(ValueError, match="overlap"):
         tessera.tile(BLOCK, "mm", str(tmp_path / "tight"), grid=(3, 3), pitch=8e-3)
+
+
+def test_results_file_states_units_scene_and_contact_split(cli_run):
+    import h5py
+    with h5py.File(f"{cli_run}/results.h5", "r") as f:
+        assert f.attrs["format_version"] == 3
+        assert b"[material]" in f.attrs["scene_text"] or "[material]" in str(f.attrs["scene_text"])
+        missing = []
+        f.visititems(lambda name, item: missing.append(name) if isinstance(item, h5py.Dataset) and
+                     item.dtype.kind != "S" and "unit" not in item.attrs else None)
+        assert missing == []
+        s = f["snapshots"]
+        assert s["orientation"].attrs["note"].startswith(b"unit quaternion (w, x, y, z)")
+        force, normal, tangential = s["force"][()], s["force_normal"][()], s["force_tangential"][()]
+        assert len(force) > 0
+        assert np.allclose(normal + tangential, force, rtol=0, atol=1e-12 * np.abs(force).max())
+        assert np.all((s["force_sliding_fraction"][()] >= 0) & (s["force_sliding_fraction"][()] <= 1))
+        assert np.all(s["force_area"][()] > 0) and np.all(s["force_node_contacts"][()] > 0)
+        assert s["velocity"].shape == s["position"].shape
+        assert s["indenter"].shape == (len(s["delta"]), 3)
