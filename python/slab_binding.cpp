@@ -1,10 +1,12 @@
-// tessera.tile, tessera.tile_layout, tessera.read_bundle: slabs from Python (lengths in m).
+// tessera.prep, tessera.tile, tessera.tile_layout, tessera.read_bundle: shapes and slabs from Python
+// (lengths in m).
 #include "python/bindings.h"
 
 #include "io/input_error.h"
 #include "io/output_directory.h"
 #include "levelset/assembly_checks.h"
 #include "levelset/bundle.h"
+#include "levelset/bundle_edit.h"
 #include "levelset/slab_plan.h"
 #include "levelset/tiler.h"
 
@@ -92,6 +94,28 @@ py::dict bundleOf(const std::string& path) {
 }  // namespace
 
 void bindSlabs(py::module_& m) {
+  m.def(
+      "prep",
+      [](const std::string& mesh, const std::string& unit, const std::string& output, const std::string& name,
+         std::optional<double> voxel, std::optional<double> spacing, bool replace) {
+        PrepLog log;
+        const Shape s = prepareIntoBundle({mesh, unit, name, resolution(voxel, spacing), ShapeLimits{}}, output, replace, log);
+        py::dict d;
+        d["name"] = s.name;
+        d["volume"] = s.mass.volume;
+        d["surface_area"] = s.mass.surfaceArea;
+        d["nodes"] = s.nodes.size();
+        d["node_spacing"] = s.resolution.nodeSpacing;
+        d["voxel"] = s.sdf.voxelSize;
+        d["level_set"] = levelSetPath(s);
+        d["notes"] = log.notes;
+        d["warnings"] = log.warnings;
+        return d;
+      },
+      py::arg("mesh"), py::arg("unit"), py::arg("output"), py::arg("name") = "", py::arg("voxel") = py::none(),
+      py::arg("spacing") = py::none(), py::arg("replace") = false,
+      "A block mesh (STL/OBJ, its length unit given) validated and prepared as a shape, added to the bundle "
+      "in `output` (as `tessera prep`); voxel and node spacing in m. Returns its volume (m^3), area (m^2), nodes.");
   m.def(
       "tile",
       [](const std::string& block, const std::string& unit, const std::string& output, std::pair<int, int> grid,

@@ -59,160 +59,184 @@ std::vector<char> readFlags(hid_t g, const std::string& name) {
 
 void writeDoubles(hid_t g, const std::string& name, const std::vector<double>& v) { h5::writeDataset(g, name, v, {count(v.size())}); }
 
-void writeWorld(hid_t g, const WorldState& w) {
-  writeVectors(g, "position", w.bodies.position);
-  writeQuaternions(g, "orientation", w.bodies.orientation);
-  writeVectors(g, "velocity", w.bodies.velocity);
-  writeVectors(g, "angular_momentum", w.bodies.angularMomentum);
-  writeFlags(g, "fixed", w.bodies.fixed);
-  writeFlags(g, "retired", w.retired);
+// The indenters and the contact pairs as flat tables (one row per sphere, per pair, per node
+// contact), the form they take in the file.
+struct SphereTable {
   std::vector<Eigen::Vector3d> centre, velocity;
   std::vector<double> radius, factor;
-  for (const SphereObstacle& s : w.spheres) {
-    centre.push_back(s.center);
-    velocity.push_back(s.velocity);
-    radius.push_back(s.radius);
-    factor.push_back(s.stiffnessFactor);
-  }
-  writeVectors(g, "sphere_centre", centre);
-  writeVectors(g, "sphere_velocity", velocity);
-  writeDoubles(g, "sphere_radius", radius);
-  writeDoubles(g, "sphere_stiffness_factor", factor);
+};
 
-  std::vector<std::int32_t> a, b, n;
-  std::vector<double> keys, energy, area, elastic, depth;
-  std::vector<Eigen::Vector3d> springs, fA, tA, fB, tB;
-  for (const PairContacts& p : w.pairs) {
-    a.push_back(p.a);
-    b.push_back(p.b);
-    n.push_back(static_cast<std::int32_t>(p.contacts.size()));
-    for (const NodeContact& c : p.contacts) {
-      keys.push_back(static_cast<double>(c.key));
-      springs.push_back(c.spring);
-      energy.push_back(c.energy);
-      area.push_back(c.area);
-    }
-    fA.push_back(p.forceA);
-    tA.push_back(p.torqueA);
-    fB.push_back(p.forceB);
-    tB.push_back(p.torqueB);
-    elastic.push_back(p.tally.elastic);
-    depth.push_back(p.maxDepth);
+SphereTable tableOf(const std::vector<SphereObstacle>& spheres) {
+  SphereTable t;
+  for (const SphereObstacle& s : spheres) {
+    t.centre.push_back(s.center);
+    t.velocity.push_back(s.velocity);
+    t.radius.push_back(s.radius);
+    t.factor.push_back(s.stiffnessFactor);
   }
-  h5::writeDataset(g, "pair_a", a, {count(a.size())});
-  h5::writeDataset(g, "pair_b", b, {count(b.size())});
-  h5::writeDataset(g, "pair_contacts", n, {count(n.size())});
-  writeDoubles(g, "contact_key", keys);
-  writeVectors(g, "contact_spring", springs);
-  writeDoubles(g, "contact_energy", energy);
-  writeDoubles(g, "contact_area", area);
-  writeVectors(g, "pair_force_a", fA);
-  writeVectors(g, "pair_torque_a", tA);
-  writeVectors(g, "pair_force_b", fB);
-  writeVectors(g, "pair_torque_b", tB);
-  writeDoubles(g, "pair_elastic", elastic);
-  writeDoubles(g, "pair_max_depth", depth);
-
-  writeVectors(g, "built_position", w.builtPosition);
-  writeQuaternions(g, "built_orientation", w.builtOrientation);
-  writeVectors(g, "built_sphere_centre", w.builtSphereCentre);
-  writeVectors(g, "force", w.force);
-  writeVectors(g, "torque", w.torque);
-  writeVectors(g, "contact_force", w.contactForce);
-  writeVectors(g, "contact_torque", w.contactTorque);
-  writeVectors(g, "sphere_reaction", w.sphereReaction);
-  writeVectors(g, "damping_force", w.dampingForce);
-  writeVectors(g, "damping_torque", w.dampingTorque);
-  writeVectors(g, "start_position", w.startPosition);
-  h5::writeAttribute(g, "pairs_valid", std::int64_t{w.pairsValid});
-  h5::writeAttribute(g, "forces_valid", std::int64_t{w.forcesValid});
-  h5::writeAttribute(g, "initial_energy", w.initialEnergy);
-  h5::writeAttribute(g, "obstacle_work", w.obstacleWork);
-  h5::writeAttribute(g, "friction_dissipated", w.friction);
-  h5::writeAttribute(g, "damping_dissipated", w.damping);
-  h5::writeAttribute(g, "retired_kinetic", w.retiredKinetic);
-  h5::writeAttribute(g, "projection_energy", w.projection);
-  h5::writeAttribute(g, "most_supplied", w.mostSupplied);
-  h5::writeAttribute(g, "time", w.time);
-  h5::writeAttribute(g, "steps", std::int64_t{w.steps});
+  return t;
 }
 
-void readWorld(hid_t g, WorldState& w) {
-  w.bodies.position = readVectors(g, "position");
-  w.bodies.orientation = readQuaternions(g, "orientation");
-  w.bodies.velocity = readVectors(g, "velocity");
-  w.bodies.angularMomentum = readVectors(g, "angular_momentum");
-  w.bodies.fixed = readFlags(g, "fixed");
-  w.retired = readFlags(g, "retired");
-  const auto centre = readVectors(g, "sphere_centre"), velocity = readVectors(g, "sphere_velocity");
-  const auto radius = h5::readDataset<double>(g, "sphere_radius");
-  const auto factor = h5::readDataset<double>(g, "sphere_stiffness_factor");
-  if (radius.size() != centre.size() || factor.size() != centre.size() || velocity.size() != centre.size())
+std::vector<SphereObstacle> spheresOf(const SphereTable& t) {
+  if (t.radius.size() != t.centre.size() || t.factor.size() != t.centre.size() || t.velocity.size() != t.centre.size())
     throw std::runtime_error("inconsistent indenter records");
-  w.spheres.clear();
-  for (std::size_t k = 0; k < centre.size(); ++k) w.spheres.push_back({centre[k], radius[k], velocity[k], factor[k]});
+  std::vector<SphereObstacle> spheres;
+  for (std::size_t k = 0; k < t.centre.size(); ++k) spheres.push_back({t.centre[k], t.radius[k], t.velocity[k], t.factor[k]});
+  return spheres;
+}
 
-  const auto a = h5::readDataset<std::int32_t>(g, "pair_a"), b = h5::readDataset<std::int32_t>(g, "pair_b");
-  const auto n = h5::readDataset<std::int32_t>(g, "pair_contacts");
-  const auto keys = h5::readDataset<double>(g, "contact_key");
-  const auto springs = readVectors(g, "contact_spring");
-  const auto energy = h5::readDataset<double>(g, "contact_energy");
-  const auto area = h5::readDataset<double>(g, "contact_area");
-  const auto fA = readVectors(g, "pair_force_a"), tA = readVectors(g, "pair_torque_a");
-  const auto fB = readVectors(g, "pair_force_b"), tB = readVectors(g, "pair_torque_b");
-  const auto elastic = h5::readDataset<double>(g, "pair_elastic"), depth = h5::readDataset<double>(g, "pair_max_depth");
-  // Every count and index is checked against the arrays before it is used.
-  if (b.size() != a.size() || n.size() != a.size() || fA.size() != a.size() || tA.size() != a.size() ||
-      fB.size() != a.size() || tB.size() != a.size() || elastic.size() != a.size() || depth.size() != a.size())
+struct PairTable {
+  std::vector<std::int32_t> a, b, contacts;            // per pair
+  std::vector<Eigen::Vector3d> forceA, torqueA, forceB, torqueB;
+  std::vector<double> elastic, depth;
+  std::vector<double> key, energy, area;               // per node contact (keys: whole numbers < 2^32)
+  std::vector<Eigen::Vector3d> spring;
+};
+
+PairTable tableOf(const std::vector<PairContacts>& pairs) {
+  PairTable t;
+  for (const PairContacts& p : pairs) {
+    t.a.push_back(p.a);
+    t.b.push_back(p.b);
+    t.contacts.push_back(static_cast<std::int32_t>(p.contacts.size()));
+    for (const NodeContact& c : p.contacts) {
+      t.key.push_back(static_cast<double>(c.key));
+      t.spring.push_back(c.spring);
+      t.energy.push_back(c.energy);
+      t.area.push_back(c.area);
+    }
+    t.forceA.push_back(p.forceA);
+    t.torqueA.push_back(p.torqueA);
+    t.forceB.push_back(p.forceB);
+    t.torqueB.push_back(p.torqueB);
+    t.elastic.push_back(p.tally.elastic);
+    t.depth.push_back(p.maxDepth);
+  }
+  return t;
+}
+
+// Every count and index is checked against the arrays before it is used.
+std::vector<PairContacts> pairsOf(const PairTable& t) {
+  const std::size_t n = t.a.size();
+  if (t.b.size() != n || t.contacts.size() != n || t.forceA.size() != n || t.torqueA.size() != n || t.forceB.size() != n ||
+      t.torqueB.size() != n || t.elastic.size() != n || t.depth.size() != n)
     throw std::runtime_error("inconsistent pair records");
   std::size_t total = 0;
-  for (std::int32_t c : n) {
+  for (std::int32_t c : t.contacts) {
     if (c < 0) throw std::runtime_error("a negative contact count");
     total += static_cast<std::size_t>(c);
   }
-  if (total != keys.size() || springs.size() != total || energy.size() != total || area.size() != total)
+  if (total != t.key.size() || t.spring.size() != total || t.energy.size() != total || t.area.size() != total)
     throw std::runtime_error("contact counts do not match the contact records");
-  for (double key : keys)  // stored as doubles: whole numbers that fit a 32-bit key
+  for (double key : t.key)
     if (!(key >= 0 && key < 4294967296.0 && key == std::floor(key))) throw std::runtime_error("a contact key out of range");
-  w.pairs.clear();
+  std::vector<PairContacts> pairs;
   std::size_t next = 0;
-  for (std::size_t p = 0; p < a.size(); ++p) {
+  for (std::size_t p = 0; p < n; ++p) {
     PairContacts pair;
-    pair.a = a[p];
-    pair.b = b[p];
-    for (int c = 0; c < n[p]; ++c, ++next)
-      pair.contacts.push_back({static_cast<std::uint32_t>(keys[next]), springs[next], energy[next], area[next]});
-    pair.forceA = fA[p];
-    pair.torqueA = tA[p];
-    pair.forceB = fB[p];
-    pair.torqueB = tB[p];
-    pair.tally.elastic = elastic[p];
-    pair.maxDepth = depth[p];
-    w.pairs.push_back(std::move(pair));
+    pair.a = t.a[p];
+    pair.b = t.b[p];
+    for (int c = 0; c < t.contacts[p]; ++c, ++next)
+      pair.contacts.push_back({static_cast<std::uint32_t>(t.key[next]), t.spring[next], t.energy[next], t.area[next]});
+    pair.forceA = t.forceA[p];
+    pair.torqueA = t.torqueA[p];
+    pair.forceB = t.forceB[p];
+    pair.torqueB = t.torqueB[p];
+    pair.tally.elastic = t.elastic[p];
+    pair.maxDepth = t.depth[p];
+    pairs.push_back(std::move(pair));
   }
-  w.builtPosition = readVectors(g, "built_position");
-  w.builtOrientation = readQuaternions(g, "built_orientation");
-  w.builtSphereCentre = readVectors(g, "built_sphere_centre");
-  w.force = readVectors(g, "force");
-  w.torque = readVectors(g, "torque");
-  w.contactForce = readVectors(g, "contact_force");
-  w.contactTorque = readVectors(g, "contact_torque");
-  w.sphereReaction = readVectors(g, "sphere_reaction");
-  w.dampingForce = readVectors(g, "damping_force");
-  w.dampingTorque = readVectors(g, "damping_torque");
-  w.startPosition = readVectors(g, "start_position");
-  w.pairsValid = h5::readIntAttribute(g, "pairs_valid") != 0;
-  w.forcesValid = h5::readIntAttribute(g, "forces_valid") != 0;
-  w.initialEnergy = h5::readDoubleAttribute(g, "initial_energy");
-  w.obstacleWork = h5::readDoubleAttribute(g, "obstacle_work");
-  w.friction = h5::readDoubleAttribute(g, "friction_dissipated");
-  w.damping = h5::readDoubleAttribute(g, "damping_dissipated");
-  w.retiredKinetic = h5::readDoubleAttribute(g, "retired_kinetic");
-  w.projection = h5::readDoubleAttribute(g, "projection_energy");
-  w.mostSupplied = h5::readDoubleAttribute(g, "most_supplied");
-  w.time = h5::readDoubleAttribute(g, "time");
-  w.steps = h5::readIntAttribute(g, "steps");
+  return pairs;
 }
+
+// The two directions of one list of fields (serializeWorld): a Writer stores each field under
+// its name, a Reader fills it from there.
+struct Writer {
+  static constexpr bool reading = false;
+  hid_t g;
+  void field(const char* name, std::vector<Eigen::Vector3d>& v) const { writeVectors(g, name, v); }
+  void field(const char* name, std::vector<Eigen::Quaterniond>& v) const { writeQuaternions(g, name, v); }
+  void field(const char* name, std::vector<char>& v) const { writeFlags(g, name, v); }
+  void field(const char* name, std::vector<double>& v) const { writeDoubles(g, name, v); }
+  void field(const char* name, std::vector<std::int32_t>& v) const { h5::writeDataset(g, name, v, {count(v.size())}); }
+  void field(const char* name, double& x) const { h5::writeAttribute(g, name, x); }
+  void field(const char* name, long& x) const { h5::writeAttribute(g, name, std::int64_t{x}); }
+  void field(const char* name, bool& x) const { h5::writeAttribute(g, name, std::int64_t{x}); }
+};
+
+struct Reader {
+  static constexpr bool reading = true;
+  hid_t g;
+  void field(const char* name, std::vector<Eigen::Vector3d>& v) const { v = readVectors(g, name); }
+  void field(const char* name, std::vector<Eigen::Quaterniond>& v) const { v = readQuaternions(g, name); }
+  void field(const char* name, std::vector<char>& v) const { v = readFlags(g, name); }
+  void field(const char* name, std::vector<double>& v) const { v = h5::readDataset<double>(g, name); }
+  void field(const char* name, std::vector<std::int32_t>& v) const { v = h5::readDataset<std::int32_t>(g, name); }
+  void field(const char* name, double& x) const { x = h5::readDoubleAttribute(g, name); }
+  void field(const char* name, long& x) const { x = static_cast<long>(h5::readIntAttribute(g, name)); }
+  void field(const char* name, bool& x) const { x = h5::readIntAttribute(g, name) != 0; }
+};
+
+// Every field of a WorldState the checkpoint keeps, once, for both directions. (Masses, inertia,
+// shapes and names come from the bundle; candidate node lists are rebuilt on resume.)
+template <class Archive>
+void serializeWorld(const Archive& io, WorldState& w) {
+  io.field("position", w.bodies.position);
+  io.field("orientation", w.bodies.orientation);
+  io.field("velocity", w.bodies.velocity);
+  io.field("angular_momentum", w.bodies.angularMomentum);
+  io.field("fixed", w.bodies.fixed);
+  io.field("retired", w.retired);
+  SphereTable spheres = Archive::reading ? SphereTable{} : tableOf(w.spheres);
+  io.field("sphere_centre", spheres.centre);
+  io.field("sphere_velocity", spheres.velocity);
+  io.field("sphere_radius", spheres.radius);
+  io.field("sphere_stiffness_factor", spheres.factor);
+  if (Archive::reading) w.spheres = spheresOf(spheres);
+  PairTable pairs = Archive::reading ? PairTable{} : tableOf(w.pairs);
+  io.field("pair_a", pairs.a);
+  io.field("pair_b", pairs.b);
+  io.field("pair_contacts", pairs.contacts);
+  io.field("contact_key", pairs.key);
+  io.field("contact_spring", pairs.spring);
+  io.field("contact_energy", pairs.energy);
+  io.field("contact_area", pairs.area);
+  io.field("pair_force_a", pairs.forceA);
+  io.field("pair_torque_a", pairs.torqueA);
+  io.field("pair_force_b", pairs.forceB);
+  io.field("pair_torque_b", pairs.torqueB);
+  io.field("pair_elastic", pairs.elastic);
+  io.field("pair_max_depth", pairs.depth);
+  if (Archive::reading) w.pairs = pairsOf(pairs);
+  io.field("built_position", w.builtPosition);
+  io.field("built_orientation", w.builtOrientation);
+  io.field("built_sphere_centre", w.builtSphereCentre);
+  io.field("force", w.force);
+  io.field("torque", w.torque);
+  io.field("contact_force", w.contactForce);
+  io.field("contact_torque", w.contactTorque);
+  io.field("sphere_reaction", w.sphereReaction);
+  io.field("damping_force", w.dampingForce);
+  io.field("damping_torque", w.dampingTorque);
+  io.field("start_position", w.startPosition);
+  io.field("pairs_valid", w.pairsValid);
+  io.field("forces_valid", w.forcesValid);
+  io.field("initial_energy", w.initialEnergy);
+  io.field("obstacle_work", w.obstacleWork);
+  io.field("friction_dissipated", w.friction);
+  io.field("damping_dissipated", w.damping);
+  io.field("retired_kinetic", w.retiredKinetic);
+  io.field("projection_energy", w.projection);
+  io.field("most_supplied", w.mostSupplied);
+  io.field("time", w.time);
+  io.field("steps", w.steps);
+}
+
+void writeWorld(hid_t g, const WorldState& w) {
+  serializeWorld(Writer{g}, const_cast<WorldState&>(w));  // a Writer only reads the fields
+}
+
+void readWorld(hid_t g, WorldState& w) { serializeWorld(Reader{g}, w); }
 
 void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r) {
   h5::writeAttribute(g, "phase", std::int64_t{s.phase});

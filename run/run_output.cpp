@@ -267,7 +267,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   std::vector<double> times;
   for (std::size_t k = 0; k < record.snapshots.size(); ++k) {
     const Snapshot& s = record.snapshots[k];
-    char blocks[32], forces[32], indenter[32];
+    char blocks[48], forces[48], indenter[48];
     std::snprintf(blocks, sizeof blocks, "blocks_%04zu.vtu", k);
     std::snprintf(forces, sizeof forces, "forces_%04zu.vtu", k);
     std::snprintf(indenter, sizeof indenter, "indenter_%04zu.vtu", k);

@@ -72,13 +72,13 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   if (settings.localDamping < 0 || settings.localDamping >= 1)
     throw std::invalid_argument("local damping must lie in [0, 1)");
   for (const Shape& s : bundle.shapes) shapes_.push_back(makeShapeModel(s, settings.exactConvexLevelSets));
-  bodies_ = makeRigidBodies(bundle, settings.density);
+  state_.bodies = makeRigidBodies(bundle, settings.density);
 
   double omega = 0.0, thinnest = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    const Shape& shape = bundle.shapes[bodies_.shape[i]];
+  for (std::size_t i = 0; i < state_.bodies.size(); ++i) {
+    const Shape& shape = bundle.shapes[state_.bodies.shape[i]];
     thinnest = std::min(thinnest, boundingBox(shape.mesh.vertices).sizes().minCoeff());
-    if (!bodies_.fixed[i]) omega = std::max(omega, fastestMode(shape, bodies_.mass[i], bodies_.inertia[i], parameters));
+    if (!state_.bodies.fixed[i]) omega = std::max(omega, fastestMode(shape, state_.bodies.mass[i], state_.bodies.inertia[i], parameters));
   }
   automaticDt_ = omega > 0 ? settings.timeStepFactor * 2.0 / omega : 1e-6;
   dt_ = settings.timeStep > 0 ? settings.timeStep : automaticDt_;
@@ -94,48 +94,18 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   penetrationLimit_ = settings.maxPenetration > 0 ? settings.maxPenetration : 0.25 * thinnest;
   if (!(settings_.broadPhaseMargin > 0)) settings_.broadPhaseMargin = settings.broadPhaseMarginRatio * thinnest;
 
-  const std::size_t n = bodies_.size();
-  force_.assign(n, Eigen::Vector3d::Zero());
-  torque_.assign(n, Eigen::Vector3d::Zero());
-  contactForce_.assign(n, Eigen::Vector3d::Zero());
-  contactTorque_.assign(n, Eigen::Vector3d::Zero());
-  dampingForce_.assign(n, Eigen::Vector3d::Zero());
-  dampingTorque_.assign(n, Eigen::Vector3d::Zero());
-  startPosition_ = bodies_.position;
-  retired_.assign(n, 0);
+  const std::size_t n = state_.bodies.size();
+  state_.force.assign(n, Eigen::Vector3d::Zero());
+  state_.torque.assign(n, Eigen::Vector3d::Zero());
+  state_.contactForce.assign(n, Eigen::Vector3d::Zero());
+  state_.contactTorque.assign(n, Eigen::Vector3d::Zero());
+  state_.dampingForce.assign(n, Eigen::Vector3d::Zero());
+  state_.dampingTorque.assign(n, Eigen::Vector3d::Zero());
+  state_.startPosition = state_.bodies.position;
+  state_.retired.assign(n, 0);
 }
 
-WorldState World::state() const {
-  WorldState s;
-  s.bodies = bodies_;
-  s.retired = retired_;
-  s.spheres = spheres_;
-  s.planes = planes_;
-  s.pairs = pairs_;
-  s.builtPosition = builtPosition_;
-  s.builtSphereCentre = builtSphereCentre_;
-  s.builtOrientation = builtOrientation_;
-  s.pairsValid = pairsValid_;
-  s.force = force_;
-  s.torque = torque_;
-  s.contactForce = contactForce_;
-  s.contactTorque = contactTorque_;
-  s.sphereReaction = sphereReaction_;
-  s.dampingForce = dampingForce_;
-  s.dampingTorque = dampingTorque_;
-  s.forcesValid = forcesValid_;
-  s.startPosition = startPosition_;
-  s.initialEnergy = initialEnergy_;
-  s.obstacleWork = obstacleWork_;
-  s.friction = friction_;
-  s.damping = damping_;
-  s.retiredKinetic = retiredKinetic_;
-  s.projection = projection_;
-  s.mostSupplied = mostSupplied_;
-  s.time = time_;
-  s.steps = steps_;
-  return s;
-}
+WorldState World::state() const { return state_; }
 
 namespace {
 
@@ -155,7 +125,7 @@ void requireEach(const std::vector<T>& values, std::size_t size, bool orEmpty, c
 // A state from a file is checked whole before it replaces this World's: sizes against the bodies,
 // pair indices against the bodies and obstacles, contact keys against the nodes, every number finite.
 void World::checkState(const WorldState& s) const {
-  const std::size_t n = bodies_.size();
+  const std::size_t n = state_.bodies.size();
   requireEach(s.bodies.position, n, false, "positions", finite);
   requireEach(s.bodies.orientation, n, false, "orientations", unit);
   requireEach(s.bodies.velocity, n, false, "velocities", finite);
@@ -178,7 +148,7 @@ void World::checkState(const WorldState& s) const {
       throw std::invalid_argument("a contact pair (" + std::to_string(p.a) + ", " + std::to_string(p.b) + ") names no body");
     for (const NodeContact& c : p.contacts) {
       const int body = (c.key >> 31) == 0 ? p.a : p.b;
-      const std::size_t nodes = body >= 0 ? shapes_[bodies_.shape[body]].nodes.position.size() : 0;
+      const std::size_t nodes = body >= 0 ? shapes_[state_.bodies.shape[body]].nodes.position.size() : 0;
       if ((body >= 0 && (c.key & 0x7fffffffu) >= nodes) || !finite(c.spring) || !std::isfinite(c.energy) || !std::isfinite(c.area))
         throw std::invalid_argument("a contact names no node, or holds a non-finite value");
     }
@@ -192,66 +162,40 @@ void World::checkState(const WorldState& s) const {
 
 void World::restore(const WorldState& s) {
   checkState(s);
-  bodies_ = s.bodies;
-  retired_ = s.retired;
-  spheres_ = s.spheres;
-  planes_ = s.planes;
-  pairs_ = s.pairs;
-  for (PairContacts& p : pairs_) p.kind = pairKind(p.b, static_cast<int>(spheres_.size()));
-  builtPosition_ = s.builtPosition;
-  builtSphereCentre_ = s.builtSphereCentre;
-  builtOrientation_ = s.builtOrientation;
-  pairsValid_ = s.pairsValid;
-  force_ = s.force;
-  torque_ = s.torque;
-  contactForce_ = s.contactForce;
-  contactTorque_ = s.contactTorque;
-  sphereReaction_ = s.sphereReaction;
-  dampingForce_ = s.dampingForce;
-  dampingTorque_ = s.dampingTorque;
-  forcesValid_ = s.forcesValid;
-  startPosition_ = s.startPosition;
-  initialEnergy_ = s.initialEnergy;
-  obstacleWork_ = s.obstacleWork;
-  friction_ = s.friction;
-  damping_ = s.damping;
-  retiredKinetic_ = s.retiredKinetic;
-  projection_ = s.projection;
-  mostSupplied_ = s.mostSupplied;
-  time_ = s.time;
-  steps_ = s.steps;
+  state_ = s;
+  for (PairContacts& p : state_.pairs) p.kind = pairKind(p.b, static_cast<int>(state_.spheres.size()));
 }
 
 void World::retireBody(int i) {
-  if (retired_[i]) return;
-  retiredKinetic_ += bodies_.kineticEnergy(i);
-  retired_[i] = 1;
-  bodies_.fixed[i] = 1;
-  bodies_.velocity[i].setZero();
-  bodies_.angularMomentum[i].setZero();
-  pairsValid_ = forcesValid_ = false;
+  if (state_.retired[i]) return;
+  state_.retiredKinetic += state_.bodies.kineticEnergy(i);
+  state_.retired[i] = 1;
+  state_.bodies.fixed[i] = 1;
+  state_.bodies.velocity[i].setZero();
+  state_.bodies.angularMomentum[i].setZero();
+  state_.pairsValid = state_.forcesValid = false;
 }
 
 World::~World() = default;
 
 Eigen::AlignedBox3d World::bodyBox(int i, double margin) const {
-  return worldBox(shapes_[bodies_.shape[i]].nodes.box, bodies_.orientation[i], bodies_.position[i], margin);
+  return worldBox(shapes_[state_.bodies.shape[i]].nodes.box, state_.bodies.orientation[i], state_.bodies.position[i], margin);
 }
 
-double World::bodySize(int i) const { return shapes_[bodies_.shape[i]].nodes.box.sizes().minCoeff(); }
+double World::bodySize(int i) const { return shapes_[state_.bodies.shape[i]].nodes.box.sizes().minCoeff(); }
 
 int World::addSphere(const SphereObstacle& sphere) {
-  spheres_.push_back(sphere);
-  sphereReaction_.push_back(Eigen::Vector3d::Zero());
-  pairsValid_ = forcesValid_ = false;
-  return static_cast<int>(spheres_.size()) - 1;
+  state_.spheres.push_back(sphere);
+  state_.sphereReaction.push_back(Eigen::Vector3d::Zero());
+  state_.pairsValid = state_.forcesValid = false;
+  return static_cast<int>(state_.spheres.size()) - 1;
 }
 
 int World::addPlane(const PlaneObstacle& plane) {
-  planes_.push_back(plane);
-  planes_.back().normal.normalize();
-  pairsValid_ = forcesValid_ = false;
-  return static_cast<int>(planes_.size()) - 1;
+  state_.planes.push_back(plane);
+  state_.planes.back().normal.normalize();
+  state_.pairsValid = state_.forcesValid = false;
+  return static_cast<int>(state_.planes.size()) - 1;
 }
 
 // Candidate pairs from boxes enlarged by the margin m, rebuilt only when a body (or sphere) has
@@ -264,46 +208,46 @@ double World::candidateBand() const { return 1.25 * settings_.broadPhaseMargin; 
 
 void World::updatePairs() {
   const double margin = settings_.broadPhaseMargin;
-  if (pairsValid_) {
+  if (state_.pairsValid) {
     bool moved = false;
-    for (std::size_t i = 0; i < bodies_.size() && !moved; ++i) {
-      if (bodies_.fixed[i]) continue;
-      const double turn = bodies_.orientation[i].angularDistance(builtOrientation_[i]) * shapes_[bodies_.shape[i]].radius;
-      moved = (bodies_.position[i] - builtPosition_[i]).norm() + turn > 0.4 * margin;
+    for (std::size_t i = 0; i < state_.bodies.size() && !moved; ++i) {
+      if (state_.bodies.fixed[i]) continue;
+      const double turn = state_.bodies.orientation[i].angularDistance(state_.builtOrientation[i]) * shapes_[state_.bodies.shape[i]].radius;
+      moved = (state_.bodies.position[i] - state_.builtPosition[i]).norm() + turn > 0.4 * margin;
     }
-    for (std::size_t k = 0; k < spheres_.size() && !moved; ++k)
-      moved = (spheres_[k].center - builtSphereCentre_[k]).norm() > 0.4 * margin;
+    for (std::size_t k = 0; k < state_.spheres.size() && !moved; ++k)
+      moved = (state_.spheres[k].center - state_.builtSphereCentre[k]).norm() > 0.4 * margin;
     if (!moved) return;
   }
 
   std::vector<Eigen::AlignedBox3d> boxes;
-  for (std::size_t i = 0; i < bodies_.size(); ++i)
-    boxes.push_back(retired_[i] ? Eigen::AlignedBox3d()  // empty: intersects nothing
-                                : worldBox(shapes_[bodies_.shape[i]].nodes.box, bodies_.orientation[i], bodies_.position[i], margin));
-  std::vector<std::pair<int, int>> wanted = sweepPairs(boxes, bodies_.fixed);
-  const int sphereCount = static_cast<int>(spheres_.size());
+  for (std::size_t i = 0; i < state_.bodies.size(); ++i)
+    boxes.push_back(state_.retired[i] ? Eigen::AlignedBox3d()  // empty: intersects nothing
+                                : worldBox(shapes_[state_.bodies.shape[i]].nodes.box, state_.bodies.orientation[i], state_.bodies.position[i], margin));
+  std::vector<std::pair<int, int>> wanted = sweepPairs(boxes, state_.bodies.fixed);
+  const int sphereCount = static_cast<int>(state_.spheres.size());
   for (int k = 0; k < sphereCount; ++k) {
-    const Eigen::AlignedBox3d box(spheres_[k].center.array() - spheres_[k].radius - margin,
-                                  spheres_[k].center.array() + spheres_[k].radius + margin);
-    for (int i = 0; i < static_cast<int>(bodies_.size()); ++i)
+    const Eigen::AlignedBox3d box(state_.spheres[k].center.array() - state_.spheres[k].radius - margin,
+                                  state_.spheres[k].center.array() + state_.spheres[k].radius + margin);
+    for (int i = 0; i < static_cast<int>(state_.bodies.size()); ++i)
       if (boxes[i].intersects(box)) wanted.emplace_back(i, -1 - k);
   }
-  for (int k = 0; k < static_cast<int>(planes_.size()); ++k)
-    for (int i = 0; i < static_cast<int>(bodies_.size()); ++i)
-      if (!bodies_.fixed[i] && !retired_[i]) wanted.emplace_back(i, -1 - sphereCount - k);
+  for (int k = 0; k < static_cast<int>(state_.planes.size()); ++k)
+    for (int i = 0; i < static_cast<int>(state_.bodies.size()); ++i)
+      if (!state_.bodies.fixed[i] && !state_.retired[i]) wanted.emplace_back(i, -1 - sphereCount - k);
   std::sort(wanted.begin(), wanted.end());
 
   // Keep the state of pairs that stay candidates (both lists sorted by (a, b)).
   std::vector<PairContacts> next;
   next.reserve(wanted.size());
-  std::sort(pairs_.begin(), pairs_.end(), [](const PairContacts& x, const PairContacts& y) {
+  std::sort(state_.pairs.begin(), state_.pairs.end(), [](const PairContacts& x, const PairContacts& y) {
     return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
   });
   std::size_t old = 0;
   for (const auto& [a, b] : wanted) {
-    while (old < pairs_.size() && std::make_pair(pairs_[old].a, pairs_[old].b) < std::make_pair(a, b)) ++old;
-    if (old < pairs_.size() && pairs_[old].a == a && pairs_[old].b == b) {
-      next.push_back(std::move(pairs_[old]));
+    while (old < state_.pairs.size() && std::make_pair(state_.pairs[old].a, state_.pairs[old].b) < std::make_pair(a, b)) ++old;
+    if (old < state_.pairs.size() && state_.pairs[old].a == a && state_.pairs[old].b == b) {
+      next.push_back(std::move(state_.pairs[old]));
     } else {
       PairContacts pair;
       pair.a = a;
@@ -312,56 +256,56 @@ void World::updatePairs() {
       next.push_back(std::move(pair));
     }
   }
-  pairs_ = std::move(next);
-  for (PairContacts& pair : pairs_) pair.candidatesValid = false;
-  builtPosition_ = bodies_.position;
-  builtOrientation_ = bodies_.orientation;
-  builtSphereCentre_.clear();
-  for (const auto& s : spheres_) builtSphereCentre_.push_back(s.center);
-  pairsValid_ = true;
+  state_.pairs = std::move(next);
+  for (PairContacts& pair : state_.pairs) pair.candidatesValid = false;
+  state_.builtPosition = state_.bodies.position;
+  state_.builtOrientation = state_.bodies.orientation;
+  state_.builtSphereCentre.clear();
+  for (const auto& s : state_.spheres) state_.builtSphereCentre.push_back(s.center);
+  state_.pairsValid = true;
 }
 
 void World::evaluateForces() {
   updatePairs();
-  ContactScene scene{&bodies_, &shapes_, &spheres_, &planes_, parameters_,
+  ContactScene scene{&state_.bodies, &shapes_, &state_.spheres, &state_.planes, parameters_,
                      parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt_, candidateBand()};
   arena_->arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs_.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t p = r.begin(); p != r.end(); ++p) evaluatePair(scene, pairs_[p]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, state_.pairs.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t p = r.begin(); p != r.end(); ++p) evaluatePair(scene, state_.pairs[p]);
     });
   });
 
   // Reduce per body in pair order: the same sums in the same order for any thread count.
-  std::fill(contactForce_.begin(), contactForce_.end(), Eigen::Vector3d::Zero());
-  std::fill(contactTorque_.begin(), contactTorque_.end(), Eigen::Vector3d::Zero());
-  std::fill(sphereReaction_.begin(), sphereReaction_.end(), Eigen::Vector3d::Zero());
-  for (const PairContacts& pair : pairs_) {
-    friction_ += pair.tally.friction;
-    damping_ += pair.tally.viscous;
-    projection_ += pair.tally.projection;
-    contactForce_[pair.a] += pair.forceA;
-    contactTorque_[pair.a] += pair.torqueA;
+  std::fill(state_.contactForce.begin(), state_.contactForce.end(), Eigen::Vector3d::Zero());
+  std::fill(state_.contactTorque.begin(), state_.contactTorque.end(), Eigen::Vector3d::Zero());
+  std::fill(state_.sphereReaction.begin(), state_.sphereReaction.end(), Eigen::Vector3d::Zero());
+  for (const PairContacts& pair : state_.pairs) {
+    state_.friction += pair.tally.friction;
+    state_.damping += pair.tally.viscous;
+    state_.projection += pair.tally.projection;
+    state_.contactForce[pair.a] += pair.forceA;
+    state_.contactTorque[pair.a] += pair.torqueA;
     switch (pair.kind) {
       case PairKind::Bodies:
-        contactForce_[pair.b] += pair.forceB;
-        contactTorque_[pair.b] += pair.torqueB;
+        state_.contactForce[pair.b] += pair.forceB;
+        state_.contactTorque[pair.b] += pair.torqueB;
         break;
-      case PairKind::Sphere: sphereReaction_[-1 - pair.b] += pair.forceB; break;
+      case PairKind::Sphere: state_.sphereReaction[-1 - pair.b] += pair.forceB; break;
       case PairKind::Plane: break;  // fixed: its reaction is not needed
     }
   }
 
   // Gravity and damping (docs/physics.md, "Damping").
   const double alpha = settings_.localDamping, c = settings_.viscousDamping;
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    const Eigen::Vector3d f = contactForce_[i] + bodies_.mass[i] * settings_.gravity;
-    const Eigen::Vector3d& t = contactTorque_[i];
+  for (std::size_t i = 0; i < state_.bodies.size(); ++i) {
+    const Eigen::Vector3d f = state_.contactForce[i] + state_.bodies.mass[i] * settings_.gravity;
+    const Eigen::Vector3d& t = state_.contactTorque[i];
     Eigen::Vector3d fd = Eigen::Vector3d::Zero(), td = Eigen::Vector3d::Zero();
-    if (!bodies_.fixed[i]) {
-      const Eigen::Vector3d v = bodies_.velocity[i], w = bodies_.angularVelocity(i);
+    if (!state_.bodies.fixed[i]) {
+      const Eigen::Vector3d v = state_.bodies.velocity[i], w = state_.bodies.angularVelocity(i);
       if (c > 0) {
-        fd -= c * bodies_.mass[i] * v;
-        td -= c * (bodies_.orientation[i] * bodies_.angularMomentum[i]);  // c I omega = c L
+        fd -= c * state_.bodies.mass[i] * v;
+        td -= c * (state_.bodies.orientation[i] * state_.bodies.angularMomentum[i]);  // c I omega = c L
       }
       if (alpha > 0)
         for (int k = 0; k < 3; ++k) {
@@ -369,103 +313,103 @@ void World::evaluateForces() {
           td[k] -= alpha * std::abs(t[k] + td[k]) * (w[k] > 0 ? 1.0 : w[k] < 0 ? -1.0 : 0.0);
         }
     }
-    dampingForce_[i] = fd;
-    dampingTorque_[i] = td;
-    force_[i] = f + fd;
-    torque_[i] = t + td;
+    state_.dampingForce[i] = fd;
+    state_.dampingTorque[i] = td;
+    state_.force[i] = f + fd;
+    state_.torque[i] = t + td;
   }
-  forcesValid_ = true;
+  state_.forcesValid = true;
 }
 
 // Velocity Verlet (kick-drift-kick) for translation; the rotation drift is the free-rotor
 // splitting of rotateFreely, with torque kicks in the body frame on either side (docs/physics.md).
 void World::step() {
-  if (!forcesValid_) {
+  if (!state_.forcesValid) {
     evaluateForces();
-    if (steps_ == 0) {
+    if (state_.steps == 0) {
       const EnergyBudget e = energy();
-      initialEnergy_ = e.kinetic + e.elastic;
+      state_.initialEnergy = e.kinetic + e.elastic;
     }
   }
   const double h = 0.5 * dt_;
   // A half kick of body i; the damping forces' work over it, exactly as the kick changes the
   // kinetic energy: h f . (v_before + v_after) / 2 (and h tau . omega_mean for the rotation).
   const auto kick = [&](std::size_t i) {
-    const Eigen::Vector3d v0 = bodies_.velocity[i], L0 = bodies_.angularMomentum[i];
-    bodies_.velocity[i] += h * force_[i] / bodies_.mass[i];
-    bodies_.angularMomentum[i] += h * (bodies_.orientation[i].conjugate() * torque_[i]);
-    if (dampingForce_[i].isZero() && dampingTorque_[i].isZero()) return;
-    const Eigen::Vector3d omega = bodies_.orientation[i] * (0.5 * (L0 + bodies_.angularMomentum[i])).cwiseQuotient(bodies_.inertia[i]);
-    damping_ -= h * (dampingForce_[i].dot(0.5 * (v0 + bodies_.velocity[i])) + dampingTorque_[i].dot(omega));
+    const Eigen::Vector3d v0 = state_.bodies.velocity[i], L0 = state_.bodies.angularMomentum[i];
+    state_.bodies.velocity[i] += h * state_.force[i] / state_.bodies.mass[i];
+    state_.bodies.angularMomentum[i] += h * (state_.bodies.orientation[i].conjugate() * state_.torque[i]);
+    if (state_.dampingForce[i].isZero() && state_.dampingTorque[i].isZero()) return;
+    const Eigen::Vector3d omega = state_.bodies.orientation[i] * (0.5 * (L0 + state_.bodies.angularMomentum[i])).cwiseQuotient(state_.bodies.inertia[i]);
+    state_.damping -= h * (state_.dampingForce[i].dot(0.5 * (v0 + state_.bodies.velocity[i])) + state_.dampingTorque[i].dot(omega));
   };
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (bodies_.fixed[i]) continue;
+  for (std::size_t i = 0; i < state_.bodies.size(); ++i) {
+    if (state_.bodies.fixed[i]) continue;
     kick(i);
-    bodies_.position[i] += dt_ * bodies_.velocity[i];
-    rotateFreely(bodies_.orientation[i], bodies_.angularMomentum[i], bodies_.inertia[i], dt_);
+    state_.bodies.position[i] += dt_ * state_.bodies.velocity[i];
+    rotateFreely(state_.bodies.orientation[i], state_.bodies.angularMomentum[i], state_.bodies.inertia[i], dt_);
   }
-  for (std::size_t k = 0; k < spheres_.size(); ++k) {
+  for (std::size_t k = 0; k < state_.spheres.size(); ++k) {
     // Work of the prescribed motion on the bodies over this step (reaction from the last evaluation).
-    obstacleWork_ += -sphereReaction_[k].dot(spheres_[k].velocity) * dt_;
-    spheres_[k].center += dt_ * spheres_[k].velocity;
+    state_.obstacleWork += -state_.sphereReaction[k].dot(state_.spheres[k].velocity) * dt_;
+    state_.spheres[k].center += dt_ * state_.spheres[k].velocity;
   }
   evaluateForces();
-  for (std::size_t i = 0; i < bodies_.size(); ++i)
-    if (!bodies_.fixed[i]) kick(i);
-  time_ += dt_;
-  ++steps_;
+  for (std::size_t i = 0; i < state_.bodies.size(); ++i)
+    if (!state_.bodies.fixed[i]) kick(i);
+  state_.time += dt_;
+  ++state_.steps;
   checkStability();
 }
 
 EnergyBudget World::energy() const {
   EnergyBudget e;
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+  for (std::size_t i = 0; i < state_.bodies.size(); ++i) {
     // Every body: a retired one keeps the gravity work done on it until it was frozen.
-    e.gravityWork += bodies_.mass[i] * settings_.gravity.dot(bodies_.position[i] - startPosition_[i]);
-    if (!bodies_.fixed[i]) e.kinetic += bodies_.kineticEnergy(i);
+    e.gravityWork += state_.bodies.mass[i] * settings_.gravity.dot(state_.bodies.position[i] - state_.startPosition[i]);
+    if (!state_.bodies.fixed[i]) e.kinetic += state_.bodies.kineticEnergy(i);
   }
-  for (const PairContacts& p : pairs_) e.elastic += p.tally.elastic;
-  e.obstacleWork = obstacleWork_;
-  e.initial = initialEnergy_;
-  e.friction = friction_;
-  e.damping = damping_;
-  e.retiredKinetic = retiredKinetic_;
-  e.projection = projection_;
+  for (const PairContacts& p : state_.pairs) e.elastic += p.tally.elastic;
+  e.obstacleWork = state_.obstacleWork;
+  e.initial = state_.initialEnergy;
+  e.friction = state_.friction;
+  e.damping = state_.damping;
+  e.retiredKinetic = state_.retiredKinetic;
+  e.projection = state_.projection;
   return e;
 }
 
 double World::maxPenetration() const {
   double d = 0.0;
-  for (const PairContacts& p : pairs_) d = std::max(d, p.maxDepth);
+  for (const PairContacts& p : state_.pairs) d = std::max(d, p.maxDepth);
   return d;
 }
 
 void World::checkStability() {
   const auto where = [&](std::size_t i) {
-    return format("t = %.6g s (step ", time_) + std::to_string(steps_) + "), body '" + bodies_.name[i] + "'";
+    return format("t = %.6g s (step ", state_.time) + std::to_string(state_.steps) + "), body '" + state_.bodies.name[i] + "'";
   };
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (bodies_.fixed[i]) continue;
-    if (!bodies_.position[i].allFinite() || !bodies_.velocity[i].allFinite() || !bodies_.angularMomentum[i].allFinite())
+  for (std::size_t i = 0; i < state_.bodies.size(); ++i) {
+    if (state_.bodies.fixed[i]) continue;
+    if (!state_.bodies.position[i].allFinite() || !state_.bodies.velocity[i].allFinite() || !state_.bodies.angularMomentum[i].allFinite())
       throw SolverInstability(where(i) + ": non-finite position or velocity; the time step " + format("%.3g s", dt_) +
                               " is probably too large (automatic: " + format("%.3g s)", automaticDt_));
   }
   // Between bodies the bound is a fraction of the thinnest block; against the analytic indenter,
   // whose penalty contact legitimately sinks deep at high loads (P = pi k_n R d^2), its radius.
-  const int sphereCount = static_cast<int>(spheres_.size());
-  for (const PairContacts& p : pairs_)
-    if (p.maxDepth > (p.b < 0 && -1 - p.b < sphereCount ? spheres_[-1 - p.b].radius : penetrationLimit_))
+  const int sphereCount = static_cast<int>(state_.spheres.size());
+  for (const PairContacts& p : state_.pairs)
+    if (p.maxDepth > (p.b < 0 && -1 - p.b < sphereCount ? state_.spheres[-1 - p.b].radius : penetrationLimit_))
       throw SolverInstability(where(p.a) + ": penetration " + format("%.4g mm", p.maxDepth * 1e3) + " beyond the bound (" +
                               format("%.4g mm", penetrationLimit_ * 1e3) + ", the indenter's radius against it; against " +
-                              (p.b >= 0 ? "body '" + bodies_.name[p.b] + "'" : std::string("an obstacle")) +
+                              (p.b >= 0 ? "body '" + state_.bodies.name[p.b] + "'" : std::string("an obstacle")) +
                               "); the time step " + format("%.3g s", dt_) + " or the loading rate is too large");
   const EnergyBudget e = energy();
-  mostSupplied_ = std::max(mostSupplied_, e.initial + std::abs(e.gravityWork) + std::abs(e.obstacleWork));
-  const double supplied = mostSupplied_ + 1e-12;
+  state_.mostSupplied = std::max(state_.mostSupplied, e.initial + std::abs(e.gravityWork) + std::abs(e.obstacleWork));
+  const double supplied = state_.mostSupplied + 1e-12;
   if (e.kinetic > settings_.energyGrowthLimit * supplied) {
     std::size_t worst = 0;
-    for (std::size_t i = 0; i < bodies_.size(); ++i)
-      if (!bodies_.fixed[i] && bodies_.kineticEnergy(i) > bodies_.kineticEnergy(worst)) worst = i;
+    for (std::size_t i = 0; i < state_.bodies.size(); ++i)
+      if (!state_.bodies.fixed[i] && state_.bodies.kineticEnergy(i) > state_.bodies.kineticEnergy(worst)) worst = i;
     throw SolverInstability(where(worst) + ": kinetic energy " + format("%.4g J", e.kinetic) + " exceeds " +
                             format("%.3g x the energy supplied (%.4g J)", settings_.energyGrowthLimit, supplied) +
                             "; the time step " + format("%.3g s", dt_) + " is probably too large (automatic: " +

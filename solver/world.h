@@ -67,14 +67,14 @@ public:
 
   int addSphere(const SphereObstacle& sphere);  ///< returns its index
   int addPlane(const PlaneObstacle& plane);
-  SphereObstacle& sphere(int k) { return spheres_[k]; }
+  SphereObstacle& sphere(int k) { return state_.spheres[k]; }
 
   /// Body state; change velocities or poses freely between steps.
-  RigidBodies& bodies() { return bodies_; }
-  const RigidBodies& bodies() const { return bodies_; }
+  RigidBodies& bodies() { return state_.bodies; }
+  const RigidBodies& bodies() const { return state_.bodies; }
 
-  double time() const { return time_; }
-  long stepCount() const { return steps_; }
+  double time() const { return state_.time; }
+  long stepCount() const { return state_.steps; }
   double timeStep() const { return dt_; }
   /// The contact law's parameters and the settings, as resolved (broadPhaseMargin > 0).
   const ContactParameters& parameters() const { return parameters_; }
@@ -96,22 +96,22 @@ public:
   /// Takes a body out of the computation (a block that has fallen clear): it is frozen where it
   /// is, no longer integrated and no longer in any pair; its kinetic energy is booked as carried off.
   void retireBody(int i);
-  bool isRetired(int i) const { return retired_[i] != 0; }
+  bool isRetired(int i) const { return state_.retired[i] != 0; }
   /// A support of the assembly: fixed from the start (not retired).
-  bool isSupport(int i) const { return bodies_.fixed[i] && !retired_[i]; }
+  bool isSupport(int i) const { return state_.bodies.fixed[i] && !state_.retired[i]; }
   /// World-aligned box around body i's surface nodes, enlarged by `margin` (m).
   Eigen::AlignedBox3d bodyBox(int i, double margin) const;
   /// Each body's position when the World was made, m.
-  const std::vector<Eigen::Vector3d>& startPositions() const { return startPosition_; }
+  const std::vector<Eigen::Vector3d>& startPositions() const { return state_.startPosition; }
   /// The smallest extent of body i's box in its own frame, m (the thickness of a slab block).
   double bodySize(int i) const;
 
   /// Contact force and torque (about the centroid) on each body from the last evaluation, N and N m.
-  const std::vector<Eigen::Vector3d>& contactForces() const { return contactForce_; }
-  const std::vector<Eigen::Vector3d>& contactTorques() const { return contactTorque_; }
+  const std::vector<Eigen::Vector3d>& contactForces() const { return state_.contactForce; }
+  const std::vector<Eigen::Vector3d>& contactTorques() const { return state_.contactTorque; }
   /// Force of the bodies on sphere k (the indenter's reaction), N.
-  Eigen::Vector3d sphereReaction(int k) const { return sphereReaction_[k]; }
-  const std::vector<PairContacts>& pairs() const { return pairs_; }
+  Eigen::Vector3d sphereReaction(int k) const { return state_.sphereReaction[k]; }
+  const std::vector<PairContacts>& pairs() const { return state_.pairs; }
   EnergyBudget energy() const;
   double maxPenetration() const;  ///< m, deepest node in the last evaluation
 
@@ -122,35 +122,13 @@ private:
   void checkStability();
 
   std::vector<ShapeModel> shapes_;
-  std::vector<char> retired_;
-  RigidBodies bodies_;
-  std::vector<SphereObstacle> spheres_;
-  std::vector<PlaneObstacle> planes_;
+  WorldState state_;  // everything that changes as it runs: state() and restore() copy it whole
   ContactParameters parameters_;
   SolverSettings settings_;
   struct ThreadArena;
   std::unique_ptr<ThreadArena> arena_;  // the threads the contact loop runs on
-
-  std::vector<PairContacts> pairs_;
-  std::vector<Eigen::Vector3d> builtPosition_;       // poses at the last broad-phase build
-  std::vector<Eigen::Quaterniond> builtOrientation_;
-  std::vector<Eigen::Vector3d> builtSphereCentre_;
-  bool pairsValid_ = false;
-
-  std::vector<Eigen::Vector3d> force_, torque_;      // total, world; torque about the centroid
-  std::vector<Eigen::Vector3d> contactForce_, contactTorque_;
-  std::vector<Eigen::Vector3d> sphereReaction_;
-  std::vector<Eigen::Vector3d> dampingForce_, dampingTorque_;  // the damping part of force_, torque_
-  bool forcesValid_ = false;
-
-  std::vector<Eigen::Vector3d> startPosition_;
-  double initialEnergy_ = 0.0;
-  double obstacleWork_ = 0.0;
-  double friction_ = 0.0, damping_ = 0.0, retiredKinetic_ = 0.0, projection_ = 0.0;  // J, dissipated / carried off so far
-  double mostSupplied_ = 0.0;  // the largest energy put in so far (J), for the blow-up check
   double penetrationLimit_ = 0.0;
-  double dt_ = 0.0, automaticDt_ = 0.0, time_ = 0.0;
-  long steps_ = 0;
+  double dt_ = 0.0, automaticDt_ = 0.0;
 };
 
 }  // namespace tessera

@@ -2,6 +2,7 @@
 #include "io/input_error.h"
 #include "geometry/length_unit.h"
 #include "levelset/bundle.h"
+#include "levelset/bundle_edit.h"
 #include "levelset/shape_builder.h"
 #include "tools/commands.h"
 #include "tools/resolution_options.h"
@@ -41,30 +42,14 @@ void runPrep(const PrepArguments& a) {
   resolution.exteriorBandVoxels = a.band;
   if (!(a.featureAngle > 0 && a.featureAngle < 180)) throw InputError("--feature-angle must be between 0 and 180 degrees");
 
-  const std::string name = a.name.empty() ? shapeNameFromPath(a.mesh) : a.name;
-  Bundle bundle;
-  const fs::path bundleFile = fs::path(a.output) / kBundleFileName;
-  const bool existed = fs::exists(bundleFile);
-  if (existed) bundle = readBundle(a.output);
-  else if (fs::exists(a.output) && !fs::is_directory(a.output))
-    throw InputError(a.output + ": exists and is not a directory; give a bundle directory with -o");
-  const int existing = bundle.findShape(name);
-  if (existing >= 0 && !a.replace)
-    throw InputError(a.output + ": already holds a shape named '" + name + "'; choose another --name or pass --replace");
-
+  ShapeRequest request{a.mesh, a.unit, a.name, resolution, shapeLimits(a.maxMemory, a.anySize)};
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "prep: " << m << "\n"; };
   std::cerr << "prep: reading " << a.mesh << " (unit " << unit.name << ")\n";
-  Shape shape = prepareShapeFromFile(a.mesh, a.unit, name, resolution, log, shapeLimits(a.maxMemory, a.anySize));
+  const Shape s = prepareIntoBundle(request, a.output, a.replace, log);
   for (const auto& note : log.notes) std::cerr << "prep: note: " << note << "\n";
   for (const auto& warning : log.warnings) std::cerr << "prep: warning: " << warning << "\n";
 
-  if (existing >= 0) bundle.shapes[existing] = std::move(shape);
-  else bundle.shapes.push_back(std::move(shape));
-  bundle.generator = generatorVersion();
-  writeBundle(a.output, bundle);
-
-  const Shape& s = bundle.shapes[existing >= 0 ? existing : bundle.shapes.size() - 1];
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("shape '%s' from %s\n", s.name.c_str(), a.mesh.c_str());
   std::printf("  volume        %.6g mm^3\n", s.mass.volume * 1e9);

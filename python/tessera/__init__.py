@@ -19,6 +19,7 @@ from ._tessera import (  # noqa: F401  (the C++ core)
     WriteError,
     __version__,
     curve_units,
+    prep,
     read_bundle,
     tile,
     tile_layout,

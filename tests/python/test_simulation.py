@@ -71,6 +71,16 @@ def test_a_run_folder_written_from_python_reads_back(slab, tmp_path):
     assert np.array_equal(folder.curve["load"], sim.curve["load"])
 
 
+def test_prep_adds_a_validated_shape(tmp_path):
+    shape = tessera.prep(BLOCK, "mm", str(tmp_path / "b"))
+    a, h, theta = 10e-3, 3.18e-3, np.radians(5)
+    assert shape["volume"] == pytest.approx(a * a * h - h ** 3 * np.tan(theta) ** 2 / 3, rel=1e-9)
+    assert shape["nodes"] > 100 and shape["level_set"].startswith("exact planes")
+    assert tessera.read_bundle(str(tmp_path / "b"))["shapes"] == ["planar_a10_h3.18_5deg"]
+    with pytest.raises(ValueError, match="already holds a shape"):
+        tessera.prep(BLOCK, "mm", str(tmp_path / "b"))
+
+
 def test_overrides_change_the_scene(slab):
     soft = tessera.Simulation(SCENE, bundle=slab, overrides={"material.youngs_modulus": 2.1e9})
     stiff = tessera.Simulation(SCENE, bundle=slab)
