@@ -1,0 +1,277 @@
+#include "run/sweep.h"
+
+#include "io/file_digest.h"
+#include "io/input_error.h"
+#include "io/safe_write.h"
+#include "run/presets.h"
+#include "run/run_output.h"
+#include "run/scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Short names for the keys swept most.
+const std::map<std::string, std::string> kAliases{
+    {"E", "material.youngs_modulus"}, {"mu", "material.friction"}, {"speed", "indenter.speed"},
+    {"radius", "indenter.radius"}, {"density", "material.density"}};
+
+std::string formatValue(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// A sweep folder is one study: one base scene and preset, one set of keys; each case folder holds
+// one set of values for good (sweep.json lists them). Cases of this sweep already in the folder
+// are found by their values and must hold the same scene; new values are refused unless --extend.
+std::vector<SweepCase> placeCases(const fs::path& dir, const std::vector<std::string>& keys, std::vector<SweepCase> cases,
+                                  bool extend, const std::string& baseDigest, nlohmann::json& manifest) {
+  manifest = {{"keys", keys}, {"cases", nlohmann::json::array()}, {"base_digest", baseDigest}};
+  std::string heldBase = baseDigest;  // of the base scene and preset the folder's cases were made from
+  const fs::path manifestFile = dir / "sweep.json";
+  std::map<std::vector<double>, fs::path> held;
+  int nextNumber = 0;
+  if (fs::exists(manifestFile)) {
+    nlohmann::json old;
+    try {
+      old = nlohmann::json::parse(readText(manifestFile));
+      if (old.at("keys").get<std::vector<std::string>>() != keys) {
+        std::string oldKeys;
+        for (const auto& k : old.at("keys")) oldKeys += (oldKeys.empty() ? "" : ", ") + k.get<std::string>();
+        throw InputError(dir.string() + ": holds a sweep over " + oldKeys + "; choose another -o for a sweep over other keys");
+      }
+      heldBase = old.value("base_digest", baseDigest);
+      for (const auto& c : old.at("cases")) {
+        const std::string name = c.at("directory");
+        held[c.at("values").get<std::vector<double>>()] = dir / name;
+        manifest["cases"].push_back(c);
+        nextNumber = std::max(nextNumber, std::stoi(name.substr(name.find('_') + 1)) + 1);
+      }
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw InputError(manifestFile.string() + ": corrupt sweep manifest (" + e.what() + "); choose another -o");
+    }
+  }
+  for (SweepCase& c : cases) {
+    std::string values;
+    for (std::size_t k = 0; k < keys.size(); ++k) values += (k ? ", " : "") + keys[k] + " = " + formatValue(c.values[k]);
+    const auto found = held.find(c.values);
+    if (found != held.end()) {
+      c.dir = found->second.string();
+      if (fs::exists(fs::path(c.dir) / "scene.toml") && readText(fs::path(c.dir) / "scene.toml") != c.scene)
+        throw InputError(c.dir + " holds the case " + values + " of another base scene or preset (its scene.toml "
+                         "differs); choose another -o, or remove " + dir.string() + " to start again");
+      continue;
+    }
+    if (!held.empty() && !extend)
+      throw InputError(dir.string() + " holds a sweep of other values (not " + values + "); add --extend to add these "
+                       "cases to it, or choose another -o");
+    if (heldBase != baseDigest)
+      throw InputError(dir.string() + " holds a sweep of another base scene or preset; extend it from the same scene and "
+                       "preset, or choose another -o");
+    char name[32];
+    std::snprintf(name, sizeof name, "case_%03d", nextNumber++);
+    c.dir = (dir / name).string();
+    if (fs::exists(c.dir))
+      throw InputError(c.dir + " exists but is not in " + manifestFile.string() + "; choose another -o");
+    manifest["cases"].push_back({{"directory", name}, {"values", c.values}});
+  }
+  return cases;
+}
+
+}  // namespace
+
+// "KEY=v1,v2,..." or "KEY=first:last:count" (count values evenly spaced, ends included).
+SweepAxis parseSweepAxis(const std::string& text, long maxCases) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) throw InputError("--set '" + text + "': give KEY=v1,v2,... or KEY=first:last:count");
+  SweepAxis axis;
+  axis.key = text.substr(0, eq);
+  if (kAliases.count(axis.key)) axis.key = kAliases.at(axis.key);
+  const std::string values = text.substr(eq + 1);
+  try {
+    if (std::count(values.begin(), values.end(), ':') == 2) {
+      std::stringstream in(values);
+      std::string a, b, n;
+      std::getline(in, a, ':');
+      std::getline(in, b, ':');
+      std::getline(in, n);
+      const double first = std::stod(a), last = std::stod(b);
+      const long count = std::stol(n);
+      if (count < 1) throw std::invalid_argument("count");
+      if (count > maxCases)
+        throw InputError("--set '" + text + "': " + std::to_string(count) + " values, more than --max-cases " +
+                         std::to_string(maxCases) + "; give fewer, or raise --max-cases if you mean it");
+      for (int k = 0; k < count; ++k) axis.values.push_back(count == 1 ? first : first + (last - first) * k / (count - 1));
+    } else {
+      std::stringstream in(values);
+      std::string v;
+      while (std::getline(in, v, ',')) axis.values.push_back(std::stod(v));
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception&) {
+    throw InputError("--set '" + text + "': values must be numbers (SI units), e.g. E=3.3e9,4.2e9 or mu=0.2:1:5");
+  }
+  if (axis.values.empty()) throw InputError("--set '" + text + "': no values");
+  for (double v : axis.values)
+    if (!std::isfinite(v)) throw InputError("--set '" + text + "': " + formatValue(v) + " is not a finite number");
+  return axis;
+}
+
+std::vector<SweepCase> sweepCases(const SweepPlan& plan) {
+  if (plan.maxCases < 1) throw InputError("--max-cases must be at least 1");
+  const std::vector<SweepAxis>& axes = plan.axes;
+  if (axes.empty()) throw InputError("give at least one --set KEY=values (e.g. --set E=3.3e9,4.2e9)");
+  // Every case: the Cartesian product of the axes, the first axis varying slowest; with --zip,
+  // the k-th value of every axis together. Counted before anything is made.
+  long count = plan.zip ? static_cast<long>(axes[0].values.size()) : 1;
+  for (const SweepAxis& axis : axes) {
+    if (plan.zip && axis.values.size() != axes[0].values.size())
+      throw InputError("--zip: every --set needs the same number of values (" + axes[0].key + " has " +
+                       std::to_string(axes[0].values.size()) + ", " + axis.key + " has " + std::to_string(axis.values.size()) + ")");
+    if (!plan.zip) count = count > plan.maxCases ? count : count * static_cast<long>(axis.values.size());
+  }
+  if (count > plan.maxCases)
+    throw InputError("the --set values make " + (count > 1000000 ? std::string("more than a million") : std::to_string(count)) +
+                     " cases, more than --max-cases " + std::to_string(plan.maxCases) +
+                     "; give fewer values, or raise --max-cases if you mean it");
+  std::vector<std::vector<double>> values{{}};
+  if (plan.zip) {
+    values.assign(axes[0].values.size(), {});
+    for (const SweepAxis& axis : axes)
+      for (std::size_t c = 0; c < values.size(); ++c) values[c].push_back(axis.values[c]);
+  } else {
+    for (const SweepAxis& axis : axes) {
+      std::vector<std::vector<double>> next;
+      for (const auto& c : values)
+        for (double v : axis.values) {
+          auto d = c;
+          d.push_back(v);
+          next.push_back(d);
+        }
+      values = next;
+    }
+  }
+  std::vector<SweepCase> cases;
+  for (const auto& v : values) {
+    // The preset's keys first: a --set of the same key wins.
+    std::vector<std::pair<std::string, double>> overrides =
+        plan.preset.empty() ? std::vector<std::pair<std::string, double>>{} : findPreset(plan.preset).overrides;
+    for (std::size_t k = 0; k < axes.size(); ++k) overrides.emplace_back(axes[k].key, v[k]);
+    cases.push_back({v, sceneWithOverrides(plan.scene, overrides), {}});
+    try {  // every case a valid scene before anything is made
+      readSceneText(cases.back().scene, plan.scene);
+    } catch (const InputError& e) {
+      throw InputError("case " + std::to_string(cases.size() - 1) + " of the sweep is not a valid scene: " + e.what());
+    }
+  }
+
+  return cases;
+}
+
+std::vector<SweepCase> placeSweepCases(const std::string& folder, const SweepPlan& plan, std::vector<SweepCase> cases,
+                                       bool extend) {
+  const fs::path dir(folder);
+  std::vector<std::string> keys;
+  for (const SweepAxis& axis : plan.axes) keys.push_back(axis.key);
+  nlohmann::json manifest;
+  cases = placeCases(dir, keys, cases, extend, textDigest(readText(plan.scene) + "\npreset " + plan.preset), manifest);
+  // The manifest first, then the case scenes: a sweep stopped in between is found again by its values.
+  manifest["scene"] = fs::absolute(plan.scene).string();
+  manifest["preset"] = plan.preset;
+  writeTextFileSafely(dir / "sweep.json", manifest.dump(2) + "\n");
+  for (const SweepCase& c : cases) {
+    fs::create_directories(c.dir);
+    if (!fs::exists(fs::path(c.dir) / "scene.toml")) writeTextFileSafely(fs::path(c.dir) / "scene.toml", c.scene);
+  }
+  return cases;
+}
+
+bool sweepCaseComplete(const std::string& runDir) {
+  const fs::path run(runDir);
+  std::ifstream in(run / "summary.json");
+  if (!in) return false;
+  try {
+    const auto j = nlohmann::json::parse(in);
+    const std::string reason = j.value("stop_reason", "");
+    return reason == "delta_max" || reason == "failure";
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// The table of response parameters of every complete case in the folder (sweep.csv, sweep.h5).
+int writeSweepTables(const std::string& folder) {
+  const fs::path dir(folder);
+  const nlohmann::json manifest = nlohmann::json::parse(readText(dir / "sweep.json"));
+  const std::vector<std::string> keys = manifest.at("keys");
+  std::string csv = "case";
+  for (const std::string& key : keys) csv += "," + key;
+  csv += ",peak_load_N,delta_at_peak_mm,stiffness_N_per_mm,loading_energy_mJ,loading_energy_to_end_mJ,"
+         "failure_deflection_mm,block_displacement_at_failure_mm,load_drops,energy_residual_fraction,failure_mode,"
+         "stop_reason,fallen,wall_seconds\n";
+  std::vector<std::vector<double>> rowsValues, rowsTable;
+  std::vector<std::string> caseNames, modes, reasons;
+  for (const auto& entry : manifest["cases"]) {
+    const fs::path run = dir / entry["directory"].get<std::string>() / "run";
+    if (!sweepCaseComplete(run.string())) continue;  // an interrupted or failed case is never tabled or plotted
+    const nlohmann::json j = nlohmann::json::parse(readText(run / "summary.json"));
+    const std::vector<double> caseValues = entry["values"];
+    const auto& r = j["response"];
+    std::ostringstream line;
+    line << entry["directory"].get<std::string>();
+    for (double v : caseValues) line << "," << v;
+    // Missing (no failure): NaN in the table, empty in the CSV.
+    const auto number = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
+    const double work = r["energy"]["work_mJ"];
+    const std::vector<double> values{r["peak_load_N"], r["delta_at_peak_mm"], r["stiffness_N_per_mm"], r["loading_energy_mJ"],
+                                     r["loading_energy_to_end_mJ"], number(r["failure_deflection_mm"]),
+                                     number(r["block_displacement_at_failure_mm"]), static_cast<double>(r["load_drops"].size()),
+                                     work > 0 ? r["energy"]["residual_mJ"].get<double>() / work : 0.0,
+                                     j["run"]["wall_seconds"].get<double>()};
+    for (std::size_t k = 0; k + 1 < values.size(); ++k) {
+      line << ",";
+      if (!std::isnan(values[k])) line << values[k];
+    }
+    std::string fallen;
+    for (const auto& f : r["fallen"]) fallen += (fallen.empty() ? "" : " ") + f["name"].get<std::string>();
+    line << "," << r["failure_mode"].get<std::string>() << "," << j["stop_reason"].get<std::string>() << "," << fallen << ","
+         << j["run"]["wall_seconds"].get<double>() << "\n";
+    csv += line.str();
+    rowsValues.push_back(caseValues);
+    rowsTable.push_back(values);
+    caseNames.push_back(entry["directory"]);
+    reasons.push_back(j["stop_reason"]);
+    modes.push_back(r["failure_mode"]);
+  }
+  writeTextFileSafely(dir / "sweep.csv", csv);
+  writeSweepTable((dir / "sweep.h5").string(), keys, rowsValues,
+                  {"peak_load_N", "delta_at_peak_mm", "stiffness_N_per_mm", "loading_energy_mJ", "loading_energy_to_end_mJ",
+                   "failure_deflection_mm", "block_displacement_at_failure_mm", "load_drops", "energy_residual_fraction",
+                   "wall_seconds"},
+                  rowsTable, caseNames, modes, reasons);
+  return static_cast<int>(caseNames.size());
+}
+
+}  // namespace tessera
