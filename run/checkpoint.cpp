@@ -3,6 +3,7 @@
 #include "io/input_error.h"
 #include "io/hdf5_file.h"
 #include "run/curve_table.h"
+#include "run/snapshot_table.h"
 
 #include <cmath>
 #include <filesystem>
@@ -16,7 +17,7 @@ using h5::Handle;
 namespace {
 
 constexpr const char* kFormat = "tessera-checkpoint";
-constexpr std::int64_t kVersion = 3;
+constexpr std::int64_t kVersion = 4;
 
 hsize_t count(std::size_t n) { return static_cast<hsize_t>(n); }
 
@@ -267,57 +268,9 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
   h5::writeAttribute(g, "time_step", r.timeStep);
   h5::writeAttribute(g, "wall_seconds", r.wallSeconds);
   writeCurve(h5::createGroup(g, "curve").get(), r.curve);
-  std::vector<double> snapshot;
-  std::vector<Eigen::Vector3d> position, velocity, indenter;
-  std::vector<Eigen::Quaterniond> orientation;
-  for (const Snapshot& s2 : r.snapshots) {
-    snapshot.insert(snapshot.end(), {s2.delta, s2.load});
-    position.insert(position.end(), s2.position.begin(), s2.position.end());
-    orientation.insert(orientation.end(), s2.orientation.begin(), s2.orientation.end());
-    velocity.insert(velocity.end(), s2.velocity.begin(), s2.velocity.end());
-    indenter.push_back(s2.indenter);
-  }
-  writeVectors(g, "snapshot_velocity", velocity);
-  writeVectors(g, "snapshot_indenter", indenter);
-  h5::writeDataset(g, "snapshot", snapshot, {count(r.snapshots.size()), 2});
-  std::vector<std::int32_t> linkCount, linkPair, linkNodes, linkSliding;
-  std::vector<Eigen::Vector3d> linkPoint, linkForce, linkNormal;
-  std::vector<double> linkArea;
-  for (const Snapshot& s2 : r.snapshots) {
-    linkCount.push_back(static_cast<std::int32_t>(s2.forces.size()));
-    for (const ForceLink& l : s2.forces) {
-      linkPair.insert(linkPair.end(), {l.a, l.b});
-      linkPoint.push_back(l.point);
-      linkForce.push_back(l.force);
-      linkNormal.push_back(l.normalForce);
-      linkNodes.push_back(l.nodeContacts);
-      linkArea.push_back(l.area);
-      linkSliding.push_back(l.slidingNodes);
-    }
-  }
-  h5::writeDataset(g, "snapshot_links", linkCount, {count(linkCount.size())});
-  h5::writeDataset(g, "link_pair", linkPair, {count(linkPoint.size()), 2});
-  writeVectors(g, "link_point", linkPoint);
-  writeVectors(g, "link_force", linkForce);
-  writeVectors(g, "link_normal_force", linkNormal);
-  h5::writeDataset(g, "link_node_contacts", linkNodes, {count(linkNodes.size())});
-  writeDoubles(g, "link_area", linkArea);
-  h5::writeDataset(g, "link_sliding_nodes", linkSliding, {count(linkSliding.size())});
-  writeVectors(g, "snapshot_position", position);
-  writeQuaternions(g, "snapshot_orientation", orientation);
-  std::vector<std::string> names;
-  std::vector<double> delta;
-  std::vector<char> retired, touching;
-  for (const FallenBody& f : r.fallen) {
-    names.push_back(f.name);
-    delta.push_back(f.delta);
-    retired.push_back(f.retired);
-    touching.push_back(f.touching);
-  }
-  h5::writeStrings(g, "fallen_names", names);
-  writeDoubles(g, "fallen_delta", delta);
-  writeFlags(g, "fallen_retired", retired);
-  writeFlags(g, "fallen_touching", touching);
+  std::vector<std::string> names(r.snapshots.empty() ? 0 : r.snapshots.front().position.size());  // not kept: the bundle has them
+  writeSnapshots(h5::createGroup(g, "snapshots").get(), r.snapshots, names);
+  writeFallen(h5::createGroup(g, "fallen").get(), r.fallen);
 }
 
 void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t bodies) {
@@ -329,14 +282,10 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   s.nextSample = h5::readDoubleAttribute(g, "next_sample");
   s.nextSnapshot = h5::readDoubleAttribute(g, "next_snapshot");
   s.quietFrom = h5::readDoubleAttribute(g, "quiet_from");
-  // Since the sample hook could change the indenter's velocity; before, the speed never changed.
-  const auto optionalAttribute = [&](const char* name, double otherwise) {
-    return H5Aexists(g, name) > 0 ? h5::readDoubleAttribute(g, name) : otherwise;
-  };
-  s.travelBase = optionalAttribute("travel_base", 0.0);
-  s.pathBase = optionalAttribute("path_base", 0.0);
-  s.speedSince = optionalAttribute("speed_since", s.loadStart);
-  s.contactPath = optionalAttribute("contact_path", s.contactTravel);
+  s.travelBase = h5::readDoubleAttribute(g, "travel_base");
+  s.pathBase = h5::readDoubleAttribute(g, "path_base");
+  s.speedSince = h5::readDoubleAttribute(g, "speed_since");
+  s.contactPath = h5::readDoubleAttribute(g, "contact_path");
   s.settledPosition = readVectors(g, "settled_position");
   s.outAt = h5::readDataset<double>(g, "out_at");
   if ((s.phase > 0 && s.settledPosition.size() != bodies) || s.outAt.size() != s.settledPosition.size())
@@ -345,7 +294,7 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   r.settleTime = h5::readDoubleAttribute(g, "settle_time");
   r.settleSteps = h5::readIntAttribute(g, "settle_steps");
   r.settled = h5::readIntAttribute(g, "settled") != 0;
-  if (H5Aexists(g, "sunk_while_settling") > 0) r.sunkWhileSettling = static_cast<int>(h5::readIntAttribute(g, "sunk_while_settling"));
+  r.sunkWhileSettling = static_cast<int>(h5::readIntAttribute(g, "sunk_while_settling"));
   r.target = static_cast<int>(h5::readIntAttribute(g, "target"));
   r.targetName = h5::readStringAttribute(g, "target_name");
   r.thickness = h5::readDoubleAttribute(g, "thickness");
@@ -355,66 +304,10 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   r.timeStep = h5::readDoubleAttribute(g, "time_step");
   r.wallSeconds = h5::readDoubleAttribute(g, "wall_seconds");
   r.curve = readCurve(h5::openGroup(g, "curve").get());
-  const auto snapshot = h5::readDataset<double>(g, "snapshot");
-  const auto position = readVectors(g, "snapshot_position");
-  const auto orientation = readQuaternions(g, "snapshot_orientation");
-  const auto linkCount = h5::readDataset<std::int32_t>(g, "snapshot_links");
-  const auto linkPair = h5::readDataset<std::int32_t>(g, "link_pair");
-  const auto linkPoint = readVectors(g, "link_point"), linkForce = readVectors(g, "link_force");
-  const std::size_t frames = snapshot.size() / 2;
-  if (snapshot.size() % 2 != 0 || position.size() != frames * bodies || orientation.size() != frames * bodies ||
-      linkCount.size() != frames || linkPair.size() != 2 * linkPoint.size() || linkForce.size() != linkPoint.size())
-    throw std::runtime_error("inconsistent snapshot records");
-  std::size_t links = 0;
-  for (std::int32_t c : linkCount) {
-    if (c < 0) throw std::runtime_error("a negative force-link count");
-    links += static_cast<std::size_t>(c);
-  }
-  if (links != linkPoint.size()) throw std::runtime_error("force-link counts do not match the links");
-  // Written since the per-contact records and the ParaView fields (absent in older checkpoints:
-  // zeros). Each of the right size or absent.
-  const auto optionalDataset = [&](const char* name, std::size_t size, auto read, auto zero) {
-    using T = decltype(read(name));
-    if (H5Lexists(g, name, H5P_DEFAULT) <= 0) return T(size, zero);
-    T v = read(name);
-    if (v.size() != size) throw std::runtime_error(std::string("inconsistent ") + name);
-    return v;
-  };
-  const auto vectors = [&](const char* n) { return readVectors(g, n); };
-  const auto ints = [&](const char* n) { return h5::readDataset<std::int32_t>(g, n); };
-  const auto doubles = [&](const char* n) { return h5::readDataset<double>(g, n); };
-  const Eigen::Vector3d none = Eigen::Vector3d::Zero();
-  const auto linkNormal = optionalDataset("link_normal_force", links, vectors, none);
-  const auto linkNodes = optionalDataset("link_node_contacts", links, ints, 0);
-  const auto linkArea = optionalDataset("link_area", links, doubles, 0.0);
-  const auto linkSliding = optionalDataset("link_sliding_nodes", links, ints, 0);
-  const auto velocity = optionalDataset("snapshot_velocity", frames * bodies, vectors, none);
-  const auto indenter = optionalDataset("snapshot_indenter", frames, vectors, none);
-  for (std::int32_t body : linkPair)
-    if (body < -64 || body >= static_cast<std::int32_t>(bodies)) throw std::runtime_error("a force link names no body");
   if (s.phase < 0 || s.phase > 2 || r.target < -1 || r.target >= static_cast<int>(bodies))
     throw std::runtime_error("protocol state out of range");
-  r.snapshots.clear();
-  std::size_t link = 0;
-  for (std::size_t k = 0; 2 * k + 1 < snapshot.size(); ++k) {
-    Snapshot s2{snapshot[2 * k], snapshot[2 * k + 1],
-                std::vector<Eigen::Vector3d>(position.begin() + k * bodies, position.begin() + (k + 1) * bodies),
-                std::vector<Eigen::Quaterniond>(orientation.begin() + k * bodies, orientation.begin() + (k + 1) * bodies),
-                {},
-                std::vector<Eigen::Vector3d>(velocity.begin() + k * bodies, velocity.begin() + (k + 1) * bodies),
-                indenter[k]};
-    for (int l = 0; l < linkCount[k]; ++l, ++link)
-      s2.forces.push_back({linkPair[2 * link], linkPair[2 * link + 1], linkPoint[link], linkForce[link], linkNormal[link],
-                           linkNodes[link], linkArea[link], linkSliding[link]});
-    r.snapshots.push_back(std::move(s2));
-  }
-  const auto names = h5::readStrings(g, "fallen_names");
-  const auto delta = h5::readDataset<double>(g, "fallen_delta");
-  const auto retired = readFlags(g, "fallen_retired"), touching = readFlags(g, "fallen_touching");
-  if (delta.size() != names.size() || retired.size() != names.size() || touching.size() != names.size())
-    throw std::runtime_error("inconsistent fallen records");
-  r.fallen.clear();
-  for (std::size_t i = 0; i < names.size(); ++i) r.fallen.push_back({names[i], delta[i], retired[i] != 0, touching[i] != 0});
+  r.snapshots = readSnapshots(h5::openGroup(g, "snapshots").get(), bodies);
+  r.fallen = readFallen(h5::openGroup(g, "fallen").get());
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "levelset/assembly_export.h"
 #include "io/hdf5_file.h"
 #include "run/curve_table.h"
+#include "run/snapshot_table.h"
 
 #include <nlohmann/json.hpp>
 
@@ -16,22 +17,6 @@ namespace tessera {
 namespace fs = std::filesystem;
 
 namespace {
-
-// A dataset of `dims` with its unit (and, where it helps, a note on what it holds).
-template <class T>
-void writeWithUnit(hid_t g, const std::string& name, const std::vector<T>& data, const std::vector<hsize_t>& dims,
-                   const std::string& unit, const std::string& note = "") {
-  h5::writeDataset(g, name, data, dims);
-  h5::writeDatasetAttribute(g, name, "unit", unit);
-  if (!note.empty()) h5::writeDatasetAttribute(g, name, "note", note);
-}
-
-std::vector<double> flatten(const std::vector<Eigen::Vector3d>& v) {
-  std::vector<double> flat;
-  flat.reserve(3 * v.size());
-  for (const Eigen::Vector3d& x : v) flat.insert(flat.end(), {x.x(), x.y(), x.z()});
-  return flat;
-}
 
 void writeResultsH5(hid_t f, const Scene& scene, const Bundle& bundle, const ContactParameters& contact,
                     const IndentationRecord& record, const RunProvenance& provenance) {
@@ -54,72 +39,10 @@ void writeResultsH5(hid_t f, const Scene& scene, const Bundle& bundle, const Con
   h5::writeAttribute(f, "thickness", record.thickness);
   writeCurve(h5::createGroup(f, "curve").get(), record.curve);
 
-  h5::Handle snaps = h5::createGroup(f, "snapshots");
-  const hid_t g = snaps.get();
   std::vector<std::string> names;
   for (const Body& b : bundle.bodies) names.push_back(b.name);
-  h5::writeStrings(g, "body_names", names);
-  std::vector<double> delta, load, position, orientation, velocity, indenter;
-  for (const Snapshot& s : record.snapshots) {
-    delta.push_back(s.delta);
-    load.push_back(s.load);
-    for (std::size_t i = 0; i < s.position.size(); ++i) {
-      position.insert(position.end(), {s.position[i].x(), s.position[i].y(), s.position[i].z()});
-      orientation.insert(orientation.end(), {s.orientation[i].w(), s.orientation[i].x(), s.orientation[i].y(), s.orientation[i].z()});
-    }
-    const std::vector<double> v = flatten(s.velocity);
-    velocity.insert(velocity.end(), v.begin(), v.end());
-    indenter.insert(indenter.end(), {s.indenter.x(), s.indenter.y(), s.indenter.z()});
-  }
-  const hsize_t frames = record.snapshots.size(), bodies = bundle.bodies.size();
-  writeWithUnit(g, "delta", delta, {frames}, "m");
-  writeWithUnit(g, "load", load, {frames}, "N");
-  writeWithUnit(g, "position", position, {frames, bodies, 3}, "m", "each body's centroid");
-  writeWithUnit(g, "orientation", orientation, {frames, bodies, 4}, "1", "unit quaternion (w, x, y, z), body frame to world");
-  writeWithUnit(g, "velocity", velocity, {frames, bodies, 3}, "m/s", "each body's centroid");
-  writeWithUnit(g, "indenter", indenter, {frames, 3}, "m", "the indenter's centre");
-  // Contacts: the records of snapshot k are rows force_offset[k] .. force_offset[k+1]-1.
-  std::vector<std::int32_t> offset{0}, pair, nodes;
-  std::vector<double> point, force, normal, tangential, area, sliding;
-  for (const Snapshot& s : record.snapshots) {
-    for (const ForceLink& l : s.forces) {
-      pair.insert(pair.end(), {l.a, l.b});
-      point.insert(point.end(), {l.point.x(), l.point.y(), l.point.z()});
-      force.insert(force.end(), {l.force.x(), l.force.y(), l.force.z()});
-      const Eigen::Vector3d t = l.force - l.normalForce;
-      normal.insert(normal.end(), {l.normalForce.x(), l.normalForce.y(), l.normalForce.z()});
-      tangential.insert(tangential.end(), {t.x(), t.y(), t.z()});
-      nodes.push_back(l.nodeContacts);
-      area.push_back(l.area);
-      sliding.push_back(l.nodeContacts > 0 ? static_cast<double>(l.slidingNodes) / l.nodeContacts : 0.0);
-    }
-    offset.push_back(static_cast<std::int32_t>(pair.size() / 2));
-  }
-  const hsize_t links = pair.size() / 2;
-  writeWithUnit(g, "force_offset", offset, {offset.size()}, "1", "snapshot k's contacts are rows offset[k] to offset[k+1]-1");
-  writeWithUnit(g, "force_pair", pair, {links, 2}, "1", "bodies (a, b) by index into body_names; b = -1: the indenter");
-  writeWithUnit(g, "force_point", point, {links, 3}, "m", "contact points weighted by normal force");
-  writeWithUnit(g, "force", force, {links, 3}, "N", "the pair's contact force on a");
-  writeWithUnit(g, "force_normal", normal, {links, 3}, "N", "its part along the contact normals");
-  writeWithUnit(g, "force_tangential", tangential, {links, 3}, "N", "its friction part: force - force_normal");
-  writeWithUnit(g, "force_node_contacts", nodes, {links}, "count", "node contacts of the pair");
-  writeWithUnit(g, "force_area", area, {links}, "m^2", "their effective (projected) area");
-  writeWithUnit(g, "force_sliding_fraction", sliding, {links}, "1", "of the node contacts, the fraction at the Coulomb cap");
-
-  h5::Handle fallen = h5::createGroup(f, "fallen");
-  std::vector<std::string> fallenNames;
-  std::vector<double> fallenDelta;
-  std::vector<std::uint8_t> fallenRetired, fallenTouching;
-  for (const FallenBody& b : record.fallen) {
-    fallenNames.push_back(b.name);
-    fallenDelta.push_back(b.delta);
-    fallenRetired.push_back(b.retired);
-    fallenTouching.push_back(b.touching);
-  }
-  h5::writeStrings(fallen.get(), "names", fallenNames);
-  writeWithUnit(fallen.get(), "delta", fallenDelta, {fallenDelta.size()}, "m", "indenter travel when it left the assembly");
-  writeWithUnit(fallen.get(), "retired", fallenRetired, {fallenRetired.size()}, "1", "taken out of the computation");
-  writeWithUnit(fallen.get(), "touching", fallenTouching, {fallenTouching.size()}, "1", "pushed through, still touching blocks");
+  writeSnapshots(h5::createGroup(f, "snapshots").get(), record.snapshots, names);
+  writeFallen(h5::createGroup(f, "fallen").get(), record.fallen);
 }
 
 }  // namespace

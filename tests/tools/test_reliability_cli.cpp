@@ -220,8 +220,18 @@ TEST_CASE("reliability 3: a damaged checkpoint is one clear error, never a crash
   refused("no contact keys");
   replaceDataset(checkpoint, "world", "orientation", std::vector<double>(36, std::nan("")), {9, 4});
   refused("NaN orientation");
-  replaceDataset(checkpoint, "run", "snapshot_links", std::vector<std::int32_t>{1 << 30}, {1});
-  refused("huge link count");
+  const auto offsets = [&] {
+    h5::Handle f = h5::openFileReadOnly(checkpoint);
+    return h5::readDataset<std::int32_t>(h5::openGroup(f.get(), "run/snapshots").get(), "force_offset", &dims);
+  }();
+  std::vector<std::int32_t> huge = offsets;
+  huge.back() = 1 << 30;
+  replaceDataset(checkpoint, "run/snapshots", "force_offset", huge, dims);
+  refused("huge contact-record count");
+  std::vector<std::int32_t> falling = offsets;
+  falling.back() = -1;
+  replaceDataset(checkpoint, "run/snapshots", "force_offset", falling, dims);
+  refused("decreasing contact-record offsets");
   test::writeFile(checkpoint, "not HDF5 at all");
   refused("garbage");
   // Undamaged, it resumes.
