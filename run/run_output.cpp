@@ -4,10 +4,12 @@
 #include "levelset/assembly_export.h"
 #include "io/hdf5_file.h"
 #include "run/curve_table.h"
+#include "run/paraview_state.h"
 #include "run/snapshot_table.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -227,6 +229,25 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
     times.insert(times.end(), 3, rising ? s.delta * 1e3 : static_cast<double>(k));
   }
   writePvd((dir / "paraview" / "slab.pvd").string(), files, times);
+  // Each part as its own series too, and a ParaView state that opens them ready to look at.
+  for (const std::size_t part : {0, 1, 2}) {
+    std::vector<std::string> partFiles;
+    std::vector<double> partTimes;
+    for (std::size_t i = part; i < files.size(); i += 3) {
+      partFiles.push_back(files[i]);
+      partTimes.push_back(times[i]);
+    }
+    writePvd((dir / "paraview" / (std::string(part == 0 ? "blocks" : part == 1 ? "forces" : "indenter") + ".pvd")).string(),
+             partFiles, partTimes);
+  }
+  double largestForce = 0, largestDisplacement = 0;
+  for (const Snapshot& s : record.snapshots) {
+    for (const ForceLink& l : s.forces) largestForce = std::max(largestForce, l.force.norm());
+    for (std::size_t i = 0; i < s.position.size(); ++i)
+      largestDisplacement = std::max(largestDisplacement, (s.position[i] - built[i]).norm());
+  }
+  writeParaViewState((dir / "paraview").string(),
+                     {largestForce > 0 ? 3 * record.thickness / largestForce : 0.0, record.thickness, largestDisplacement});
 }
 
 }  // namespace tessera
