@@ -25,5 +25,15 @@ scene.AnimationTime = times[len(times) // 2]
 SaveScreenshot(sys.argv[2], GetActiveView(), ImageResolution=[640, 480])
 print(f"ok: {len(times)} time steps, sources {names}")
 PY
-xvfb-run -a pvpython "$work/open.py" "$work/out/paraview/slab_state.py" "$work/shot.png"
+# Under load, Mesa's GLX under Xvfb sometimes fails to create ParaView's first window (an abort in
+# vtkXOpenGLRenderWindow::CreateAWindow, before the state is read): that alone is tried again.
+for attempt in 1 2 3; do
+  status=0
+  xvfb-run -a -e "$work/xvfb.log" -s "-screen 0 1024x768x24" \
+    pvpython "$work/open.py" "$work/out/paraview/slab_state.py" "$work/shot.png" > "$work/pvpython.log" 2>&1 || status=$?
+  if [ $status = 0 ] || ! grep -q "CreateAWindow" "$work/pvpython.log"; then break; fi
+  echo "paraview_state: attempt $attempt: ParaView could not open an X window; trying again"
+done
+cat "$work/pvpython.log"
+if [ $status != 0 ]; then echo "paraview_state: pvpython failed (status $status); the X server's log:"; cat "$work/xvfb.log"; exit 1; fi
 test -s "$work/shot.png"
