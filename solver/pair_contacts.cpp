@@ -51,6 +51,7 @@ struct Accumulator {
   Eigen::Vector3d centreA;  // m, body a's centroid
   double kn, kt;            // N/m^3, this pair's stiffnesses
   double weight = 0.0;      // sum of normal forces, for forcePoint
+  Eigen::Vector3d normalSum = Eigen::Vector3d::Zero();  // N, the normal parts of the forces on a
 
   // One node at world x of the body moving with `node`, inside the other side (moving with
   // `other`) by depth along `normal` (world, out of the other side).
@@ -81,12 +82,13 @@ struct Accumulator {
     weight += normalForce;
     const Eigen::Vector3d fA = nodeBodyIsA ? f : Eigen::Vector3d(-f);
     pair.forceA += fA;
-    pair.normalForceA += (nodeBodyIsA ? normalForce : -normalForce) * normal;
+    normalSum += (nodeBodyIsA ? normalForce : -normalForce) * normal;
     pair.torqueA += (x - centreA).cross(fA);
   }
 
   // Newton's third law: on b, -F_A at the same points: tau_B = -(tau_A + (c_A - c_B) x F_A).
   void finish() {
+    pair.normalForceA = normalSum;
     pair.forceB = -pair.forceA;
     if (pair.b >= 0) pair.torqueB = -(pair.torqueA + (centreA - scene.bodies->position[pair.b]).cross(pair.forceA));
     if (weight > 0) pair.forcePoint /= weight;
