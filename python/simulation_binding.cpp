@@ -230,7 +230,7 @@ void bindSimulation(py::module_& m) {
         py::dict d;
         const int k = s.session().state().sphere;
         if (k < 0) return d;
-        const SphereObstacle& sphere = const_cast<World&>(s.session().world()).sphere(k);
+        const SphereObstacle& sphere = s.session().world().sphere(k);
         d["centre"] = vectors({sphere.center})[py::int_(0)];
         d["velocity"] = vectors({sphere.velocity})[py::int_(0)];
         d["radius"] = sphere.radius;

@@ -17,7 +17,7 @@ namespace tessera {
 
 namespace {
 
-Snapshot snapshotOf(World& world, int sphere, double delta, double load) {
+Snapshot snapshotOf(const World& world, int sphere, double delta, double load) {
   Snapshot s{delta, load, world.bodies().position, world.bodies().orientation, {}, world.bodies().velocity,
              world.sphere(sphere).center};
   for (const PairContacts& p : world.pairs()) {

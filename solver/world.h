@@ -68,6 +68,7 @@ public:
   int addSphere(const SphereObstacle& sphere);  ///< returns its index
   int addPlane(const PlaneObstacle& plane);
   SphereObstacle& sphere(int k) { return state_.spheres[k]; }
+  const SphereObstacle& sphere(int k) const { return state_.spheres[k]; }
 
   /// Body state; change velocities or poses freely between steps.
   RigidBodies& bodies() { return state_.bodies; }
