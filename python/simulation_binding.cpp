@@ -61,12 +61,15 @@ py::dict curveOf(const std::vector<CurveSample>& curve) {
 // Lines of the run's preparation go to stderr, as the command line prints them.
 void logLine(const std::string& line) { std::cerr << "tessera: " << line << "\n"; }
 
-// Python's Ctrl-C: the run checks for it between steps and stops as an interrupted run does
-// (its record valid, its checkpoint written); run() then raises KeyboardInterrupt.
-bool pythonInterrupted() {
-  py::gil_scoped_acquire gil;
-  return PyErr_CheckSignals() != 0;
-}
+// What a sample callback gets as `control`: valid only while the callback runs (the run's own
+// control lives on its stack); afterwards every use raises.
+struct ControlHandle {
+  IndentationControl* control = nullptr;
+  IndentationControl& get() const {
+    if (!control) throw std::runtime_error("a Control is valid only inside the sample callback it was given to");
+    return *control;
+  }
+};
 
 class Simulation {
 public:
@@ -84,33 +87,69 @@ public:
   explicit Simulation(std::unique_ptr<RunSession> session) : session_(std::move(session)) {}
 
   // Runs to the stop. `onSample(sample, control)` after each curve sample; the GIL is released
-  // while the World steps.
+  // while the World steps. Ctrl-C, or an exception raised by a callback, stops the run as an
+  // interrupted one (its record kept, its checkpoint written when it has a folder: it can be
+  // resumed), and is raised again here.
   std::string run(const py::object& onSample, const py::object& onProgress) {
     RunHooks hooks;
+    std::optional<py::error_already_set> raised;
+    const auto call = [&](const auto& f) {
+      py::gil_scoped_acquire gil;
+      if (raised) return;
+      try {
+        f();
+      } catch (py::error_already_set& e) {
+        raised.emplace(std::move(e));
+      }
+    };
     if (!onSample.is_none())
       hooks.sample = [&](const CurveSample& s, IndentationControl& control) {
-        py::gil_scoped_acquire gil;
-        onSample(s, &control);
+        call([&] {
+          const py::object handle = py::cast(ControlHandle{&control});
+          try {
+            onSample(s, handle);
+          } catch (...) {
+            handle.cast<ControlHandle&>().control = nullptr;
+            throw;
+          }
+          handle.cast<ControlHandle&>().control = nullptr;
+        });
       };
     if (!onProgress.is_none())
-      hooks.progress = [&](const Progress& p) {
-        py::gil_scoped_acquire gil;
-        onProgress(p);
-      };
-    hooks.interrupted = pythonInterrupted;
+      hooks.progress = [&](const Progress& p) { call([&] { onProgress(p); }); };
+    hooks.warning = [this](const std::string& w) {
+      py::gil_scoped_acquire gil;
+      warnings_.push_back(w);
+      logLine("warning: " + w);
+    };
+    hooks.interrupted = [&] {
+      py::gil_scoped_acquire gil;
+      return raised.has_value() || PyErr_CheckSignals() != 0;
+    };
     {
       py::gil_scoped_release release;
       session_->run(hooks);
     }
+    if (raised) throw std::move(*raised);
     if (PyErr_Occurred()) throw py::error_already_set();
-    return session_->record().stopReason;
+    const IndentationRecord& record = session_->record();
+    if (!record.settled && record.stopReason != "interrupted") {
+      char line[200];
+      std::snprintf(line, sizeof line, "the slab had not settled after %.3g s (kinetic energy above %.3g J)", record.settleTime,
+                    record.settleKinetic);
+      warnings_.push_back(line);
+      logLine(std::string("warning: ") + line);
+    }
+    return record.stopReason;
   }
 
   RunSession& session() { return *session_; }
   const RunSession& session() const { return *session_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
 private:
   std::unique_ptr<RunSession> session_;
+  std::vector<std::string> warnings_;
 };
 
 py::dict contactsOf(const World& world) {
@@ -165,22 +204,19 @@ void bindSimulation(py::module_& m) {
   py::dict units;
   for (const CurveColumn& c : curveColumns()) units[c.name] = c.unit;
   m.attr("curve_units") = units;
-  py::class_<CurveSample>(m, "Sample", "One point of the load-deflection record (SI units).")
-      .def_readonly("time", &CurveSample::time, "s since loading began")
-      .def_readonly("delta", &CurveSample::delta, "m, indenter travel since first contact (decreases while unloading)")
-      .def_readonly("load", &CurveSample::load, "N, the bodies' push on the indenter")
-      .def_readonly("block_displacement", &CurveSample::blockDisplacement, "m, downward, of the loaded block")
-      .def_readonly("contacts", &CurveSample::contacts)
-      .def_readonly("kinetic", &CurveSample::kinetic, "J")
-      .def_readonly("external_work", &CurveSample::externalWork, "J, done by the indenter")
-      .def_readonly("elastic", &CurveSample::elastic, "J")
-      .def_readonly("friction", &CurveSample::friction, "J")
-      .def_readonly("residual", &CurveSample::residual, "J, the energy balance's residual");
+  // A sample's attributes are the curve's columns, named and in the units of results.h5.
+  py::class_<CurveSample> sample(m, "Sample", "One point of the load-deflection record: the columns of sim.curve (SI units).");
+  for (const CurveColumn& c : curveColumns())
+    sample.def_property_readonly(c.name, [field = c.field](const CurveSample& s) { return s.*field; },
+                                 (std::string("unit: ") + c.unit).c_str());
 
-  py::class_<IndentationControl>(m, "Control", "What a sample callback may change, from the next step on.")
-      .def_readwrite("indenter_speed", &IndentationControl::indenterSpeed,
-                     "m/s, downward; negative lifts the indenter, 0 holds it")
-      .def("stop", [](IndentationControl& c) { c.stop = true; }, "Stop the run after this sample (stop reason 'requested').");
+  py::class_<ControlHandle>(m, "Control", "What a sample callback may change, from the next step on (valid only inside it).")
+      .def_property(
+          "indenter_speed", [](const ControlHandle& h) { return h.get().indenterSpeed; },
+          [](const ControlHandle& h, double v) { h.get().indenterSpeed = v; },
+          "m/s, downward; negative lifts the indenter, 0 holds it. At most a tenth of the broad-phase margin per step.")
+      .def("stop", [](const ControlHandle& h) { h.get().stop = true; },
+           "End the run after this sample (stop reason 'requested'; final, not resumable).");
 
   py::class_<Progress>(m, "Progress")
       .def_readonly("delta", &Progress::delta)
@@ -207,8 +243,17 @@ void bindSimulation(py::module_& m) {
       .def("run", &Simulation::run, py::arg("on_sample") = py::none(), py::arg("on_progress") = py::none(),
            "Settle, then load, to the protocol's stop or until on_sample(sample, control) calls control.stop(). "
            "Returns the stop reason.")
-      .def("write_outputs", [](const Simulation& s) { s.session().writeOutputs(); },
-           "Write results.h5, curve.csv, summary.json and paraview/ into the run folder.")
+      .def("write_outputs",
+           [](const Simulation& s) {
+             if (s.session().output().empty())
+               throw InputError("this Simulation has no run folder; give output=FOLDER when making it");
+             s.session().writeOutputs();
+           },
+           "Write results.h5, curve.csv, summary.json and paraview/ into the run folder (run() does it too).")
+      .def_property_readonly("warnings", &Simulation::warnings,
+                             "the run's warnings (also printed): loading too fast, bodies sinking while settling, not settled")
+      .def_property_readonly("settled", [](const Simulation& s) { return s.session().record().settled; },
+                             "whether the slab settled before loading (False: settle_max_time ran out)")
       .def_property_readonly("curve", [](const Simulation& s) { return curveOf(s.session().record().curve); },
                              "dict of numpy arrays, one per column of results.h5's curve (units: tessera.curve_units)")
       .def_property_readonly("response", [](const Simulation& s) { return responseOf(s.session().response()); },

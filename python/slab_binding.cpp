@@ -46,6 +46,10 @@ py::dict tileAndWrite(const SlabPlan& plan, const std::string& output, const Sha
   notes.insert(notes.end(), log.notes.begin(), log.notes.end());
   notes.insert(notes.end(), summary.notes.begin(), summary.notes.end());
   warnings.insert(warnings.end(), summary.warnings.begin(), summary.warnings.end());
+  for (const std::string& w : warnings) py::print("tessera: tile: warning:", w, py::arg("file") = py::module_::import("sys").attr("stderr"));
+  if (summary.locked == 0 && summary.free > 0)
+    py::print("tessera: tile: warning: no free body is held both up and down by its neighbours: not an interlocked slab "
+              "(check the pitch, in m)", py::arg("file") = py::module_::import("sys").attr("stderr"));
   py::dict d;
   d["bundle"] = output;
   d["bodies"] = bundle.bodies.size();

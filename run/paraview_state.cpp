@@ -15,7 +15,7 @@ constexpr const char* kState = R"(# ParaView state of a Tessera run (written by 
 # Open it with File > Load State (Python state), `paraview --state=slab_state.py` or `pvpython slab_state.py`.
 # Blocks coloured by their displacement from the bundle's pose (m), contact forces as arrows (the
 # largest 3 h long, h the loaded block's thickness) coloured by their sliding fraction, the
-# indenter translucent; the time axis is delta in mm.
+# indenter translucent; the time axis is delta in mm (the snapshot's number if the indenter went back up).
 import os
 from paraview.simple import *
 

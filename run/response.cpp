@@ -58,12 +58,15 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   r.deltaAtPeak = c[peak].delta;
   r.atPeak = contactStateAt(c[peak]);
 
-  // K: least squares P = K delta + b over the fit window.
+  // K: least squares P = K delta + b over the fit window, on the first loading only (up to where
+  // delta first decreases: a steered run's unloading and reloading are not the initial stiffness).
   r.fitFrom = 0.0;
   r.fitTo = std::min(settings.stiffnessFitRatio * record.thickness, 0.5 * r.deltaAtPeak);
+  std::size_t firstLoading = 1;
+  while (firstLoading < c.size() && c[firstLoading].delta >= c[firstLoading - 1].delta) ++firstLoading;
   double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (const CurveSample& s : c)
-    if (s.delta >= r.fitFrom && s.delta <= r.fitTo) {
+  for (std::size_t i = 0; i < firstLoading; ++i)
+    if (const CurveSample& s = c[i]; s.delta >= r.fitFrom && s.delta <= r.fitTo) {
       n += 1;
       sx += s.delta;
       sy += s.load;

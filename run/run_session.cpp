@@ -115,6 +115,8 @@ std::unique_ptr<RunSession> RunSession::start(const RunRequest& request, const R
     std::string origin = request.scene;
     if (!request.preset.empty()) origin += " with --preset " + request.preset;
     if (!request.overrides.empty()) origin += " with " + std::to_string(request.overrides.size()) + " override(s)";
+    if (!request.bundle.empty())
+      origin += "\n# run on the bundle " + fs::absolute(request.bundle).lexically_normal().string() + " (in place of the one below)";
     source.sceneText = "# " + origin + "\n" + sceneWithOverrides(request.scene, overrides);
     s.scene_ = readSceneText(source.sceneText, s.output_.empty() ? request.scene : keptScenePath(s.output_));
   } else {

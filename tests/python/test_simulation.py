@@ -114,3 +114,40 @@ def test_results_file_states_units_scene_and_contact_split(cli_run):
         assert np.all(s["force_area"][()] > 0) and np.all(s["force_node_contacts"][()] > 0)
         assert s["velocity"].shape == s["position"].shape
         assert s["indenter"].shape == (len(s["delta"]), 3)
+
+
+def test_a_callback_that_raises_stops_the_run_resumably(slab, tmp_path):
+    out = str(tmp_path / "run")
+    sim = tessera.Simulation(SCENE, bundle=slab, output=out, overrides={"protocol.delta_max": 0.3e-3})
+
+    def fails(sample, control):
+        if sample.delta >= 0.1e-3:
+            raise ArithmeticError("my controller")
+
+    with pytest.raises(ArithmeticError, match="my controller"):
+        sim.run(fails)
+    assert sim.stop_reason == "interrupted"
+    del sim  # releases the folder
+    resumed = tessera.Simulation.resume(out)
+    assert resumed.run() == "delta_max"
+    whole = tessera.Simulation(SCENE, bundle=slab, overrides={"protocol.delta_max": 0.3e-3})
+    whole.run()
+    assert np.array_equal(resumed.curve["load"], whole.curve["load"])
+
+
+def test_a_control_is_valid_only_inside_its_callback_and_speeds_are_bounded(slab):
+    kept = []
+    sim = tessera.Simulation(SCENE, bundle=slab, overrides={"protocol.delta_max": 0.05e-3})
+    sim.run(lambda sample, control: kept.append(control))
+    with pytest.raises(RuntimeError, match="only inside the sample callback"):
+        kept[0].indenter_speed = 1.0
+    fast = tessera.Simulation(SCENE, bundle=slab)
+
+    def too_fast(sample, control):
+        control.indenter_speed = 1e6
+
+    with pytest.raises(ValueError, match="broad-phase margin"):
+        fast.run(too_fast)
+    with pytest.raises(ValueError, match="no run folder"):
+        fast.write_outputs()
+
