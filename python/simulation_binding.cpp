@@ -91,6 +91,12 @@ public:
   // interrupted one (its record kept, its checkpoint written when it has a folder: it can be
   // resumed), and is raised again here.
   std::string run(const py::object& onSample, const py::object& onProgress) {
+    if (running_) throw InputError("this Simulation is running: run() cannot be called again from its own callback");
+    running_ = true;
+    struct Done {
+      bool& flag;
+      ~Done() { flag = false; }
+    } done{running_};
     RunHooks hooks;
     std::optional<py::error_already_set> raised;
     const auto call = [&](const auto& f) {
@@ -150,6 +156,7 @@ public:
 private:
   std::unique_ptr<RunSession> session_;
   std::vector<std::string> warnings_;
+  bool running_ = false;
 };
 
 py::dict contactsOf(const World& world) {

@@ -304,7 +304,8 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   r.timeStep = h5::readDoubleAttribute(g, "time_step");
   r.wallSeconds = h5::readDoubleAttribute(g, "wall_seconds");
   r.curve = readCurve(h5::openGroup(g, "curve").get());
-  if (s.phase < 0 || s.phase > 2 || r.target < -1 || r.target >= static_cast<int>(bodies))
+  if (s.phase < 0 || s.phase > 2 || r.target < -1 || r.target >= static_cast<int>(bodies) || (s.phase > 0 && r.target < 0) ||
+      (s.phase > 0 && s.sphere < 0))
     throw std::runtime_error("protocol state out of range");
   r.snapshots = readSnapshots(h5::openGroup(g, "snapshots").get(), bodies);
   r.fallen = readFallen(h5::openGroup(g, "fallen").get());

@@ -253,10 +253,13 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
           // The broad phase finds the indenter's contacts only if it moves less than its margin
           // between rebuilds: at most a tenth of the margin per step.
           const double fastest = 0.1 * world.settings().broadPhaseMargin / world.timeStep();
-          if (!std::isfinite(control.indenterSpeed) || std::abs(control.indenterSpeed) > fastest)
+          if (!std::isfinite(control.indenterSpeed) || std::abs(control.indenterSpeed) > fastest) {
+            record.stopReason = "interrupted";  // as stopped here: resumable, its checkpoint written
+            finishSession();
             throw std::invalid_argument("the sample hook set the indenter speed to " + std::to_string(control.indenterSpeed) +
                                         " m/s; it must be finite and at most " + std::to_string(fastest) +
                                         " m/s (a tenth of the broad-phase margin per time step)");
+          }
           state.travelBase = travel;
           state.pathBase = path;
           state.speedSince = world.time();

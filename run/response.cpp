@@ -60,10 +60,13 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
 
   // K: least squares P = K delta + b over the fit window, on the first loading only (up to where
   // delta first decreases: a steered run's unloading and reloading are not the initial stiffness).
-  r.fitFrom = 0.0;
-  r.fitTo = std::min(settings.stiffnessFitRatio * record.thickness, 0.5 * r.deltaAtPeak);
   std::size_t firstLoading = 1;
   while (firstLoading < c.size() && c[firstLoading].delta >= c[firstLoading - 1].delta) ++firstLoading;
+  std::size_t firstPeak = 0;  // the peak of the first loading (the run's peak when it only loads)
+  for (std::size_t i = 1; i < firstLoading; ++i)
+    if (c[i].load > c[firstPeak].load) firstPeak = i;
+  r.fitFrom = 0.0;
+  r.fitTo = std::min(settings.stiffnessFitRatio * record.thickness, 0.5 * c[firstPeak].delta);
   double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (std::size_t i = 0; i < firstLoading; ++i)
     if (const CurveSample& s = c[i]; s.delta >= r.fitFrom && s.delta <= r.fitTo) {

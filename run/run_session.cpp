@@ -144,6 +144,10 @@ std::unique_ptr<RunSession> RunSession::start(const RunRequest& request, const R
     s.lock_ = std::make_unique<FolderLock>(s.output_, "a run");  // after every check: a refused run leaves no folder
     if (fs::exists(checkpointFile(s.output_)))
       throw InputError(s.output_ + ": another run started there meanwhile; choose another -o");
+    // What an earlier run that stopped before its first checkpoint left (its kept scene, its
+    // ParaView frames, written once each) is not this run's.
+    fs::remove(keptScenePath(s.output_));
+    fs::remove_all(fs::path(s.output_) / "paraview");
   }
   return session;
 }

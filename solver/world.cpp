@@ -132,16 +132,18 @@ void World::checkState(const WorldState& s) const {
   requireEach(s.bodies.angularMomentum, n, false, "angular momenta", finite);
   requireEach(s.bodies.fixed, n, false, "fixed flags", [](char) { return true; });
   requireEach(s.retired, n, false, "retired flags", [](char) { return true; });
-  for (const auto* v : {&s.builtPosition, &s.force, &s.torque, &s.contactForce, &s.contactTorque, &s.dampingForce,
-                        &s.dampingTorque, &s.startPosition})
-    requireEach(*v, n, true, "per-body vectors", finite);
-  requireEach(s.builtOrientation, n, true, "per-body orientations", unit);
+  for (const auto* v : {&s.force, &s.torque, &s.contactForce, &s.contactTorque, &s.dampingForce, &s.dampingTorque,
+                        &s.startPosition})
+    requireEach(*v, n, false, "per-body vectors", finite);
+  // The broad phase's build poses exist once it has been built (pairsValid).
+  requireEach(s.builtPosition, n, !s.pairsValid, "build positions", finite);
+  requireEach(s.builtOrientation, n, !s.pairsValid, "build orientations", unit);
   for (const SphereObstacle& sphere : s.spheres)
     if (!finite(sphere.center) || !finite(sphere.velocity) || !(sphere.radius > 0) || !std::isfinite(sphere.radius) ||
         !(sphere.stiffnessFactor > 0) || !std::isfinite(sphere.stiffnessFactor))
       throw std::invalid_argument("an indenter with a non-finite or non-positive value");
-  requireEach(s.sphereReaction, s.spheres.size(), true, "indenter reactions", finite);
-  requireEach(s.builtSphereCentre, s.spheres.size(), true, "indenter positions", finite);
+  requireEach(s.sphereReaction, s.spheres.size(), false, "indenter reactions", finite);
+  requireEach(s.builtSphereCentre, s.spheres.size(), !s.pairsValid, "indenter positions", finite);
   const int obstacles = static_cast<int>(s.spheres.size() + s.planes.size());
   for (const PairContacts& p : s.pairs) {
     if (p.a < 0 || p.a >= static_cast<int>(n) || p.b < -obstacles || p.b >= static_cast<int>(n) || p.a == p.b)
@@ -248,6 +250,13 @@ void World::updatePairs() {
     while (old < state_.pairs.size() && std::make_pair(state_.pairs[old].a, state_.pairs[old].b) < std::make_pair(a, b)) ++old;
     if (old < state_.pairs.size() && state_.pairs[old].a == a && state_.pairs[old].b == b) {
       next.push_back(std::move(state_.pairs[old]));
+      // An obstacle's number shifts when a sphere is added before the planes: its kind is
+      // found again, and a pair that changed kind starts without contact history.
+      if (next.back().kind != pairKind(b, sphereCount)) {
+        next.back().kind = pairKind(b, sphereCount);
+        next.back().contacts.clear();
+        next.back().candidatesValid = false;
+      }
     } else {
       PairContacts pair;
       pair.a = a;
