@@ -3,10 +3,15 @@
 #include "io/input_error.h"
 
 #include <filesystem>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 namespace tessera {
@@ -34,6 +39,27 @@ FolderLock::FolderLock(const std::string& folder, const std::string& what) {
 
 FolderLock::~FolderLock() {
   if (fd_ >= 0) ::close(fd_);  // releases the lock
+}
+
+// /proc/locks lines: "1: FLOCK  ADVISORY  WRITE 1234 08:01:5678 0 EOF" (pid, then the file's
+// device major:minor in hex and its inode in decimal).
+long folderLockHolder(const std::string& folder) {
+  struct stat file {};
+  if (::stat((fs::path(folder) / ".lock").c_str(), &file) != 0) return 0;
+  std::ifstream locks("/proc/locks");
+  for (std::string line; std::getline(locks, line);) {
+    std::istringstream in(line);
+    std::string number, kind, mode, access, id;
+    long pid = 0;
+    if (!(in >> number >> kind)) continue;
+    if (kind == "->") continue;  // a process waiting for the lock, listed under its holder
+    if (!(in >> mode >> access >> pid >> id) || kind != "FLOCK") continue;
+    unsigned major = 0, minor = 0;
+    unsigned long inode = 0;
+    if (std::sscanf(id.c_str(), "%x:%x:%lu", &major, &minor, &inode) != 3) continue;
+    if (inode == file.st_ino && makedev(major, minor) == file.st_dev) return pid;
+  }
+  return 0;
 }
 
 }  // namespace tessera

@@ -1,6 +1,7 @@
 #include "run/sweep.h"
 
 #include "io/file_digest.h"
+#include "io/folder_lock.h"
 #include "io/input_error.h"
 #include "io/safe_write.h"
 #include "run/presets.h"
@@ -17,6 +18,10 @@
 #include <iterator>
 #include <map>
 #include <sstream>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 namespace tessera {
 
@@ -208,6 +213,70 @@ std::vector<SweepCase> placeSweepCases(const std::string& folder, const SweepPla
   return cases;
 }
 
+std::vector<SweepCase> readSweepFolder(const std::string& folder) {
+  const fs::path dir(folder), manifestFile = dir / "sweep.json";
+  if (!fs::is_directory(dir)) throw InputError(folder + ": no such sweep folder; give the -o folder of tessera sweep");
+  if (!fs::exists(manifestFile))
+    throw InputError(folder + ": not a sweep folder (no sweep.json); give the -o folder of tessera sweep");
+  std::vector<SweepCase> cases;
+  try {
+    const nlohmann::json manifest = nlohmann::json::parse(readText(manifestFile));
+    for (const auto& c : manifest.at("cases")) {
+      const fs::path caseDir = dir / c.at("directory").get<std::string>();
+      cases.push_back({c.at("values").get<std::vector<double>>(), readText(caseDir / "scene.toml"), caseDir.string()});
+      sweepCaseNumber(cases.back().dir);  // a name of the form case_N
+    }
+  } catch (const std::exception& e) {
+    throw InputError(manifestFile.string() + ": corrupt sweep manifest (" + e.what() + "); run the sweep again into a new -o");
+  }
+  return cases;
+}
+
+int sweepCaseNumber(const std::string& caseDir) {
+  const std::string name = fs::path(caseDir).filename().string();
+  std::size_t end = 0;
+  const int number = name.rfind("case_", 0) == 0 ? std::stoi(name.substr(5), &end) : -1;
+  if (number < 0 || end != name.size() - 5) throw std::invalid_argument("'" + name + "' is not a case folder (case_N)");
+  return number;
+}
+
+const char* caseStateName(CaseState state) {
+  switch (state) {
+    case CaseState::Complete: return "complete";
+    case CaseState::Running: return "running";
+    case CaseState::Interrupted: return "interrupted";
+    case CaseState::Failed: return "failed";
+    case CaseState::Missing: return "missing";
+  }
+  return "?";
+}
+
+CaseStatus sweepCaseStatus(const std::string& caseDir) {
+  const fs::path dir(caseDir), run = dir / "run";
+  CaseStatus status;
+  try {
+    const nlohmann::json exit = nlohmann::json::parse(readText(dir / "exit.json"));
+    status.exitStatus = exit.at("exit_status");
+    status.slurmJob = exit.value("slurm_job", "");
+  } catch (const std::exception&) {
+    // none recorded (never ran, or its runner was killed): the files below tell
+  }
+  if (sweepCaseComplete(run.string())) status.state = CaseState::Complete;
+  else if (folderLockHolder(run.string()) != 0) status.state = CaseState::Running;
+  else if (status.exitStatus >= 1 && status.exitStatus < 128) status.state = CaseState::Failed;  // 2 input, 3 unstable
+  else if (status.exitStatus >= 128 || fs::exists(run / "checkpoint.h5")) status.state = CaseState::Interrupted;
+  else if (fs::exists(run) || fs::exists(dir / "log.txt")) status.state = CaseState::Failed;
+  else status.state = CaseState::Missing;
+  return status;
+}
+
+void recordCaseExit(const std::string& caseDir, int exitStatus, const std::string& slurmJob) {
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  const nlohmann::json exit = {{"exit_status", exitStatus}, {"host", host}, {"slurm_job", slurmJob}};
+  writeTextFileSafely(fs::path(caseDir) / "exit.json", exit.dump(2) + "\n");
+}
+
 bool sweepCaseComplete(const std::string& runDir) {
   const fs::path run(runDir);
   std::ifstream in(run / "summary.json");
@@ -224,6 +293,16 @@ bool sweepCaseComplete(const std::string& runDir) {
 // The table of response parameters of every complete case in the folder (sweep.csv, sweep.h5).
 int writeSweepTables(const std::string& folder) {
   const fs::path dir(folder);
+  // One writer at a time: each reads every case and writes the whole table, so a later writer
+  // never replaces a table with one that misses a case completed meanwhile.
+  struct TablesLock {
+    int fd;
+    explicit TablesLock(const fs::path& path) : fd(::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
+      if (fd < 0 || ::flock(fd, LOCK_EX) != 0)
+        throw InputError(path.string() + ": cannot lock the sweep's tables; check the folder's permissions");
+    }
+    ~TablesLock() { ::close(fd); }
+  } lock(dir / ".tables.lock");
   const nlohmann::json manifest = nlohmann::json::parse(readText(dir / "sweep.json"));
   const std::vector<std::string> keys = manifest.at("keys");
   std::string csv = "case";

@@ -48,8 +48,38 @@ std::vector<SweepCase> placeSweepCases(const std::string& dir, const SweepPlan& 
 /// A case's run is complete (its summary.json says it stopped at delta_max or by failure).
 bool sweepCaseComplete(const std::string& runDir);
 
+/// The cases of the sweep folder `dir` in the order its sweep.json lists them: values, folder, and
+/// the text of the case's scene.toml. InputError when `dir` is not a sweep folder or its manifest
+/// is corrupt.
+std::vector<SweepCase> readSweepFolder(const std::string& dir);
+
+/// The number N of a case folder .../case_N (the Slurm array index of that case).
+int sweepCaseNumber(const std::string& caseDir);
+
+/// Where a case stands, from its files alone (whatever ran it: this machine or a cluster).
+enum class CaseState {
+  Complete,     ///< its summary.json says it stopped at delta_max or by failure
+  Running,      ///< a process on this machine holds its run folder's lock
+  Interrupted,  ///< stopped by a signal (Ctrl-C, time limit, preemption, cancel): resumes from its checkpoint
+  Failed,       ///< its run ended with an error (exit status 2 input, 3 unstable), or started and left no record
+  Missing,      ///< never started
+};
+const char* caseStateName(CaseState state);
+
+struct CaseStatus {
+  CaseState state = CaseState::Missing;
+  int exitStatus = -1;  ///< of its last run, as recorded in exit.json; -1 when none is recorded
+  std::string slurmJob; ///< the Slurm job (JOB_TASK) of its last run, "" when it ran here
+};
+CaseStatus sweepCaseStatus(const std::string& caseDir);
+
+/// Records how a case's run ended, for --status: case_N/exit.json {exit_status, host, slurm_job}.
+void recordCaseExit(const std::string& caseDir, int exitStatus, const std::string& slurmJob);
+
 /// The table of response parameters of every complete case in the sweep folder (sweep.csv,
-/// sweep.h5); an interrupted or failed case is never tabled. Returns the number tabled.
+/// sweep.h5); an interrupted or failed case is never tabled. Returns the number tabled. Safe to
+/// call from several processes at once (cluster tasks finishing together): they take turns on the
+/// folder's .tables.lock.
 int writeSweepTables(const std::string& dir);
 
 }  // namespace tessera

@@ -1,25 +1,28 @@
-// tessera sweep: a scene run over a list (or grid) of parameter values, cases in parallel;
+// tessera sweep: a scene run over a list (or grid) of parameter values, cases in parallel on this
+// machine or as a Slurm job array; --status, --resubmit and --case on a sweep folder;
 // tessera report: the paper's figures from a sweep.
+#include "io/folder_lock.h"
 #include "io/input_error.h"
+#include "io/output_directory.h"
+#include "io/safe_write.h"
+#include "run/slurm_sweep.h"
 #include "run/sweep.h"
 #include "tools/child_process.h"
 #include "tools/commands.h"
 #include "tools/plot_scripts.h"
-#include "io/folder_lock.h"
-#include "io/output_directory.h"
+#include "tools/slurm_queue.h"
+#include "tools/sweep_runner.h"
 
 #include <nlohmann/json.hpp>
 
-#include <atomic>
-#include <csignal>
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <mutex>
+#include <map>
 #include <thread>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace tessera::tools {
 
@@ -28,7 +31,8 @@ namespace fs = std::filesystem;
 namespace {
 
 struct SweepArguments {
-  std::string scene, output;
+  std::string target;  // the base scene; with --status, --resubmit, --case: the sweep folder
+  std::string output;
   std::string preset;  // applied to every case
   std::vector<std::string> sets;
   int jobs = 0;     // 0: one per core
@@ -36,118 +40,309 @@ struct SweepArguments {
   bool zip = false; // axes varied together, not as a grid
   bool extend = false;  // add cases of new values to an existing sweep folder
   long maxCases = 1000;
+  // Slurm
+  bool slurm = false, dryRun = false;
+  SlurmSettings settings;
+  bool settingsGiven[5] = {};  // partition, time, cpus-per-task, max-concurrent, sbatch: given on this command line
+  // On a sweep folder
+  bool status = false, json = false, resubmit = false;
+  int caseNumber = -1;
 };
 
-// The running cases, for the signal handler: it stops launching and passes the signal on.
-constexpr int kMaxJobs = 256;
-std::atomic<bool> sweepStopRequested{false};
-std::atomic<pid_t> runningCase[kMaxJobs];
-extern "C" void stopSweep(int signal) {
-  sweepStopRequested = true;
-  for (auto& pid : runningCase)
-    if (const pid_t p = pid.load(); p > 0) ::kill(p, signal);  // async-signal-safe
-}
+// Where a case stands: its files, and Slurm's word while Slurm still runs it.
+struct CaseReport {
+  const SweepCase* sweepCase;
+  CaseStatus files;
+  std::string state;       // complete, queued, running, interrupted, failed, missing
+  std::string slurmJob;    // JOB_TASK of its latest submission, "" if never submitted
+  std::string slurmState;  // squeue's state of that task, "" when Slurm no longer knows it
+};
 
-// Runs the cases, `jobs` at a time, each an ordinary `tessera run` (resumed where a checkpoint
-// is). Returns the exit status of the sweep: 130 when stopped by a signal, else the first
-// failed case's (2 input, 3 unstable), else 0.
-int runCases(const std::vector<SweepCase>& cases, int jobs, int threads) {
-  const std::string self = selfExecutable();
-  std::atomic<std::size_t> next{0};
-  std::atomic<int> failure{0};
-  std::mutex print;
-  const auto worker = [&](int slot) {
-    for (std::size_t c; !sweepStopRequested && (c = next++) < cases.size();) {
-      const fs::path dir(cases[c].dir), run = dir / "run";
-      const std::string name = dir.filename().string();
-      if (sweepCaseComplete(run.string())) {
-        std::lock_guard<std::mutex> lock(print);
-        std::fprintf(stderr, "sweep: %s already complete\n", name.c_str());
-        continue;
-      }
-      const bool resume = fs::exists(run / "checkpoint.h5");
-      std::vector<std::string> command{self, "run"};
-      if (resume) command.insert(command.end(), {"--resume", run.string()});
-      else command.insert(command.end(), {(dir / "scene.toml").string(), "-o", run.string()});
-      command.insert(command.end(), {"--no-plot", "--threads", std::to_string(threads)});
-      {
-        std::lock_guard<std::mutex> lock(print);
-        std::fprintf(stderr, "sweep: %s %s\n", resume ? "resuming" : "running", name.c_str());
-      }
-      const pid_t pid = startProcess(command, (dir / "log.txt").string());
-      runningCase[slot] = pid;
-      if (sweepStopRequested) ::kill(pid, SIGINT);  // the signal came between the check and the start
-      const int status = waitProcess(pid);
-      runningCase[slot] = 0;
-      std::lock_guard<std::mutex> lock(print);
-      if (status == 0) {
-        std::fprintf(stderr, "sweep: %s done\n", name.c_str());
-      } else if (status == 130 || sweepStopRequested) {
-        std::fprintf(stderr, "sweep: %s interrupted (incomplete; the next sweep resumes it)\n", name.c_str());
-      } else {
-        int none = 0;
-        failure.compare_exchange_strong(none, status == 2 || status == 3 ? status : 1);
-        std::fprintf(stderr, "sweep: %s stopped with status %d (see %s)\n", name.c_str(), status,
-                     (dir / "log.txt").c_str());
-      }
+std::vector<CaseReport> reportCases(const std::vector<SweepCase>& cases, const SlurmRecord& record,
+                                    std::string* slurmProblem) {
+  SlurmTaskStates queue;
+  if (!record.jobs.empty()) {
+    queue = querySlurmTasks();
+    if (slurmProblem && !queue.available) *slurmProblem = queue.problem;
+  }
+  std::vector<CaseReport> reports;
+  for (const SweepCase& c : cases) {
+    CaseReport r{&c, sweepCaseStatus(c.dir), "", "", ""};
+    r.state = caseStateName(r.files.state);
+    const int number = sweepCaseNumber(c.dir);
+    for (const SlurmJob& job : record.jobs)  // the latest submission of the case
+      if (std::find(job.cases.begin(), job.cases.end(), number) != job.cases.end())
+        r.slurmJob = job.id + "_" + std::to_string(number);
+    if (!r.slurmJob.empty()) {
+      const auto found = queue.state.find({r.slurmJob.substr(0, r.slurmJob.find('_')), number});
+      if (found != queue.state.end()) r.slurmState = found->second;
+      if (r.files.state != CaseState::Complete && slurmTaskActive(r.slurmState))
+        r.state = r.slurmState == "PENDING" ? "queued" : "running";
     }
-  };
-  std::vector<std::thread> pool;
-  for (int j = 0; j < jobs; ++j) pool.emplace_back(worker, j);
-  for (auto& t : pool) t.join();
-  return sweepStopRequested ? 130 : failure.load();
+    reports.push_back(r);
+  }
+  return reports;
 }
 
-int runSweep(const SweepArguments& a) {
-  if (a.threads < 1) throw InputError("--threads must be at least 1 per case, got " + std::to_string(a.threads));
-  if (a.jobs < 0 || a.jobs > kMaxJobs)
-    throw InputError("--jobs must be 0 (cores / threads) to " + std::to_string(kMaxJobs) + ", got " + std::to_string(a.jobs));
+// The cases to run again: neither complete nor running (here or on Slurm).
+std::vector<const SweepCase*> casesToRun(const std::vector<CaseReport>& reports) {
+  std::vector<const SweepCase*> pending;
+  for (const CaseReport& r : reports)
+    if (r.state != "complete" && r.state != "running" && r.state != "queued") pending.push_back(r.sweepCase);
+  return pending;
+}
+
+std::string valuesText(const std::vector<std::string>& keys, const std::vector<double>& values) {
+  std::string text;
+  for (std::size_t k = 0; k < keys.size() && k < values.size(); ++k) {
+    char v[32];
+    std::snprintf(v, sizeof v, "%g", values[k]);
+    text += (k ? ", " : "") + keys[k] + " = " + v;
+  }
+  return text;
+}
+
+std::vector<std::string> sweepKeys(const std::string& folder) {
+  std::ifstream in(fs::path(folder) / "sweep.json");
+  return nlohmann::json::parse(in).at("keys").get<std::vector<std::string>>();
+}
+
+// Writes the batch script for the cases (numbers) and submits it, unless a dry run.
+void submitToSlurm(const std::string& folder, const SlurmSettings& settings, const std::vector<int>& numbers, bool dryRun) {
+  const std::string dir = fs::absolute(folder).lexically_normal().string();
+  checkSlurmSettings(settings, dir);
+  const std::string script = slurmSweepScript(dir, selfExecutable(), settings, numbers);
+  const fs::path scriptPath = fs::path(dir) / "slurm" / "sweep.sbatch";
+  fs::create_directories(scriptPath.parent_path());
+  writeTextFileSafely(scriptPath, script);
+  if (dryRun) {
+    std::printf("%s", script.c_str());
+    std::printf("# written to %s (dry run: nothing submitted); submit it with: sbatch %s\n", scriptPath.c_str(),
+                scriptPath.c_str());
+    return;
+  }
+  SlurmRecord record = readSlurmRecord(dir);
+  const std::string id = submitSlurmArray(scriptPath.string(), slurmArraySpec(numbers, settings.maxConcurrent), {});
+  record.settings = settings;
+  record.jobs.push_back({id, numbers});
+  writeSlurmRecord(dir, record);
+  std::printf("sweep: submitted %zu case(s) of %s as Slurm job %s (array %s)\n"
+              "follow it with: tessera sweep %s --status\n",
+              numbers.size(), folder.c_str(), id.c_str(), slurmArraySpec(numbers, settings.maxConcurrent).c_str(),
+              folder.c_str());
+}
+
+std::vector<int> caseNumbers(const std::vector<const SweepCase*>& cases) {
+  std::vector<int> numbers;
+  for (const SweepCase* c : cases) numbers.push_back(sweepCaseNumber(c->dir));
+  return numbers;
+}
+
+SlurmSettings settingsOver(SlurmSettings base, const SweepArguments& a) {
+  if (a.settingsGiven[0]) base.partition = a.settings.partition;
+  if (a.settingsGiven[1]) base.timeLimit = a.settings.timeLimit;
+  if (a.settingsGiven[2]) base.cpusPerTask = a.settings.cpusPerTask;
+  if (a.settingsGiven[3]) base.maxConcurrent = a.settings.maxConcurrent;
+  if (a.settingsGiven[4]) base.extraOptions = a.settings.extraOptions;
+  return base;
+}
+
+void printFinish(const std::string& folder, int status) {
+  const int complete = writeSweepTables(folder);
+  std::printf("sweep: %d of %zu cases in %s complete; table %s (and sweep.h5)\n", complete, readSweepFolder(folder).size(),
+              folder.c_str(), (fs::path(folder) / "sweep.csv").c_str());
+  if (status == 130) std::printf("sweep: stopped; run the same command again (or --resubmit) to finish it\n");
+  else std::printf("draw the figures with: tessera report %s\n", folder.c_str());
+}
+
+int jobsFor(const SweepArguments& a) {
+  if (a.jobs < 0 || a.jobs > 256) throw InputError("--jobs must be 0 (cores / threads) to 256, got " + std::to_string(a.jobs));
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  return a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, cores / static_cast<unsigned>(a.threads)));
+}
+
+// tessera sweep SCENE -o DIR --set ... [--slurm]
+int newSweep(const SweepArguments& a) {
+  if (a.output.empty()) throw InputError("give the sweep folder with -o DIR");
+  if (a.sets.empty()) throw InputError("give at least one --set KEY=values (e.g. --set E=3.3e9,4.2e9)");
   if (a.maxCases < 1) throw InputError("--max-cases must be at least 1");
-  SweepPlan plan{a.scene, a.preset, {}, a.zip, a.maxCases};
+  if (a.slurm && a.jobs != 0)
+    throw InputError("--jobs is for a sweep run here; with --slurm, limit the cases running at once with --max-concurrent");
+  SweepPlan plan{a.target, a.preset, {}, a.zip, a.maxCases};
   for (const auto& s : a.sets) plan.axes.push_back(parseSweepAxis(s, a.maxCases));
   std::vector<SweepCase> cases = sweepCases(plan);  // all checked before anything is made
+  SlurmSettings settings = a.settings;
+  if (!a.settingsGiven[2]) settings.cpusPerTask = a.threads;
+  if (a.slurm) checkSlurmSettings(settings, fs::absolute(a.output).lexically_normal().string());
+  const int jobs = a.slurm ? 1 : jobsFor(a);
 
   requireWritableDirectory(a.output);
   const FolderLock lock(a.output, "a sweep");
   cases = placeSweepCases(a.output, plan, cases, a.extend);
-
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const int jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, cores / static_cast<unsigned>(a.threads)));
-  std::signal(SIGINT, stopSweep);
-  std::signal(SIGTERM, stopSweep);
-  const int status = runCases(cases, std::min<int>(jobs, static_cast<int>(cases.size())), a.threads);
-  const int complete = writeSweepTables(a.output);
-  std::ifstream manifest(fs::path(a.output) / "sweep.json");
-  const std::size_t total = nlohmann::json::parse(manifest)["cases"].size();
-  std::printf("sweep: %d of %zu cases in %s complete; table %s (and sweep.h5)\n", complete, total, a.output.c_str(),
-              (fs::path(a.output) / "sweep.csv").c_str());
-  if (status == 130) std::printf("sweep: stopped; run the same command again to finish it\n");
-  else std::printf("draw the figures with: tessera report %s\n", a.output.c_str());
+  if (a.slurm) {
+    const std::vector<CaseReport> reports = reportCases(cases, readSlurmRecord(a.output), nullptr);
+    const std::vector<int> numbers = caseNumbers(casesToRun(reports));
+    if (numbers.empty()) {
+      std::printf("sweep: every case of %s is complete, queued or running; nothing to submit\n", a.output.c_str());
+      return 0;
+    }
+    submitToSlurm(a.output, settings, numbers, a.dryRun);
+    return 0;
+  }
+  const int status = runSweepCases(cases, jobs, a.threads, "");
+  printFinish(a.output, status);
   return status;
+}
+
+// tessera sweep DIR --case N: one case, as a Slurm array task runs it.
+int runOneCase(const SweepArguments& a) {
+  const std::vector<SweepCase> cases = readSweepFolder(a.target);
+  for (const SweepCase& c : cases) {
+    if (sweepCaseNumber(c.dir) != a.caseNumber) continue;
+    const char* job = std::getenv("SLURM_ARRAY_JOB_ID");
+    const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
+    const std::string slurmJob = job && task ? std::string(job) + "_" + task : "";
+    const int status = runSweepCases({c}, 1, a.threads, slurmJob);
+    writeSweepTables(a.target);
+    return status;
+  }
+  throw InputError(a.target + ": has no case_" + std::to_string(a.caseNumber) + " (sweep.json lists " +
+                   std::to_string(cases.size()) + " cases); give the number of one of its case folders");
+}
+
+// tessera sweep DIR --status [--json]
+int printStatus(const SweepArguments& a) {
+  const std::vector<SweepCase> cases = readSweepFolder(a.target);
+  std::string slurmProblem;
+  const SlurmRecord record = readSlurmRecord(a.target);
+  const std::vector<CaseReport> reports = reportCases(cases, record, &slurmProblem);
+  writeSweepTables(a.target);  // the table as the files stand now, whatever ran the cases
+  std::map<std::string, int> counts{{"complete", 0}, {"queued", 0}, {"running", 0}, {"interrupted", 0}, {"failed", 0}, {"missing", 0}};
+  for (const CaseReport& r : reports) ++counts[r.state];
+  const std::vector<std::string> keys = sweepKeys(a.target);
+  if (a.json) {
+    nlohmann::json j = {{"folder", a.target}, {"counts", counts}, {"cases", nlohmann::json::array()},
+                        {"slurm_jobs", nlohmann::json::array()}};
+    for (const SlurmJob& job : record.jobs) j["slurm_jobs"].push_back(job.id);
+    if (!slurmProblem.empty()) j["slurm_problem"] = slurmProblem;
+    for (const CaseReport& r : reports)
+      j["cases"].push_back({{"case", fs::path(r.sweepCase->dir).filename().string()},
+                            {"state", r.state},
+                            {"values", r.sweepCase->values},
+                            {"exit_status", r.files.exitStatus >= 0 ? nlohmann::json(r.files.exitStatus) : nlohmann::json()},
+                            {"slurm_job", r.slurmJob},
+                            {"slurm_state", r.slurmState}});
+    std::printf("%s\n", j.dump(2).c_str());
+    return 0;
+  }
+  std::printf("sweep %s: %zu cases: %d complete, %d queued, %d running, %d interrupted, %d failed, %d missing\n",
+              a.target.c_str(), cases.size(), counts["complete"], counts["queued"], counts["running"], counts["interrupted"],
+              counts["failed"], counts["missing"]);
+  if (!slurmProblem.empty()) std::printf("(Slurm's state not available: %s; the case files tell the rest)\n", slurmProblem.c_str());
+  for (const CaseReport& r : reports) {
+    std::string detail;
+    if (!r.slurmJob.empty()) detail = "slurm " + r.slurmJob + (r.slurmState.empty() ? "" : " " + r.slurmState);
+    if (r.state == "failed")
+      detail += std::string(detail.empty() ? "" : ", ") +
+                (r.files.exitStatus > 0 ? "exit " + std::to_string(r.files.exitStatus) +
+                                              (r.files.exitStatus == 2 ? " (bad input)" : r.files.exitStatus == 3 ? " (unstable)" : "")
+                                        : std::string("no exit recorded")) +
+                ", see " + (fs::path(r.sweepCase->dir).filename() / "log.txt").string();
+    std::printf("  %-10s %-12s %-34s %s\n", fs::path(r.sweepCase->dir).filename().c_str(), r.state.c_str(), detail.c_str(),
+                valuesText(keys, r.sweepCase->values).c_str());
+  }
+  if (counts["interrupted"] + counts["failed"] + counts["missing"] > 0)
+    std::printf("run the missing, failed and interrupted cases with: tessera sweep %s --resubmit\n", a.target.c_str());
+  return 0;
+}
+
+// tessera sweep DIR --resubmit: the cases neither complete nor running, through Slurm when the
+// sweep was submitted there, else here.
+int resubmit(const SweepArguments& a) {
+  const std::vector<SweepCase> cases = readSweepFolder(a.target);
+  const SlurmRecord record = readSlurmRecord(a.target);
+  const bool slurm = a.slurm || !record.jobs.empty() || fs::exists(fs::path(a.target) / "slurm" / "sweep.sbatch");
+  const FolderLock lock(a.target, "a sweep");
+  const std::vector<const SweepCase*> pending = casesToRun(reportCases(cases, record, nullptr));
+  if (pending.empty()) {
+    std::printf("sweep: every case of %s is complete, queued or running; nothing to resubmit\n", a.target.c_str());
+    writeSweepTables(a.target);
+    return 0;
+  }
+  if (slurm) {
+    SlurmSettings base = record.jobs.empty() ? SlurmSettings{} : record.settings;
+    if (record.jobs.empty() && !a.settingsGiven[2]) base.cpusPerTask = a.threads;
+    submitToSlurm(a.target, settingsOver(base, a), caseNumbers(pending), a.dryRun);
+    return 0;
+  }
+  std::vector<SweepCase> run;
+  for (const SweepCase* c : pending) run.push_back(*c);
+  const int status = runSweepCases(run, jobsFor(a), a.threads, "");
+  printFinish(a.target, status);
+  return status;
+}
+
+int runSweep(const SweepArguments& a) {
+  if (a.threads < 1) throw InputError("--threads must be at least 1 per case, got " + std::to_string(a.threads));
+  const int modes = (a.status ? 1 : 0) + (a.resubmit ? 1 : 0) + (a.caseNumber >= 0 ? 1 : 0);
+  if (modes > 1) throw InputError("give one of --status, --resubmit, --case");
+  if (modes == 1 && (!a.sets.empty() || !a.output.empty()))
+    throw InputError("--status, --resubmit and --case take the sweep folder in place of the scene, without -o or --set: "
+                     "tessera sweep DIR --status");
+  if (a.status) return printStatus(a);
+  if (a.resubmit) return resubmit(a);
+  if (a.caseNumber >= 0) return runOneCase(a);
+  return newSweep(a);
 }
 
 }  // namespace
 
 void addSweepCommand(CLI::App& app) {
   auto args = std::make_shared<SweepArguments>();
-  CLI::App* cmd = app.add_subcommand("sweep", "Run a scene over parameter values (a list, a range, or a grid of two), cases in parallel.");
-  cmd->add_option("scene", args->scene, "Base scene file (TOML)")->required();
-  cmd->add_option("-o,--output", args->output, "Sweep directory: case_NNN/ (scene.toml, run/), sweep.json, sweep.csv")->required();
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "Run a scene over parameter values (a list, a range, or a grid of two), cases in parallel here or as a Slurm job array.");
+  cmd->add_option("scene", args->target, "Base scene file (TOML); with --status, --resubmit or --case: the sweep folder")->required();
+  cmd->add_option("-o,--output", args->output, "Sweep directory: case_NNN/ (scene.toml, run/, log.txt, exit.json), sweep.json, sweep.csv");
   cmd->add_option("--set", args->sets,
                   "KEY=v1,v2,... or KEY=first:last:count, SI units; KEY is table.key of the scene or E, mu, speed, radius, "
-                  "density; repeat for a grid")
-      ->required();
+                  "density; repeat for a grid");
   cmd->add_flag("--zip", args->zip,
                "Vary the --set keys together (the k-th value of each in case k; equal counts) instead of as a grid");
   cmd->add_option("--preset", args->preset, "Speed/accuracy setting applied to every case (as in tessera run --preset)");
-  cmd->add_option("--jobs", args->jobs, "Cases run at once [default: cores / threads]");
+  cmd->add_option("--jobs", args->jobs, "Cases run at once here [default: cores / threads]");
   cmd->add_option("--threads", args->threads, "Threads per case")->capture_default_str();
   cmd->add_flag("--extend", args->extend, "Add cases of new values to the sweep already in -o (same keys, scene and preset)");
   cmd->add_option("--max-cases", args->maxCases, "Refuse a sweep of more cases than this")->capture_default_str();
+
+  const std::string slurmGroup = "Slurm (docs/cluster.md)";
+  cmd->add_flag("--slurm", args->slurm, "Submit the cases as a Slurm job array (sbatch) instead of running them here")->group(slurmGroup);
+  cmd->add_option("--partition", args->settings.partition, "Slurm partition")->group(slurmGroup)
+      ->each([args](const std::string&) { args->settingsGiven[0] = true; });
+  cmd->add_option("--time", args->settings.timeLimit, "Time limit per case, HH:MM:SS (a case checkpoints 2 min before it)")
+      ->group(slurmGroup)->each([args](const std::string&) { args->settingsGiven[1] = true; });
+  cmd->add_option("--cpus-per-task", args->settings.cpusPerTask, "Cores per case, also its threads [default: --threads]")
+      ->group(slurmGroup)->each([args](const std::string&) { args->settingsGiven[2] = true; });
+  cmd->add_option("--max-concurrent", args->settings.maxConcurrent, "Cases running at once on the cluster [default: no limit]")
+      ->group(slurmGroup)->each([args](const std::string&) { args->settingsGiven[3] = true; });
+  cmd->add_option("--sbatch", args->settings.extraOptions, "A further sbatch option, e.g. --sbatch=--account=proj42 (repeat)")
+      ->group(slurmGroup)->allow_extra_args(false)->each([args](const std::string&) { args->settingsGiven[4] = true; });
+  cmd->add_flag("--dry-run", args->dryRun, "Write DIR/slurm/sweep.sbatch and print it; submit nothing")->group(slurmGroup);
+
+  const std::string folderGroup = "On a sweep folder (in place of the scene)";
+  cmd->add_flag("--status", args->status, "Where each case stands: complete, queued, running, interrupted, failed, missing")
+      ->group(folderGroup);
+  cmd->add_flag("--json", args->json, "With --status: as JSON")->group(folderGroup);
+  cmd->add_flag("--resubmit", args->resubmit,
+                "Run the missing, failed and interrupted cases again (interrupted ones resume): through Slurm if the sweep "
+                "was submitted there, else here")
+      ->group(folderGroup);
+  cmd->add_option("--case", args->caseNumber, "Run case_N alone (what each Slurm array task runs)")->group(folderGroup);
   cmd->footer("Example (the paper's E study): tessera sweep assets/scenes/default.toml -o out/E \\\n"
               "  --set E=3.3e9,4.2e9,5e9,7.5e9,10e9,20e9,30e9,50e9,75e9\n"
+              "On a cluster: the same with --slurm --time 01:00:00; then tessera sweep out/E --status.\n"
               "Re-running a sweep finishes only the missing cases (and resumes stopped ones); Ctrl-C stops\n"
-              "it (running cases checkpoint; exit status 130). Exit status: 0 all done, 2 or 3 a case's error.");
+              "it (running cases checkpoint; exit status 130). Exit status: 0 all done (or submitted),\n"
+              "2 bad input or a case's bad input, 3 a case became unstable, 130 interrupted.");
   cmd->callback([args] {
     if (const int status = runSweep(*args)) throw CLI::RuntimeError(status);
   });
@@ -158,8 +353,9 @@ void addSweepCommand(CLI::App& app) {
   rep->add_option("--experiments", report->second,
                   "CSV of experimental points (label, E_Pa, L_m, h_m, P_peak_N, delta_peak_m) for the normalised plot");
   rep->callback([report] {
-    if (!fs::exists(fs::path(report->first) / "sweep.csv"))
-      throw InputError(report->first + ": not a sweep folder (no sweep.csv); give the -o folder of tessera sweep");
+    if (!fs::exists(fs::path(report->first) / "sweep.json"))
+      throw InputError(report->first + ": not a sweep folder (no sweep.json); give the -o folder of tessera sweep");
+    writeSweepTables(report->first);  // from the case folders as they stand, whatever ran them
     std::vector<std::string> arguments{report->first};
     if (!report->second.empty()) arguments.insert(arguments.end(), {"--experiments", report->second});
     const int status = runPlotScript("report_sweep.py", arguments, "");

@@ -1,0 +1,158 @@
+#!/usr/bin/env bash
+# CTest (label slurm): tessera sweep --slurm against a real Slurm. Installs Debian's Slurm and
+# munge if missing, starts munged, slurmctld and slurmd as a one-node cluster on loopback inside
+# this test's own temporary folder (its own slurm.conf, key, spool, state and ports), then:
+#  1. a 4-case sweep submitted with --slurm gives the same table (and final states, by digest) as
+#     the same sweep run here;
+#  2. in a second Slurm sweep one task is cancelled midway (scancel: SIGTERM), --status calls its
+#     case interrupted, --resubmit submits it alone and it resumes to the same result exactly.
+# Everything is shut down at the end. Skips (exit 77) only when the daemons cannot run here.
+# Usage: slurm_sweep.sh TESSERA SOURCE_DIR
+set -euo pipefail
+tessera=$1 source=$2
+skip() { echo "SKIPPED: $*"; exit 77; }
+
+if ! command -v slurmctld > /dev/null || ! command -v slurmd > /dev/null || ! command -v sbatch > /dev/null ||
+   ! command -v munged > /dev/null; then
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then sudo -n true 2> /dev/null || skip "Slurm is not installed and apt-get needs root"; sudo_cmd=(sudo -n); fi
+  echo "installing Debian's Slurm and munge"
+  "${sudo_cmd[@]}" apt-get update -q > /dev/null || true
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends \
+    slurmctld slurmd slurm-client munge > /dev/null || skip "apt-get could not install slurmctld slurmd slurm-client munge"
+fi
+[ "$(id -u)" -eq 0 ] || skip "slurmd must run as root to start jobs"
+python=/usr/bin/python3
+
+source "$(dirname "${BASH_SOURCE[0]}")/small_slab.sh"  # $work/slab
+cluster=$work/cluster
+mkdir -p "$cluster"/{munge,spool,state,log}
+chmod 700 "$cluster/munge"
+daemons=()
+shutdown() {
+  [ -z "${SLURM_CONF:-}" ] || scancel --me > /dev/null 2>&1 || true
+  for pid in "${daemons[@]}"; do kill "$pid" 2> /dev/null || true; done
+  for pid in "${daemons[@]}"; do wait "$pid" 2> /dev/null || true; done
+  rm -rf "$work"
+}
+trap shutdown EXIT
+show_logs() { tail -n 20 "$cluster"/log/* 2> /dev/null || true; }
+
+# munge: its own key and socket.
+head -c 1024 /dev/urandom > "$cluster/munge/munge.key"
+chmod 400 "$cluster/munge/munge.key"
+munged -F --force --key-file="$cluster/munge/munge.key" --socket="$cluster/munge/munge.sock" \
+  --pid-file="$cluster/munge/munged.pid" --seed-file="$cluster/munge/seed" --log-file="$cluster/log/munged.log" \
+  > "$cluster/log/munged.out" 2>&1 &
+daemons+=($!)
+for _ in $(seq 50); do [ -S "$cluster/munge/munge.sock" ] && break; sleep 0.1; done
+[ -S "$cluster/munge/munge.sock" ] || { show_logs; skip "munged did not start"; }
+
+# Slurm: one node (this machine, on 127.0.0.1), two free loopback ports.
+read -r ctld_port node_port < <($python -c '
+import socket
+s = [socket.socket() for _ in range(2)]
+for x in s: x.bind(("127.0.0.1", 0))
+print(*[x.getsockname()[1] for x in s])')
+host=$(uname -n | cut -d. -f1)
+memory=$(($(awk '/MemTotal/ {print $2}' /proc/meminfo) / 2048))
+cat > "$cluster/slurm.conf" <<CONF
+ClusterName=tessera-test
+SlurmctldHost=$host(127.0.0.1)
+SlurmctldPort=$ctld_port
+SlurmdPort=$node_port
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+CredType=cred/munge
+AuthInfo=socket=$cluster/munge/munge.sock
+StateSaveLocation=$cluster/state
+SlurmdSpoolDir=$cluster/spool
+SlurmctldPidFile=$cluster/slurmctld.pid
+SlurmdPidFile=$cluster/slurmd.pid
+SlurmctldLogFile=$cluster/log/slurmctld.log
+SlurmdLogFile=$cluster/log/slurmd.log
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+SchedulerType=sched/builtin
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU
+MpiDefault=none
+ReturnToService=2
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$(nproc) RealMemory=$memory State=UNKNOWN
+PartitionName=test Nodes=$host Default=YES MaxTime=INFINITE State=UP
+CONF
+export SLURM_CONF=$cluster/slurm.conf
+slurmctld -D > "$cluster/log/slurmctld.out" 2>&1 &
+daemons+=($!)
+slurmd -D > "$cluster/log/slurmd.out" 2>&1 &
+daemons+=($!)
+for _ in $(seq 100); do sinfo -h -o %T 2> /dev/null | grep -q idle && break; sleep 0.2; done
+sinfo -h -o %T 2> /dev/null | grep -q idle || { show_logs; skip "slurmctld and slurmd did not start a node here"; }
+echo "[${SECONDS} s] cluster up: $host, slurmctld on 127.0.0.1:$ctld_port"
+
+# A case lasts about 2 s on one core: long enough to cancel one midway.
+printf 'bundle = "%s"\n[indenter]\nspeed = 0.002\n[protocol]\ndelta_max = 0.2e-3\n[output]\ncheckpoint_seconds = 0.2\n' \
+  "$work/slab" > "$work/scene.toml"
+cases=(--set mu=0.3,0.5 --set E=4.2e9,20e9)
+
+count() {  # count FOLDER STATE: cases of the sweep in that state
+  "$tessera" sweep "$1" --status --json | $python -c "import json, sys; print(json.load(sys.stdin)['counts']['$2'])"
+}
+wait_complete() {  # wait_complete FOLDER: until every case is complete; fails on a failed case
+  for _ in $(seq 600); do
+    [ "$(count "$1" complete)" -eq 4 ] && return 0
+    [ "$(count "$1" failed)" -eq 0 ] || { "$tessera" sweep "$1" --status; cat "$1"/case_*/log.txt; show_logs; exit 1; }
+    sleep 0.5
+  done
+  echo "the Slurm sweep $1 did not finish in 300 s"; "$tessera" sweep "$1" --status; show_logs; exit 1
+}
+same_results() {  # same_results A B: equal tables (all but the wall time) and equal final states
+  $python - "$1" "$2" <<'PY'
+import csv, json, pathlib, sys
+a, b = (pathlib.Path(p) for p in sys.argv[1:3])
+rows = [[{k: v for k, v in r.items() if k != "wall_seconds"} for r in csv.DictReader(open(f / "sweep.csv"))] for f in (a, b)]
+if len(rows[0]) != 4 or rows[0] != rows[1]:
+    sys.exit(f"tables differ:\n{rows[0]}\n{rows[1]}")
+for case in sorted(p.name for p in a.glob("case_*")):
+    d = [json.load(open(f / case / "run" / "summary.json"))["state_digest"] for f in (a, b)]
+    if d[0] != d[1]:
+        sys.exit(f"{case}: final states differ ({d[0]} here, {d[1]} on Slurm)")
+print(f"same table and final states: {a.name} and {b.name}")
+PY
+}
+
+# 1. Here, then on Slurm: the same table.
+"$tessera" sweep "$work/scene.toml" -o "$work/local" "${cases[@]}" --jobs 2 > "$work/local.log" 2>&1 ||
+  { cat "$work/local.log"; exit 1; }
+"$tessera" sweep "$work/scene.toml" -o "$work/slurm" "${cases[@]}" --slurm --max-concurrent 2 | tee "$work/submit.log"
+echo "[${SECONDS} s] local sweep done"
+grep -q "submitted 4 case(s)" "$work/submit.log"
+grep -q -- "--array=0-3%2" "$work/slurm/slurm/sweep.sbatch"
+wait_complete "$work/slurm"
+echo "[${SECONDS} s] Slurm sweep done"
+same_results "$work/local" "$work/slurm"
+grep -q '"slurm_job": "[0-9]*_2"' "$work/slurm/case_002/exit.json"
+
+# 2. One task cancelled midway, then --resubmit: it resumes and ends where the local run did.
+"$tessera" sweep "$work/scene.toml" -o "$work/cancel" "${cases[@]}" --slurm --max-concurrent 2 > /dev/null
+job=$($python -c "import json; print(json.load(open('$work/cancel/slurm/jobs.json'))['jobs'][-1]['job_id'])")
+for _ in $(seq 600); do [ -f "$work/cancel/case_001/run/checkpoint.h5" ] && break; sleep 0.05; done
+[ -f "$work/cancel/case_001/run/checkpoint.h5" ] || { echo "case_001 never checkpointed"; show_logs; exit 1; }
+scancel "${job}_1"
+echo "[${SECONDS} s] cancelled ${job}_1"
+for _ in $(seq 200); do [ "$(count "$work/cancel" interrupted)" -eq 1 ] && break; sleep 0.2; done
+"$tessera" sweep "$work/cancel" --status | tee "$work/status.log"
+grep -q "case_001 *interrupted *slurm ${job}_1" "$work/status.log" ||
+  { echo "the cancelled case is not reported interrupted"; cat "$work/cancel/case_001/log.txt"; show_logs; exit 1; }
+grep -q '"exit_status": 130' "$work/cancel/case_001/exit.json"
+"$tessera" sweep "$work/cancel" --resubmit | tee "$work/resubmit.log"
+grep -q "submitted 1 case(s) .* (array 1%2)" "$work/resubmit.log"
+wait_complete "$work/cancel"
+echo "[${SECONDS} s] resubmitted case done"
+grep -q "resuming case_001" "$work/cancel/slurm/task_"*_1.out
+same_results "$work/local" "$work/cancel"
+"$tessera" sweep "$work/cancel" --resubmit | grep -q "nothing to resubmit"
+echo "ok: Slurm sweep equals the local one; a cancelled case resumed by --resubmit to the same result"

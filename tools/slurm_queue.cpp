@@ -1,0 +1,60 @@
+#include "tools/slurm_queue.h"
+
+#include "io/input_error.h"
+#include "tools/child_process.h"
+
+#include <set>
+#include <sstream>
+
+namespace tessera::tools {
+
+namespace {
+
+std::string firstLine(const std::string& text) {
+  const std::string line = text.substr(0, text.find('\n'));
+  return line.empty() ? "no message" : line;
+}
+
+}  // namespace
+
+std::string submitSlurmArray(const std::string& script, const std::string& arraySpec,
+                             const std::vector<std::string>& options) {
+  std::vector<std::string> command{"sbatch", "--parsable", "--array=" + arraySpec};
+  command.insert(command.end(), options.begin(), options.end());
+  command.push_back(script);
+  const CommandOutput sbatch = runCommand(command);
+  if (sbatch.status == 127)
+    throw InputError("sbatch not found: --slurm submits from a machine with Slurm's commands (a login node); add "
+                     "--dry-run to write the batch script only, or leave out --slurm to run the cases here");
+  // --parsable prints "JOBID" or "JOBID;CLUSTER".
+  const std::string id = sbatch.out.substr(0, sbatch.out.find_first_of(";\n"));
+  if (sbatch.status != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+    throw InputError("sbatch refused " + script + " (exit status " + std::to_string(sbatch.status) + "): " +
+                     firstLine(sbatch.err + sbatch.out) + "; fix the option it names (--partition, --time, --sbatch) and submit "
+                     "again with --resubmit");
+  return id;
+}
+
+SlurmTaskStates querySlurmTasks() {
+  SlurmTaskStates states;
+  // -r: one line per array task; --states=all: finished tasks too, while Slurm keeps them.
+  const CommandOutput squeue = runCommand({"squeue", "--me", "-h", "-r", "--states=all", "-o", "%F %K %T"});
+  if (squeue.status != 0) {
+    states.problem = squeue.status == 127 ? "squeue not found" : "squeue: " + firstLine(squeue.err);
+    return states;
+  }
+  states.available = true;
+  std::istringstream lines(squeue.out);
+  std::string job, task, state;
+  while (lines >> job >> task >> state)
+    if (task.find_first_not_of("0123456789") == std::string::npos) states.state[{job, std::stoi(task)}] = state;
+  return states;
+}
+
+bool slurmTaskActive(const std::string& state) {
+  static const std::set<std::string> active{"PENDING", "RUNNING", "CONFIGURING", "COMPLETING", "REQUEUED", "REQUEUE_FED",
+                                            "REQUEUE_HOLD", "RESIZING", "SUSPENDED", "STAGE_OUT", "SIGNALING", "STOPPED"};
+  return active.count(state) > 0;
+}
+
+}  // namespace tessera::tools

@@ -1,0 +1,27 @@
+#pragma once
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tessera::tools {
+
+/// Submits a sweep's batch script with `sbatch --parsable --array=SPEC [options] SCRIPT`; returns the
+/// job id. InputError when sbatch is not found or refuses (with what it said).
+std::string submitSlurmArray(const std::string& script, const std::string& arraySpec,
+                             const std::vector<std::string>& options);
+
+/// Slurm's state of the array tasks it still knows of this user's jobs, as squeue reports them
+/// (PENDING, RUNNING, COMPLETED, CANCELLED, TIMEOUT, ...), by (array job id, task id). Slurm
+/// forgets finished jobs after its MinJobAge (300 s by default): then only the case's files tell.
+struct SlurmTaskStates {
+  bool available = false;  ///< squeue answered
+  std::string problem;     ///< why not, when it did not
+  std::map<std::pair<std::string, int>, std::string> state;
+};
+SlurmTaskStates querySlurmTasks();
+
+/// A state in which Slurm will still run the task (queued, running, requeued, suspended).
+bool slurmTaskActive(const std::string& state);
+
+}  // namespace tessera::tools
