@@ -10,9 +10,15 @@ namespace tessera::tools {
 
 namespace {
 
-std::string firstLine(const std::string& text) {
-  const std::string line = text.substr(0, text.find('\n'));
-  return line.empty() ? "no message" : line;
+// The line of a command's messages that says what went wrong: the last naming an error, else the first.
+std::string errorLine(const std::string& text) {
+  std::istringstream lines(text);
+  std::string line, first, error;
+  while (std::getline(lines, line)) {
+    if (first.empty()) first = line;
+    if (line.find("error") != std::string::npos) error = line;
+  }
+  return !error.empty() ? error : !first.empty() ? first : "no message";
 }
 
 }  // namespace
@@ -29,9 +35,9 @@ std::string submitSlurmArray(const std::string& script, const std::string& array
   // --parsable prints "JOBID" or "JOBID;CLUSTER".
   const std::string id = sbatch.out.substr(0, sbatch.out.find_first_of(";\n"));
   if (sbatch.status != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
-    throw InputError("sbatch refused " + script + " (exit status " + std::to_string(sbatch.status) + "): " +
-                     firstLine(sbatch.err + sbatch.out) + "; fix the option it names (--partition, --time, --sbatch) and submit "
-                     "again with --resubmit");
+    throw InputError("sbatch did not submit " + script + " (exit status " + std::to_string(sbatch.status) + "): " +
+                     errorLine(sbatch.err + sbatch.out) + "; fix what it names (a --partition, --time or --sbatch option, "
+                     "or Slurm's configuration) and submit with --resubmit");
   return id;
 }
 
@@ -40,7 +46,7 @@ SlurmTaskStates querySlurmTasks() {
   // -r: one line per array task; --states=all: finished tasks too, while Slurm keeps them.
   const CommandOutput squeue = runCommand({"squeue", "--me", "-h", "-r", "--states=all", "-o", "%F %K %T"});
   if (squeue.status != 0) {
-    states.problem = squeue.status == 127 ? "squeue not found" : "squeue: " + firstLine(squeue.err);
+    states.problem = squeue.status == 127 ? "squeue not found" : errorLine(squeue.err);
     return states;
   }
   states.available = true;

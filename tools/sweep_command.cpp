@@ -155,6 +155,16 @@ void printFinish(const std::string& folder, int status) {
   else std::printf("draw the figures with: tessera report %s\n", folder.c_str());
 }
 
+// --dry-run without --slurm: the command of each case to run, one a line, for any launcher
+// (GNU parallel, xargs -P, another scheduler's array, an MPI launcher's ranks).
+void printJobList(const std::string& folder, const std::vector<const SweepCase*>& cases, int threads) {
+  const std::string self = selfExecutable(), dir = fs::absolute(folder).lexically_normal().string();
+  for (const SweepCase* c : cases)
+    std::printf("%s sweep %s --case %d --threads %d\n", self.c_str(), dir.c_str(), sweepCaseNumber(c->dir), threads);
+  std::fprintf(stderr, "sweep: %zu case(s) to run in %s (dry run: nothing started); each line above runs one, anywhere "
+               "the folder is reachable\n", cases.size(), folder.c_str());
+}
+
 int jobsFor(const SweepArguments& a) {
   if (a.jobs < 0 || a.jobs > 256) throw InputError("--jobs must be 0 (cores / threads) to 256, got " + std::to_string(a.jobs));
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
@@ -179,9 +189,13 @@ int newSweep(const SweepArguments& a) {
   requireWritableDirectory(a.output);
   const FolderLock lock(a.output, "a sweep");
   cases = placeSweepCases(a.output, plan, cases, a.extend);
-  if (a.slurm) {
-    const std::vector<CaseReport> reports = reportCases(cases, readSlurmRecord(a.output), nullptr);
-    const std::vector<int> numbers = caseNumbers(casesToRun(reports));
+  if (a.slurm || a.dryRun) {
+    const std::vector<const SweepCase*> pending = casesToRun(reportCases(cases, readSlurmRecord(a.output), nullptr));
+    if (!a.slurm) {
+      printJobList(a.output, pending, a.threads);
+      return 0;
+    }
+    const std::vector<int> numbers = caseNumbers(pending);
     if (numbers.empty()) {
       std::printf("sweep: every case of %s is complete, queued or running; nothing to submit\n", a.output.c_str());
       return 0;
@@ -216,7 +230,6 @@ int printStatus(const SweepArguments& a) {
   std::string slurmProblem;
   const SlurmRecord record = readSlurmRecord(a.target);
   const std::vector<CaseReport> reports = reportCases(cases, record, &slurmProblem);
-  writeSweepTables(a.target);  // the table as the files stand now, whatever ran the cases
   std::map<std::string, int> counts{{"complete", 0}, {"queued", 0}, {"running", 0}, {"interrupted", 0}, {"failed", 0}, {"missing", 0}};
   for (const CaseReport& r : reports) ++counts[r.state];
   const std::vector<std::string> keys = sweepKeys(a.target);
@@ -275,6 +288,10 @@ int resubmit(const SweepArguments& a) {
     submitToSlurm(a.target, settingsOver(base, a), caseNumbers(pending), a.dryRun);
     return 0;
   }
+  if (a.dryRun) {
+    printJobList(a.target, pending, a.threads);
+    return 0;
+  }
   std::vector<SweepCase> run;
   for (const SweepCase* c : pending) run.push_back(*c);
   const int status = runSweepCases(run, jobsFor(a), a.threads, "");
@@ -326,7 +343,10 @@ void addSweepCommand(CLI::App& app) {
       ->group(slurmGroup)->each([args](const std::string&) { args->settingsGiven[3] = true; });
   cmd->add_option("--sbatch", args->settings.extraOptions, "A further sbatch option, e.g. --sbatch=--account=proj42 (repeat)")
       ->group(slurmGroup)->allow_extra_args(false)->each([args](const std::string&) { args->settingsGiven[4] = true; });
-  cmd->add_flag("--dry-run", args->dryRun, "Write DIR/slurm/sweep.sbatch and print it; submit nothing")->group(slurmGroup);
+  cmd->add_flag("--dry-run", args->dryRun,
+                "Write the sweep folder and run nothing: with --slurm, write DIR/slurm/sweep.sbatch and print it; without, "
+                "print the command of each case to run (a job list for any launcher)")
+      ->group(slurmGroup);
 
   const std::string folderGroup = "On a sweep folder (in place of the scene)";
   cmd->add_flag("--status", args->status, "Where each case stands: complete, queued, running, interrupted, failed, missing")

@@ -71,7 +71,7 @@ int runSweepCases(const std::vector<SweepCase>& cases, int jobs, int threads, co
       if (status == 0) {
         std::fprintf(stderr, "sweep: %s done\n", name.c_str());
       } else if (status == 130 || sweepStopRequested) {
-        std::fprintf(stderr, "sweep: %s interrupted (incomplete; resumed by the next sweep or --resubmit)\n", name.c_str());
+        std::fprintf(stderr, "sweep: %s interrupted (incomplete; it resumes from its checkpoint when run again)\n", name.c_str());
       } else {
         int none = 0;
         failure.compare_exchange_strong(none, status == 2 || status == 3 ? status : 1);

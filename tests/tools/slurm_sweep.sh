@@ -5,7 +5,8 @@
 #  1. a 4-case sweep submitted with --slurm gives the same table (and final states, by digest) as
 #     the same sweep run here;
 #  2. in a second Slurm sweep one task is cancelled midway (scancel: SIGTERM), --status calls its
-#     case interrupted, --resubmit submits it alone and it resumes to the same result exactly.
+#     case interrupted, --resubmit submits it alone and it resumes to the same result exactly;
+#     another is requeued midway (preemption's path) and resumes to the same result too.
 # Everything is shut down at the end. Skips (exit 77) only when the daemons cannot run here.
 # Usage: slurm_sweep.sh TESSERA SOURCE_DIR
 set -euo pipefail
@@ -143,6 +144,14 @@ for _ in $(seq 600); do [ -f "$work/cancel/case_001/run/checkpoint.h5" ] && brea
 [ -f "$work/cancel/case_001/run/checkpoint.h5" ] || { echo "case_001 never checkpointed"; show_logs; exit 1; }
 scancel "${job}_1"
 echo "[${SECONDS} s] cancelled ${job}_1"
+# Preemption's path: case_002 requeued midway (SIGTERM, then the same task again; Slurm delays a
+# requeued task by a few minutes, so it is released at once here). It resumes from its checkpoint.
+for _ in $(seq 600); do [ -f "$work/cancel/case_002/run/checkpoint.h5" ] && break; sleep 0.05; done
+[ -f "$work/cancel/case_002/run/checkpoint.h5" ] || { echo "case_002 never checkpointed"; show_logs; exit 1; }
+scontrol requeue "${job}_2"
+for _ in $(seq 100); do [ "$(squeue -h -j "${job}_2" -o %T)" = PENDING ] && break; sleep 0.1; done
+scontrol update jobid="${job}_2" StartTime=now
+echo "[${SECONDS} s] requeued ${job}_2"
 for _ in $(seq 200); do [ "$(count "$work/cancel" interrupted)" -eq 1 ] && break; sleep 0.2; done
 "$tessera" sweep "$work/cancel" --status | tee "$work/status.log"
 grep -q "case_001 *interrupted *slurm ${job}_1" "$work/status.log" ||
@@ -153,6 +162,7 @@ grep -q "submitted 1 case(s) .* (array 1%2)" "$work/resubmit.log"
 wait_complete "$work/cancel"
 echo "[${SECONDS} s] resubmitted case done"
 grep -q "resuming case_001" "$work/cancel/slurm/task_"*_1.out
+grep -q "resuming case_002" "$work/cancel/slurm/task_${job}_2.out" || { echo "the requeued case did not resume"; exit 1; }
 same_results "$work/local" "$work/cancel"
 "$tessera" sweep "$work/cancel" --resubmit | grep -q "nothing to resubmit"
-echo "ok: Slurm sweep equals the local one; a cancelled case resumed by --resubmit to the same result"
+echo "ok: Slurm sweep equals the local one; a cancelled case resumed by --resubmit, a requeued one by Slurm, to the same results"

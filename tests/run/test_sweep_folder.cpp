@@ -1,0 +1,149 @@
+// The sweep folder as any runner leaves it: case states from the files alone, the Slurm batch
+// script and array specification, the record of submissions, and refused Slurm settings.
+#include "io/folder_lock.h"
+#include "io/input_error.h"
+#include "run/slurm_sweep.h"
+#include "run/sweep.h"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+using namespace tessera;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TemporaryFolder {
+  fs::path path;
+  TemporaryFolder() {
+    char name[] = "/tmp/tessera-sweep-test-XXXXXX";
+    path = ::mkdtemp(name);
+  }
+  ~TemporaryFolder() { fs::remove_all(path); }
+};
+
+void writeText(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+}  // namespace
+
+TEST_CASE("a case's state is read from its files: missing, failed, interrupted, running, complete") {
+  TemporaryFolder folder;
+  const fs::path c = folder.path / "case_007";
+  fs::create_directories(c);
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Missing);
+  CHECK(sweepCaseNumber(c.string()) == 7);
+
+  writeText(c / "log.txt", "run: ...\n");  // started, and its runner left no record (killed)
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Failed);
+  CHECK(sweepCaseStatus(c.string()).exitStatus == -1);
+
+  recordCaseExit(c.string(), 3, "41_7");
+  const CaseStatus unstable = sweepCaseStatus(c.string());
+  CHECK(unstable.state == CaseState::Failed);
+  CHECK(unstable.exitStatus == 3);
+  CHECK(unstable.slurmJob == "41_7");
+
+  writeText(c / "run" / "checkpoint.h5", "");
+  recordCaseExit(c.string(), 130, "");
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Interrupted);
+  recordCaseExit(c.string(), 137, "");  // killed (a time limit's SIGKILL): resumes from its checkpoint
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Interrupted);
+  {
+    const FolderLock lock((c / "run").string(), "a run");
+    CHECK(folderLockHolder((c / "run").string()) == ::getpid());
+    CHECK(sweepCaseStatus(c.string()).state == CaseState::Running);
+  }
+  CHECK(folderLockHolder((c / "run").string()) == 0);
+
+  writeText(c / "run" / "summary.json", R"({"stop_reason": "interrupted"})");
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Interrupted);
+  writeText(c / "run" / "summary.json", R"({"stop_reason": "failure"})");
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Complete);
+  writeText(c / "run" / "summary.json", R"({"stop_reason": "delta_max"})");
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Complete);
+}
+
+TEST_CASE("a sweep folder's cases are read from its manifest; a folder that is not one is refused") {
+  TemporaryFolder folder;
+  CHECK_THROWS_AS(readSweepFolder((folder.path / "none").string()), InputError);
+  CHECK_THROWS_AS(readSweepFolder(folder.path.string()), InputError);
+  writeText(folder.path / "sweep.json", R"({"keys": ["material.friction"], "cases": [
+    {"directory": "case_000", "values": [0.3]}, {"directory": "case_001", "values": [0.5]}]})");
+  writeText(folder.path / "case_001" / "scene.toml", "bundle = \"slab\"\n");
+  const std::vector<SweepCase> cases = readSweepFolder(folder.path.string());
+  REQUIRE(cases.size() == 2);
+  CHECK(cases[1].values == std::vector<double>{0.5});
+  CHECK(cases[1].scene == "bundle = \"slab\"\n");
+  CHECK(sweepCaseNumber(cases[1].dir) == 1);
+  writeText(folder.path / "sweep.json", R"({"keys": [], "cases": [{"directory": "results", "values": []}]})");
+  CHECK_THROWS_AS(readSweepFolder(folder.path.string()), InputError);
+  writeText(folder.path / "sweep.json", "{\"keys\": [");
+  CHECK_THROWS_AS(readSweepFolder(folder.path.string()), InputError);
+}
+
+TEST_CASE("the Slurm array specification joins runs of case numbers") {
+  CHECK(slurmArraySpec({0, 1, 2, 3}, 0) == "0-3");
+  CHECK(slurmArraySpec({10, 9, 3, 0, 1, 2, 7, 3}, 2) == "0-3,7,9-10%2");
+  CHECK(slurmArraySpec({5}, 0) == "5");
+}
+
+TEST_CASE("the batch script runs one case a task and checkpoints before the time limit") {
+  SlurmSettings s;
+  s.partition = "compute";
+  s.timeLimit = "02:00:00";
+  s.cpusPerTask = 4;
+  s.maxConcurrent = 8;
+  s.extraOptions = {"--account=proj42"};
+  const std::string script = slurmSweepScript("/scratch/E", "/opt/tessera/bin/tessera", s, {0, 1, 2, 5});
+  CHECK(script.rfind("#!/bin/bash\n", 0) == 0);
+  for (const char* line : {"#SBATCH --array=0-2,5%8\n", "#SBATCH --cpus-per-task=4\n", "#SBATCH --partition=compute\n",
+                           "#SBATCH --time=02:00:00\n", "#SBATCH --signal=B:TERM@120\n", "#SBATCH --requeue\n",
+                           "#SBATCH --output=/scratch/E/slurm/task_%A_%a.out\n", "#SBATCH --account=proj42\n",
+                           "exec '/opt/tessera/bin/tessera' sweep '/scratch/E' --case \"$SLURM_ARRAY_TASK_ID\" --threads "
+                           "\"${SLURM_CPUS_PER_TASK:-4}\"\n"})
+    CHECK(script.find(line) != std::string::npos);
+  // Every #SBATCH line before the first command (sbatch stops reading them there).
+  CHECK(script.rfind("#SBATCH") < script.find("\nexec "));
+}
+
+TEST_CASE("Slurm settings sbatch would refuse, and folders it cannot name, are refused") {
+  const std::string folder = "/scratch/E";
+  CHECK_NOTHROW(checkSlurmSettings({}, folder));
+  for (const char* time : {"30", "02:00:00", "1-12", "1-12:30:00", "UNLIMITED"})
+    CHECK_NOTHROW(checkSlurmSettings({"", time, 1, 0, {}}, folder));
+  for (const char* time : {"2h", "02:00:00:00", "-1", "1-"})
+    CHECK_THROWS_AS(checkSlurmSettings({"", time, 1, 0, {}}, folder), InputError);
+  CHECK_THROWS_AS(checkSlurmSettings({"a b", "", 1, 0, {}}, folder), InputError);
+  CHECK_THROWS_AS(checkSlurmSettings({"", "", 0, 0, {}}, folder), InputError);
+  CHECK_THROWS_AS(checkSlurmSettings({"", "", 1, -1, {}}, folder), InputError);
+  CHECK_THROWS_AS(checkSlurmSettings({"", "", 1, 0, {"account=x"}}, folder), InputError);
+  CHECK_THROWS_AS(checkSlurmSettings({}, "/scratch/my runs/E"), InputError);
+  CHECK_THROWS_AS(checkSlurmSettings({}, "/scratch/E%1"), InputError);
+}
+
+TEST_CASE("the record of Slurm submissions keeps the settings and every job, oldest first") {
+  TemporaryFolder folder;
+  CHECK(readSlurmRecord(folder.path.string()).jobs.empty());
+  fs::create_directories(folder.path / "slurm");
+  SlurmRecord record;
+  record.settings = {"compute", "01:00:00", 2, 4, {"--qos=long"}};
+  record.jobs = {{"41", {0, 1, 2, 3}}, {"57", {1}}};
+  writeSlurmRecord(folder.path.string(), record);
+  const SlurmRecord back = readSlurmRecord(folder.path.string());
+  CHECK(back.settings.partition == "compute");
+  CHECK(back.settings.timeLimit == "01:00:00");
+  CHECK(back.settings.cpusPerTask == 2);
+  CHECK(back.settings.maxConcurrent == 4);
+  CHECK(back.settings.extraOptions == std::vector<std::string>{"--qos=long"});
+  REQUIRE(back.jobs.size() == 2);
+  CHECK(back.jobs[1].id == "57");
+  CHECK(back.jobs[1].cases == std::vector<int>{1});
+  writeText(folder.path / "slurm" / "jobs.json", "{\"jobs\": 3}");
+  CHECK_THROWS_AS(readSlurmRecord(folder.path.string()), InputError);
+}
