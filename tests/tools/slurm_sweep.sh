@@ -13,16 +13,16 @@ set -euo pipefail
 tessera=$1 source=$2
 skip() { echo "SKIPPED: $*"; exit 77; }
 
+[ "$(id -u)" -eq 0 ] || skip "slurmd must run as root to start jobs (and apt-get to install Slurm)"
+export PATH=$PATH:/usr/sbin:/sbin  # slurmctld, slurmd, munged
 if ! command -v slurmctld > /dev/null || ! command -v slurmd > /dev/null || ! command -v sbatch > /dev/null ||
    ! command -v munged > /dev/null; then
-  sudo_cmd=()
-  if [ "$(id -u)" -ne 0 ]; then sudo -n true 2> /dev/null || skip "Slurm is not installed and apt-get needs root"; sudo_cmd=(sudo -n); fi
   echo "installing Debian's Slurm and munge"
-  "${sudo_cmd[@]}" apt-get update -q > /dev/null || true
-  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends \
-    slurmctld slurmd slurm-client munge > /dev/null || skip "apt-get could not install slurmctld slurmd slurm-client munge"
+  install=(env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends slurmctld slurmd slurm-client munge)
+  # The package lists setup.sh fetched usually serve; fetched again only when they do not.
+  "${install[@]}" > /dev/null 2>&1 || { apt-get update -q > /dev/null && "${install[@]}" > /dev/null; } ||
+    skip "apt-get could not install slurmctld slurmd slurm-client munge"
 fi
-[ "$(id -u)" -eq 0 ] || skip "slurmd must run as root to start jobs"
 python=/usr/bin/python3
 
 source "$(dirname "${BASH_SOURCE[0]}")/small_slab.sh"  # $work/slab
