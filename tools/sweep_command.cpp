@@ -43,7 +43,9 @@ struct SweepArguments {
   // Slurm
   bool slurm = false, dryRun = false;
   SlurmSettings settings;
-  bool settingsGiven[5] = {};  // partition, time, cpus-per-task, max-concurrent, sbatch: given on this command line
+  struct {
+    bool partition = false, time = false, cpusPerTask = false, maxConcurrent = false, sbatch = false;
+  } given;  // the Slurm settings given on this command line
   // On a sweep folder
   bool status = false, json = false, resubmit = false;
   int caseNumber = -1;
@@ -139,11 +141,11 @@ std::vector<int> caseNumbers(const std::vector<const SweepCase*>& cases) {
 }
 
 SlurmSettings settingsOver(SlurmSettings base, const SweepArguments& a) {
-  if (a.settingsGiven[0]) base.partition = a.settings.partition;
-  if (a.settingsGiven[1]) base.timeLimit = a.settings.timeLimit;
-  if (a.settingsGiven[2]) base.cpusPerTask = a.settings.cpusPerTask;
-  if (a.settingsGiven[3]) base.maxConcurrent = a.settings.maxConcurrent;
-  if (a.settingsGiven[4]) base.extraOptions = a.settings.extraOptions;
+  if (a.given.partition) base.partition = a.settings.partition;
+  if (a.given.time) base.timeLimit = a.settings.timeLimit;
+  if (a.given.cpusPerTask) base.cpusPerTask = a.settings.cpusPerTask;
+  if (a.given.maxConcurrent) base.maxConcurrent = a.settings.maxConcurrent;
+  if (a.given.sbatch) base.extraOptions = a.settings.extraOptions;
   return base;
 }
 
@@ -182,7 +184,7 @@ int newSweep(const SweepArguments& a) {
   for (const auto& s : a.sets) plan.axes.push_back(parseSweepAxis(s, a.maxCases));
   std::vector<SweepCase> cases = sweepCases(plan);  // all checked before anything is made
   SlurmSettings settings = a.settings;
-  if (!a.settingsGiven[2]) settings.cpusPerTask = a.threads;
+  if (!a.given.cpusPerTask) settings.cpusPerTask = a.threads;
   if (a.slurm) checkSlurmSettings(settings, fs::absolute(a.output).lexically_normal().string());
   const int jobs = a.slurm ? 1 : jobsFor(a);
 
@@ -284,7 +286,7 @@ int resubmit(const SweepArguments& a) {
   }
   if (slurm) {
     SlurmSettings base = record.jobs.empty() ? SlurmSettings{} : record.settings;
-    if (record.jobs.empty() && !a.settingsGiven[2]) base.cpusPerTask = a.threads;
+    if (record.jobs.empty() && !a.given.cpusPerTask) base.cpusPerTask = a.threads;
     submitToSlurm(a.target, settingsOver(base, a), caseNumbers(pending), a.dryRun);
     return 0;
   }
@@ -303,6 +305,7 @@ int runSweep(const SweepArguments& a) {
   if (a.threads < 1) throw InputError("--threads must be at least 1 per case, got " + std::to_string(a.threads));
   const int modes = (a.status ? 1 : 0) + (a.resubmit ? 1 : 0) + (a.caseNumber >= 0 ? 1 : 0);
   if (modes > 1) throw InputError("give one of --status, --resubmit, --case");
+  if (a.json && !a.status) throw InputError("--json goes with --status: tessera sweep DIR --status --json");
   if (modes == 1 && (!a.sets.empty() || !a.output.empty()))
     throw InputError("--status, --resubmit and --case take the sweep folder in place of the scene, without -o or --set: "
                      "tessera sweep DIR --status");
@@ -334,15 +337,15 @@ void addSweepCommand(CLI::App& app) {
   const std::string slurmGroup = "Slurm (docs/cluster.md)";
   cmd->add_flag("--slurm", args->slurm, "Submit the cases as a Slurm job array (sbatch) instead of running them here")->group(slurmGroup);
   cmd->add_option("--partition", args->settings.partition, "Slurm partition")->group(slurmGroup)
-      ->each([args](const std::string&) { args->settingsGiven[0] = true; });
+      ->each([args](const std::string&) { args->given.partition = true; });
   cmd->add_option("--time", args->settings.timeLimit, "Time limit per case, HH:MM:SS (a case checkpoints 2 min before it)")
-      ->group(slurmGroup)->each([args](const std::string&) { args->settingsGiven[1] = true; });
+      ->group(slurmGroup)->each([args](const std::string&) { args->given.time = true; });
   cmd->add_option("--cpus-per-task", args->settings.cpusPerTask, "Cores per case, also its threads [default: --threads]")
-      ->group(slurmGroup)->each([args](const std::string&) { args->settingsGiven[2] = true; });
+      ->group(slurmGroup)->each([args](const std::string&) { args->given.cpusPerTask = true; });
   cmd->add_option("--max-concurrent", args->settings.maxConcurrent, "Cases running at once on the cluster [default: no limit]")
-      ->group(slurmGroup)->each([args](const std::string&) { args->settingsGiven[3] = true; });
+      ->group(slurmGroup)->each([args](const std::string&) { args->given.maxConcurrent = true; });
   cmd->add_option("--sbatch", args->settings.extraOptions, "A further sbatch option, e.g. --sbatch=--account=proj42 (repeat)")
-      ->group(slurmGroup)->allow_extra_args(false)->each([args](const std::string&) { args->settingsGiven[4] = true; });
+      ->group(slurmGroup)->allow_extra_args(false)->each([args](const std::string&) { args->given.sbatch = true; });
   cmd->add_flag("--dry-run", args->dryRun,
                 "Write the sweep folder and run nothing: with --slurm, write DIR/slurm/sweep.sbatch and print it; without, "
                 "print the command of each case to run (a job list for any launcher)")
