@@ -57,7 +57,7 @@ long folderLockHolder(const std::string& folder) {
     unsigned major = 0, minor = 0;
     unsigned long inode = 0;
     if (std::sscanf(id.c_str(), "%x:%x:%lu", &major, &minor, &inode) != 3) continue;
-    if (inode == file.st_ino && makedev(major, minor) == file.st_dev) return pid;
+    if (inode == file.st_ino && makedev(major, minor) == file.st_dev) return pid > 0 ? pid : -1;
   }
   return 0;
 }

@@ -19,9 +19,9 @@ private:
   int fd_ = -1;
 };
 
-/// The process id holding the FolderLock of `folder` on this machine, 0 when none does (or the
-/// folder has no lock file). Read from /proc/locks, so it never takes or delays the lock; a holder
-/// on another machine of a shared file system is not seen.
+/// The process id holding the FolderLock of `folder` on this machine (-1 for a holder in another
+/// pid namespace), 0 when none does or the folder has no lock file. Read from /proc/locks, so it
+/// never takes or delays the lock; a holder on another machine of a shared file system is not seen.
 long folderLockHolder(const std::string& folder);
 
 }  // namespace tessera

@@ -6,13 +6,34 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 namespace tessera {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// Seconds of a Slurm time limit already matched by the pattern below: MM, MM:SS, HH:MM:SS,
+// D-HH, D-HH:MM, D-HH:MM:SS.
+long timeLimitSeconds(const std::string& text) {
+  const std::size_t dash = text.find('-');
+  std::vector<long> parts;
+  std::stringstream in(dash == std::string::npos ? text : text.substr(dash + 1));
+  for (std::string part; std::getline(in, part, ':');) parts.push_back(std::stol(part));
+  if (dash != std::string::npos) {  // D-HH[:MM[:SS]]
+    parts.resize(3, 0);
+    return std::stol(text.substr(0, dash)) * 86400 + parts[0] * 3600 + parts[1] * 60 + parts[2];
+  }
+  if (parts.size() == 3) return parts[0] * 3600 + parts[1] * 60 + parts[2];
+  return parts[0] * 60 + (parts.size() == 2 ? parts[1] : 0);
+}
+
+}  // namespace
 
 void checkSlurmSettings(const SlurmSettings& s, const std::string& folder) {
   // sbatch reads #SBATCH lines word by word and expands % in file names: a path it would split or
@@ -23,6 +44,9 @@ void checkSlurmSettings(const SlurmSettings& s, const std::string& folder) {
   static const std::regex time(R"(^(\d+-\d+(:\d+){0,2}|\d+(:\d+){0,2}|UNLIMITED|INFINITE)$)");
   if (!s.timeLimit.empty() && !std::regex_match(s.timeLimit, time))
     throw InputError("--time '" + s.timeLimit + "': give Slurm's MM, HH:MM:SS or D-HH:MM:SS, e.g. --time 02:00:00");
+  if (!s.timeLimit.empty() && std::isdigit(static_cast<unsigned char>(s.timeLimit[0])) && timeLimitSeconds(s.timeLimit) < 300)
+    throw InputError("--time '" + s.timeLimit + "': under 5 minutes, each case would be told to checkpoint and stop (120 s "
+                     "before the limit) almost as it starts; give at least 00:05:00");
   static const std::regex name(R"(^[A-Za-z0-9_.,-]+$)");
   if (!s.partition.empty() && !std::regex_match(s.partition, name))
     throw InputError("--partition '" + s.partition + "': a partition name (letters, digits, _ . , -), e.g. --partition compute");
@@ -48,8 +72,11 @@ std::string slurmArraySpec(std::vector<int> numbers, int maxConcurrent) {
   return spec;
 }
 
-std::string slurmSweepScript(const std::string& folder, const std::string& tessera, const SlurmSettings& s,
+std::string slurmSweepScript(const std::string& folderGiven, const std::string& tessera, const SlurmSettings& s,
                              const std::vector<int>& caseNumbers) {
+  fs::path normal = fs::path(folderGiven).lexically_normal();
+  if (!normal.has_filename()) normal = normal.parent_path();  // "/scratch/E/" names /scratch/E
+  const std::string folder = normal.string();
   const auto quoted = [](const std::string& text) {
     std::string q = "'";
     for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -63,7 +90,7 @@ std::string slurmSweepScript(const std::string& folder, const std::string& tesse
                        "#   tessera sweep " + folder + " --status     where each case stands\n"
                        "#   tessera sweep " + folder + " --resubmit   submit the missing, failed and interrupted cases\n";
   const auto option = [&script](const std::string& text) { script += "#SBATCH " + text + "\n"; };
-  option("--job-name=tessera-" + fs::path(folder).filename().string());
+  option("--job-name=tessera-" + normal.filename().string());
   option("--array=" + slurmArraySpec(caseNumbers, s.maxConcurrent));
   option("--ntasks=1");
   option("--cpus-per-task=" + std::to_string(s.cpusPerTask));

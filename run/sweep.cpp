@@ -251,30 +251,60 @@ const char* caseStateName(CaseState state) {
   return "?";
 }
 
+namespace {
+
+std::string hostName() {
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  return host;
+}
+
+}  // namespace
+
+CaseState deadAttemptState(const std::string& caseDir) {
+  return fs::exists(fs::path(caseDir) / "run" / "checkpoint.h5") ? CaseState::Interrupted : CaseState::Failed;
+}
+
 CaseStatus sweepCaseStatus(const std::string& caseDir) {
   const fs::path dir(caseDir), run = dir / "run";
   CaseStatus status;
+  bool started = false;
   try {
-    const nlohmann::json exit = nlohmann::json::parse(readText(dir / "exit.json"));
-    status.exitStatus = exit.at("exit_status");
-    status.slurmJob = exit.value("slurm_job", "");
+    const nlohmann::json attempt = nlohmann::json::parse(readText(dir / "attempt.json"));
+    started = attempt.at("state") == "started";
+    status.exitStatus = started ? -1 : attempt.at("exit_status").get<int>();
+    status.slurmJob = attempt.value("slurm_job", "");
+    status.host = attempt.value("host", "");
   } catch (const std::exception&) {
-    // none recorded (never ran, or its runner was killed): the files below tell
+    // none recorded (never started by a runner): the files below tell
   }
-  if (sweepCaseComplete(run.string())) status.state = CaseState::Complete;
-  else if (folderLockHolder(run.string()) != 0) status.state = CaseState::Running;
-  else if (status.exitStatus >= 1 && status.exitStatus < 128) status.state = CaseState::Failed;  // 2 input, 3 unstable
-  else if (status.exitStatus >= 128 || fs::exists(run / "checkpoint.h5")) status.state = CaseState::Interrupted;
-  else if (fs::exists(run) || fs::exists(dir / "log.txt")) status.state = CaseState::Failed;
-  else status.state = CaseState::Missing;
+  if (sweepCaseComplete(run.string())) {
+    status.state = CaseState::Complete;
+  } else if (folderLockHolder(caseDir) != 0) {
+    status.state = CaseState::Running;
+  } else if (started) {
+    // Its runner has not recorded an end: alive elsewhere, or killed (here: its lock is free).
+    status.startedElsewhere = status.host != hostName();
+    status.state = status.startedElsewhere ? CaseState::Running : deadAttemptState(caseDir);
+  } else if (status.exitStatus == 130 || status.exitStatus == 128 + 15) {
+    status.state = CaseState::Interrupted;  // stopped by SIGINT or SIGTERM, its checkpoint written
+  } else if (status.exitStatus >= 0) {
+    status.state = CaseState::Failed;  // 2 bad input, 3 unstable, 128 + n killed by signal n; 0 with no complete summary
+  } else if (fs::exists(run / "checkpoint.h5")) {
+    status.state = CaseState::Interrupted;
+  } else if (fs::exists(run) || fs::exists(dir / "log.txt")) {
+    status.state = CaseState::Failed;
+  } else {
+    status.state = CaseState::Missing;
+  }
   return status;
 }
 
-void recordCaseExit(const std::string& caseDir, int exitStatus, const std::string& slurmJob) {
-  char host[256] = {};
-  ::gethostname(host, sizeof host - 1);
-  const nlohmann::json exit = {{"exit_status", exitStatus}, {"host", host}, {"slurm_job", slurmJob}};
-  writeTextFileSafely(fs::path(caseDir) / "exit.json", exit.dump(2) + "\n");
+void recordCaseAttempt(const std::string& caseDir, int exitStatus, const std::string& slurmJob) {
+  nlohmann::json attempt = {{"state", exitStatus < 0 ? "started" : "ended"}, {"host", hostName()},
+                            {"pid", static_cast<long>(::getpid())}, {"slurm_job", slurmJob}};
+  if (exitStatus >= 0) attempt["exit_status"] = exitStatus;
+  writeTextFileSafely(fs::path(caseDir) / "attempt.json", attempt.dump(2) + "\n");
 }
 
 bool sweepCaseComplete(const std::string& runDir) {
@@ -298,8 +328,9 @@ int writeSweepTables(const std::string& folder) {
   struct TablesLock {
     int fd;
     explicit TablesLock(const fs::path& path) : fd(::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
-      if (fd < 0 || ::flock(fd, LOCK_EX) != 0)
-        throw InputError(path.string() + ": cannot lock the sweep's tables; check the folder's permissions");
+      if (fd >= 0 && ::flock(fd, LOCK_EX) == 0) return;
+      if (fd >= 0) ::close(fd);
+      throw InputError(path.string() + ": cannot lock the sweep's tables; check the folder's permissions");
     }
     ~TablesLock() { ::close(fd); }
   } lock(dir / ".tables.lock");

@@ -59,22 +59,33 @@ int sweepCaseNumber(const std::string& caseDir);
 /// Where a case stands, from its files alone (whatever ran it: this machine or a cluster).
 enum class CaseState {
   Complete,     ///< its summary.json says it stopped at delta_max or by failure
-  Running,      ///< a process on this machine holds its run folder's lock
-  Interrupted,  ///< stopped by a signal (Ctrl-C, time limit, preemption, cancel): resumes from its checkpoint
-  Failed,       ///< its run ended with an error (exit status 2 input, 3 unstable), or started and left no record
+  Running,      ///< its runner holds the case's lock on this machine, or started it on another machine
+  Interrupted,  ///< stopped by SIGINT or SIGTERM (Ctrl-C, time limit, preemption, cancel), or its runner
+                ///< was killed after a checkpoint: resumes from its checkpoint
+  Failed,       ///< its run ended with an error (exit status 2 input, 3 unstable, killed by another
+                ///< signal), or its runner died before a checkpoint
   Missing,      ///< never started
 };
 const char* caseStateName(CaseState state);
 
+/// A case's state and what case_N/attempt.json records of its last attempt: written by the runner
+/// when it starts the case (state "started") and again when the run ends ("ended", exit status).
 struct CaseStatus {
   CaseState state = CaseState::Missing;
-  int exitStatus = -1;  ///< of its last run, as recorded in exit.json; -1 when none is recorded
-  std::string slurmJob; ///< the Slurm job (JOB_TASK) of its last run, "" when it ran here
+  int exitStatus = -1;   ///< of the last attempt that ended; -1 when none did
+  std::string slurmJob;  ///< the Slurm job (JOB_TASK) of the last attempt, "" when not a Slurm task
+  std::string host;      ///< where the last attempt ran
+  bool startedElsewhere = false;  ///< Running because an attempt started on another host and has not ended
 };
 CaseStatus sweepCaseStatus(const std::string& caseDir);
 
-/// Records how a case's run ended, for --status: case_N/exit.json {exit_status, host, slurm_job}.
-void recordCaseExit(const std::string& caseDir, int exitStatus, const std::string& slurmJob);
+/// The same, once the attempt that started elsewhere is known to be over (its Slurm task gone):
+/// interrupted when it left a checkpoint, else failed.
+CaseState deadAttemptState(const std::string& caseDir);
+
+/// Records the start (exitStatus < 0) or the end of an attempt at the case in case_N/attempt.json,
+/// with this host, this process and `slurmJob` ("" when not a Slurm task).
+void recordCaseAttempt(const std::string& caseDir, int exitStatus, const std::string& slurmJob);
 
 /// The table of response parameters of every complete case in the sweep folder (sweep.csv,
 /// sweep.h5); an interrupted or failed case is never tabled. Returns the number tabled. Safe to

@@ -57,10 +57,11 @@ SlurmTaskStates querySlurmTasks() {
   return states;
 }
 
-bool slurmTaskActive(const std::string& state) {
-  static const std::set<std::string> active{"PENDING", "RUNNING", "CONFIGURING", "COMPLETING", "REQUEUED", "REQUEUE_FED",
-                                            "REQUEUE_HOLD", "RESIZING", "SUSPENDED", "STAGE_OUT", "SIGNALING", "STOPPED"};
-  return active.count(state) > 0;
+std::string slurmTaskPhase(const std::string& state) {
+  static const std::set<std::string> queued{"PENDING", "REQUEUED", "REQUEUE_FED", "REQUEUE_HOLD", "RESV_DEL_HOLD"};
+  static const std::set<std::string> running{"RUNNING", "CONFIGURING", "COMPLETING", "RESIZING", "SUSPENDED",
+                                             "STAGE_OUT", "SIGNALING", "STOPPED"};
+  return queued.count(state) ? "queued" : running.count(state) ? "running" : "";
 }
 
 }  // namespace tessera::tools

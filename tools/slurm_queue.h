@@ -21,7 +21,8 @@ struct SlurmTaskStates {
 };
 SlurmTaskStates querySlurmTasks();
 
-/// A state in which Slurm will still run the task (queued, running, requeued, suspended).
-bool slurmTaskActive(const std::string& state);
+/// Where Slurm's state leaves a task: "queued" (it will run), "running" (running, suspended,
+/// completing), "" (ended, or unknown to Slurm).
+std::string slurmTaskPhase(const std::string& state);
 
 }  // namespace tessera::tools

@@ -55,43 +55,68 @@ struct SweepArguments {
 struct CaseReport {
   const SweepCase* sweepCase;
   CaseStatus files;
-  std::string state;       // complete, queued, running, interrupted, failed, missing
-  std::string slurmJob;    // JOB_TASK of its latest submission, "" if never submitted
+  std::string state;       // complete, queued, running, interrupted, failed, missing; unknown when Slurm cannot say
+  std::string slurmJob;    // JOB_TASK of its latest submission or attempt, "" if none
   std::string slurmState;  // squeue's state of that task, "" when Slurm no longer knows it
+  bool submitted = false;  // slurmJob is a submission recorded in DIR/slurm/jobs.json
 };
 
 std::vector<CaseReport> reportCases(const std::vector<SweepCase>& cases, const SlurmRecord& record,
                                     std::string* slurmProblem) {
+  std::vector<CaseReport> reports;
+  bool slurmJobs = !record.jobs.empty();
+  for (const SweepCase& c : cases) {
+    CaseReport r{&c, sweepCaseStatus(c.dir), "", "", "", false};
+    r.slurmJob = r.files.slurmJob;  // a task submitted by hand records its job when it starts
+    const int number = sweepCaseNumber(c.dir);
+    for (const SlurmJob& job : record.jobs)  // the latest submission of the case
+      if (std::find(job.cases.begin(), job.cases.end(), number) != job.cases.end()) {
+        r.slurmJob = job.id + "_" + std::to_string(number);
+        r.submitted = true;
+      }
+    slurmJobs = slurmJobs || !r.slurmJob.empty();
+    reports.push_back(r);
+  }
   SlurmTaskStates queue;
-  if (!record.jobs.empty()) {
+  if (slurmJobs) {
     queue = querySlurmTasks();
     if (slurmProblem && !queue.available) *slurmProblem = queue.problem;
   }
-  std::vector<CaseReport> reports;
-  for (const SweepCase& c : cases) {
-    CaseReport r{&c, sweepCaseStatus(c.dir), "", "", ""};
+  for (CaseReport& r : reports) {
     r.state = caseStateName(r.files.state);
-    const int number = sweepCaseNumber(c.dir);
-    for (const SlurmJob& job : record.jobs)  // the latest submission of the case
-      if (std::find(job.cases.begin(), job.cases.end(), number) != job.cases.end())
-        r.slurmJob = job.id + "_" + std::to_string(number);
-    if (!r.slurmJob.empty()) {
-      const auto found = queue.state.find({r.slurmJob.substr(0, r.slurmJob.find('_')), number});
-      if (found != queue.state.end()) r.slurmState = found->second;
-      if (r.files.state != CaseState::Complete && slurmTaskActive(r.slurmState))
-        r.state = r.slurmState == "PENDING" ? "queued" : "running";
+    if (r.files.state == CaseState::Complete || r.slurmJob.empty()) continue;
+    const std::size_t split = r.slurmJob.find('_');
+    const auto found = queue.state.find({r.slurmJob.substr(0, split), std::stoi(r.slurmJob.substr(split + 1))});
+    if (found != queue.state.end()) r.slurmState = found->second;
+    const std::string phase = slurmTaskPhase(r.slurmState);
+    if (!queue.available) {
+      if (r.submitted && r.files.state != CaseState::Running) r.state = "unknown";  // Slurm may hold it queued or running
+    } else if (!phase.empty()) {
+      r.state = phase;
+    } else if (r.files.startedElsewhere) {
+      r.state = caseStateName(deadAttemptState(r.sweepCase->dir));  // its task is over: its runner was killed
     }
-    reports.push_back(r);
   }
   return reports;
 }
 
-// The cases to run again: neither complete nor running (here or on Slurm).
-std::vector<const SweepCase*> casesToRun(const std::vector<CaseReport>& reports) {
+// The cases not left to another runner: neither queued nor running (here or on Slurm), nor of a
+// state Slurm cannot tell now; with `skipComplete`, not complete either.
+std::vector<const SweepCase*> casesToRun(const std::vector<CaseReport>& reports, bool skipComplete = true) {
   std::vector<const SweepCase*> pending;
   for (const CaseReport& r : reports)
-    if (r.state != "complete" && r.state != "running" && r.state != "queued") pending.push_back(r.sweepCase);
+    if ((r.state != "complete" || !skipComplete) && r.state != "running" && r.state != "queued" && r.state != "unknown")
+      pending.push_back(r.sweepCase);
   return pending;
+}
+
+// Refuses to start cases while Slurm cannot say which of the folder's cases it still holds.
+void requireKnownStates(const std::vector<CaseReport>& reports, const std::string& problem) {
+  const auto unknown = std::count_if(reports.begin(), reports.end(), [](const CaseReport& r) { return r.state == "unknown"; });
+  if (unknown > 0)
+    throw InputError("Slurm cannot say whether " + std::to_string(unknown) + " case(s) of this sweep are still queued or "
+                     "running (" + problem + "); run this where squeue answers, so that no case runs twice (or, "
+                     "when none of its jobs can run any more, remove its slurm/jobs.json)");
 }
 
 std::string valuesText(const std::vector<std::string>& keys, const std::vector<double>& values) {
@@ -117,15 +142,16 @@ void submitToSlurm(const std::string& folder, const SlurmSettings& settings, con
   const fs::path scriptPath = fs::path(dir) / "slurm" / "sweep.sbatch";
   fs::create_directories(scriptPath.parent_path());
   writeTextFileSafely(scriptPath, script);
+  SlurmRecord record = readSlurmRecord(dir);
+  record.settings = settings;  // kept with the script, so that --resubmit submits it as written
+  writeSlurmRecord(dir, record);
   if (dryRun) {
     std::printf("%s", script.c_str());
     std::printf("# written to %s (dry run: nothing submitted); submit it with: sbatch %s\n", scriptPath.c_str(),
                 scriptPath.c_str());
     return;
   }
-  SlurmRecord record = readSlurmRecord(dir);
   const std::string id = submitSlurmArray(scriptPath.string(), slurmArraySpec(numbers, settings.maxConcurrent), {});
-  record.settings = settings;
   record.jobs.push_back({id, numbers});
   writeSlurmRecord(dir, record);
   std::printf("sweep: submitted %zu case(s) of %s as Slurm job %s (array %s)\n"
@@ -191,8 +217,11 @@ int newSweep(const SweepArguments& a) {
   requireWritableDirectory(a.output);
   const FolderLock lock(a.output, "a sweep");
   cases = placeSweepCases(a.output, plan, cases, a.extend);
+  std::string problem;
+  const std::vector<CaseReport> reports = reportCases(cases, readSlurmRecord(a.output), &problem);
+  requireKnownStates(reports, problem);
   if (a.slurm || a.dryRun) {
-    const std::vector<const SweepCase*> pending = casesToRun(reportCases(cases, readSlurmRecord(a.output), nullptr));
+    const std::vector<const SweepCase*> pending = casesToRun(reports);
     if (!a.slurm) {
       printJobList(a.output, pending, a.threads);
       return 0;
@@ -205,7 +234,12 @@ int newSweep(const SweepArguments& a) {
     submitToSlurm(a.output, settings, numbers, a.dryRun);
     return 0;
   }
-  const int status = runSweepCases(cases, jobs, a.threads, "");
+  std::vector<SweepCase> here;  // all but those queued or running elsewhere (complete ones are reported as such)
+  for (const SweepCase* c : casesToRun(reports, false)) here.push_back(*c);
+  if (here.size() < cases.size())
+    std::fprintf(stderr, "sweep: %zu case(s) queued or running elsewhere (Slurm or another process) left to it\n",
+                 cases.size() - here.size());
+  const int status = runSweepCases(here, jobs, a.threads, "");
   printFinish(a.output, status);
   return status;
 }
@@ -219,7 +253,11 @@ int runOneCase(const SweepArguments& a) {
     const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
     const std::string slurmJob = job && task ? std::string(job) + "_" + task : "";
     const int status = runSweepCases({c}, 1, a.threads, slurmJob);
-    writeSweepTables(a.target);
+    try {
+      writeSweepTables(a.target);
+    } catch (const std::exception& e) {  // the case's own result stands; the next writer tables it
+      std::fprintf(stderr, "sweep: warning: the tables were not rewritten: %s\n", e.what());
+    }
     return status;
   }
   throw InputError(a.target + ": has no case_" + std::to_string(a.caseNumber) + " (sweep.json lists " +
@@ -232,7 +270,8 @@ int printStatus(const SweepArguments& a) {
   std::string slurmProblem;
   const SlurmRecord record = readSlurmRecord(a.target);
   const std::vector<CaseReport> reports = reportCases(cases, record, &slurmProblem);
-  std::map<std::string, int> counts{{"complete", 0}, {"queued", 0}, {"running", 0}, {"interrupted", 0}, {"failed", 0}, {"missing", 0}};
+  std::map<std::string, int> counts{{"complete", 0}, {"queued", 0},  {"running", 0}, {"interrupted", 0},
+                                    {"failed", 0},   {"missing", 0}, {"unknown", 0}};
   for (const CaseReport& r : reports) ++counts[r.state];
   const std::vector<std::string> keys = sweepKeys(a.target);
   if (a.json) {
@@ -250,9 +289,10 @@ int printStatus(const SweepArguments& a) {
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
   }
-  std::printf("sweep %s: %zu cases: %d complete, %d queued, %d running, %d interrupted, %d failed, %d missing\n",
+  std::printf("sweep %s: %zu cases: %d complete, %d queued, %d running, %d interrupted, %d failed, %d missing%s\n",
               a.target.c_str(), cases.size(), counts["complete"], counts["queued"], counts["running"], counts["interrupted"],
-              counts["failed"], counts["missing"]);
+              counts["failed"], counts["missing"],
+              counts["unknown"] ? (", " + std::to_string(counts["unknown"]) + " unknown").c_str() : "");
   if (!slurmProblem.empty()) std::printf("(Slurm's state not available: %s; the case files tell the rest)\n", slurmProblem.c_str());
   for (const CaseReport& r : reports) {
     std::string detail;
@@ -276,17 +316,21 @@ int printStatus(const SweepArguments& a) {
 int resubmit(const SweepArguments& a) {
   const std::vector<SweepCase> cases = readSweepFolder(a.target);
   const SlurmRecord record = readSlurmRecord(a.target);
-  const bool slurm = a.slurm || !record.jobs.empty() || fs::exists(fs::path(a.target) / "slurm" / "sweep.sbatch");
+  const bool slurm = a.slurm || fs::exists(fs::path(a.target) / "slurm" / "jobs.json");
   const FolderLock lock(a.target, "a sweep");
-  const std::vector<const SweepCase*> pending = casesToRun(reportCases(cases, record, nullptr));
+  std::string problem;
+  const std::vector<CaseReport> reports = reportCases(cases, record, &problem);
+  requireKnownStates(reports, problem);
+  const std::vector<const SweepCase*> pending = casesToRun(reports);
   if (pending.empty()) {
     std::printf("sweep: every case of %s is complete, queued or running; nothing to resubmit\n", a.target.c_str());
     writeSweepTables(a.target);
     return 0;
   }
   if (slurm) {
-    SlurmSettings base = record.jobs.empty() ? SlurmSettings{} : record.settings;
-    if (record.jobs.empty() && !a.given.cpusPerTask) base.cpusPerTask = a.threads;
+    const bool recorded = fs::exists(fs::path(a.target) / "slurm" / "jobs.json");
+    SlurmSettings base = recorded ? record.settings : SlurmSettings{};
+    if (!recorded && !a.given.cpusPerTask) base.cpusPerTask = a.threads;
     submitToSlurm(a.target, settingsOver(base, a), caseNumbers(pending), a.dryRun);
     return 0;
   }
@@ -322,7 +366,7 @@ void addSweepCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "sweep", "Run a scene over parameter values (a list, a range, or a grid of two), cases in parallel here or as a Slurm job array.");
   cmd->add_option("scene", args->target, "Base scene file (TOML); with --status, --resubmit or --case: the sweep folder")->required();
-  cmd->add_option("-o,--output", args->output, "Sweep directory: case_NNN/ (scene.toml, run/, log.txt, exit.json), sweep.json, sweep.csv");
+  cmd->add_option("-o,--output", args->output, "Sweep directory: case_NNN/ (scene.toml, run/, log.txt, attempt.json), sweep.json, sweep.csv");
   cmd->add_option("--set", args->sets,
                   "KEY=v1,v2,... or KEY=first:last:count, SI units; KEY is table.key of the scene or E, mu, speed, radius, "
                   "density; repeat for a grid");
@@ -378,7 +422,11 @@ void addSweepCommand(CLI::App& app) {
   rep->callback([report] {
     if (!fs::exists(fs::path(report->first) / "sweep.json"))
       throw InputError(report->first + ": not a sweep folder (no sweep.json); give the -o folder of tessera sweep");
-    writeSweepTables(report->first);  // from the case folders as they stand, whatever ran them
+    try {
+      writeSweepTables(report->first);  // from the case folders as they stand, whatever ran them
+    } catch (const std::exception& e) {  // a folder shared read-only: its tables as they are
+      std::fprintf(stderr, "report: warning: drawing sweep.csv as it is (not rewritten: %s)\n", e.what());
+    }
     std::vector<std::string> arguments{report->first};
     if (!report->second.empty()) arguments.insert(arguments.end(), {"--experiments", report->second});
     const int status = runPlotScript("report_sweep.py", arguments, "");

@@ -1,6 +1,7 @@
 #include "tools/sweep_runner.h"
 
 #include "io/folder_lock.h"
+#include "io/input_error.h"
 #include "tools/child_process.h"
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <unistd.h>
@@ -47,11 +49,16 @@ int runSweepCases(const std::vector<SweepCase>& cases, int jobs, int threads, co
         std::fprintf(stderr, "sweep: %s already complete\n", name.c_str());
         continue;
       }
-      if (const long holder = folderLockHolder(run.string())) {
+      // The case's own lock for the whole attempt: one runner a case, whatever started them.
+      std::unique_ptr<FolderLock> caseLock;
+      try {
+        caseLock = std::make_unique<FolderLock>(dir.string(), "this case");
+      } catch (const InputError&) {
         std::lock_guard<std::mutex> lock(print);
-        std::fprintf(stderr, "sweep: %s is running in another process (pid %ld); left to it\n", name.c_str(), holder);
+        std::fprintf(stderr, "sweep: %s is running in another process; left to it\n", name.c_str());
         continue;
       }
+      recordCaseAttempt(dir.string(), -1, slurmJob);
       const bool resume = fs::exists(run / "checkpoint.h5");
       std::vector<std::string> command{self, "run"};
       if (resume) command.insert(command.end(), {"--resume", run.string()});
@@ -66,7 +73,8 @@ int runSweepCases(const std::vector<SweepCase>& cases, int jobs, int threads, co
       if (sweepStopRequested) ::kill(pid, SIGINT);  // the signal came between the check and the start
       const int status = waitProcess(pid);
       runningCase[slot] = 0;
-      recordCaseExit(dir.string(), status, slurmJob);
+      recordCaseAttempt(dir.string(), status, slurmJob);
+      caseLock.reset();
       std::lock_guard<std::mutex> lock(print);
       if (status == 0) {
         std::fprintf(stderr, "sweep: %s done\n", name.c_str());

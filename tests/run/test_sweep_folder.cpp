@@ -39,30 +39,49 @@ TEST_CASE("a case's state is read from its files: missing, failed, interrupted, 
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Missing);
   CHECK(sweepCaseNumber(c.string()) == 7);
 
-  writeText(c / "log.txt", "run: ...\n");  // started, and its runner left no record (killed)
+  writeText(c / "log.txt", "run: ...\n");  // started by hand, no record, no checkpoint
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Failed);
   CHECK(sweepCaseStatus(c.string()).exitStatus == -1);
 
-  recordCaseExit(c.string(), 3, "41_7");
+  {  // a runner at work: it holds the case's lock and has recorded its start
+    const FolderLock lock(c.string(), "this case");
+    recordCaseAttempt(c.string(), -1, "41_7");
+    CHECK(folderLockHolder(c.string()) == ::getpid());
+    CHECK(sweepCaseStatus(c.string()).state == CaseState::Running);
+  }
+  CHECK(folderLockHolder(c.string()) == 0);
+  // Started here and never ended, lock free: its runner was killed before a checkpoint.
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Failed);
+  CHECK(!sweepCaseStatus(c.string()).startedElsewhere);
+
+  recordCaseAttempt(c.string(), 3, "41_7");
   const CaseStatus unstable = sweepCaseStatus(c.string());
   CHECK(unstable.state == CaseState::Failed);
   CHECK(unstable.exitStatus == 3);
   CHECK(unstable.slurmJob == "41_7");
 
   writeText(c / "run" / "checkpoint.h5", "");
-  recordCaseExit(c.string(), 130, "");
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Failed);  // its last run's error stands
+  recordCaseAttempt(c.string(), 130, "");
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Interrupted);
-  recordCaseExit(c.string(), 137, "");  // killed (a time limit's SIGKILL): resumes from its checkpoint
+  recordCaseAttempt(c.string(), 128 + 15, "");  // killed by SIGTERM
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Interrupted);
-  {
-    const FolderLock lock((c / "run").string(), "a run");
-    CHECK(folderLockHolder((c / "run").string()) == ::getpid());
-    CHECK(sweepCaseStatus(c.string()).state == CaseState::Running);
-  }
-  CHECK(folderLockHolder((c / "run").string()) == 0);
+  recordCaseAttempt(c.string(), 128 + 9, "");  // killed by SIGKILL (out of memory, say): not an interruption
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Failed);
+  recordCaseAttempt(c.string(), -1, "");  // started, runner gone, checkpoint there: resumable
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Interrupted);
 
+  // Started on another host and not ended: running as far as the files tell.
+  writeText(c / "attempt.json", R"({"state": "started", "host": "node-that-is-not-this-one", "pid": 1, "slurm_job": "9_7"})");
+  const CaseStatus elsewhere = sweepCaseStatus(c.string());
+  CHECK(elsewhere.state == CaseState::Running);
+  CHECK(elsewhere.startedElsewhere);
+  CHECK(elsewhere.slurmJob == "9_7");
+  CHECK(deadAttemptState(c.string()) == CaseState::Interrupted);
+
+  fs::remove(c / "attempt.json");
   writeText(c / "run" / "summary.json", R"({"stop_reason": "interrupted"})");
-  CHECK(sweepCaseStatus(c.string()).state == CaseState::Interrupted);
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Interrupted);  // by its checkpoint
   writeText(c / "run" / "summary.json", R"({"stop_reason": "failure"})");
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Complete);
   writeText(c / "run" / "summary.json", R"({"stop_reason": "delta_max"})");
@@ -100,9 +119,9 @@ TEST_CASE("the batch script runs one case a task and checkpoints before the time
   s.cpusPerTask = 4;
   s.maxConcurrent = 8;
   s.extraOptions = {"--account=proj42"};
-  const std::string script = slurmSweepScript("/scratch/E", "/opt/tessera/bin/tessera", s, {0, 1, 2, 5});
+  const std::string script = slurmSweepScript("/scratch/E/", "/opt/tessera/bin/tessera", s, {0, 1, 2, 5});
   CHECK(script.rfind("#!/bin/bash\n", 0) == 0);
-  for (const char* line : {"#SBATCH --array=0-2,5%8\n", "#SBATCH --cpus-per-task=4\n", "#SBATCH --partition=compute\n",
+  for (const char* line : {"#SBATCH --job-name=tessera-E\n", "#SBATCH --array=0-2,5%8\n", "#SBATCH --cpus-per-task=4\n", "#SBATCH --partition=compute\n",
                            "#SBATCH --time=02:00:00\n", "#SBATCH --signal=B:TERM@120\n", "#SBATCH --requeue\n",
                            "#SBATCH --output=/scratch/E/slurm/task_%A_%a.out\n", "#SBATCH --account=proj42\n",
                            "exec '/opt/tessera/bin/tessera' sweep '/scratch/E' --case \"$SLURM_ARRAY_TASK_ID\" --threads "
@@ -115,9 +134,9 @@ TEST_CASE("the batch script runs one case a task and checkpoints before the time
 TEST_CASE("Slurm settings sbatch would refuse, and folders it cannot name, are refused") {
   const std::string folder = "/scratch/E";
   CHECK_NOTHROW(checkSlurmSettings({}, folder));
-  for (const char* time : {"30", "02:00:00", "1-12", "1-12:30:00", "UNLIMITED"})
+  for (const char* time : {"30", "5", "00:05:00", "02:00:00", "1-0", "1-12", "1-12:30:00", "UNLIMITED"})
     CHECK_NOTHROW(checkSlurmSettings({"", time, 1, 0, {}}, folder));
-  for (const char* time : {"2h", "02:00:00:00", "-1", "1-"})
+  for (const char* time : {"2h", "02:00:00:00", "-1", "1-", "1", "4:59", "00:04:59", "0-0:4"})
     CHECK_THROWS_AS(checkSlurmSettings({"", time, 1, 0, {}}, folder), InputError);
   CHECK_THROWS_AS(checkSlurmSettings({"a b", "", 1, 0, {}}, folder), InputError);
   CHECK_THROWS_AS(checkSlurmSettings({"", "", 0, 0, {}}, folder), InputError);

@@ -4,9 +4,11 @@
 # this test's own temporary folder (its own slurm.conf, key, spool, state and ports), then:
 #  1. a 4-case sweep submitted with --slurm gives the same table (and final states, by digest) as
 #     the same sweep run here;
-#  2. in a second Slurm sweep one task is cancelled midway (scancel: SIGTERM), --status calls its
-#     case interrupted, --resubmit submits it alone and it resumes to the same result exactly;
-#     another is requeued midway (preemption's path) and resumes to the same result too.
+#  2. in a second Slurm sweep one task is cancelled midway (scancel: SIGTERM to all its processes),
+#     one is requeued midway (preemption's path: the task runs again and resumes), one gets SIGTERM
+#     at its batch shell alone (a time limit's warning, --signal=B:TERM); --status calls the
+#     cancelled and signalled cases interrupted, --resubmit submits those two alone and they
+#     resume; the table and final states equal the local sweep's.
 # Everything is shut down at the end. Skips (exit 77) only when the daemons cannot run here.
 # Usage: slurm_sweep.sh TESSERA SOURCE_DIR
 set -euo pipefail
@@ -135,7 +137,7 @@ grep -q -- "--array=0-3%2" "$work/slurm/slurm/sweep.sbatch"
 wait_complete "$work/slurm"
 echo "[${SECONDS} s] Slurm sweep done"
 same_results "$work/local" "$work/slurm"
-grep -q '"slurm_job": "[0-9]*_2"' "$work/slurm/case_002/exit.json"
+grep -q '"slurm_job": "[0-9]*_2"' "$work/slurm/case_002/attempt.json"
 
 # 2. One task cancelled midway, then --resubmit: it resumes and ends where the local run did.
 "$tessera" sweep "$work/scene.toml" -o "$work/cancel" "${cases[@]}" --slurm --max-concurrent 2 > /dev/null
@@ -152,17 +154,26 @@ scontrol requeue "${job}_2"
 for _ in $(seq 100); do [ "$(squeue -h -j "${job}_2" -o %T)" = PENDING ] && break; sleep 0.1; done
 scontrol update jobid="${job}_2" StartTime=now
 echo "[${SECONDS} s] requeued ${job}_2"
-for _ in $(seq 200); do [ "$(count "$work/cancel" interrupted)" -eq 1 ] && break; sleep 0.2; done
+# A time limit's warning: SIGTERM to the batch shell alone (--signal=B:TERM), which is the case's
+# runner: it passes the signal to the run, which checkpoints.
+for _ in $(seq 600); do [ -f "$work/cancel/case_003/run/checkpoint.h5" ] && break; sleep 0.05; done
+[ -f "$work/cancel/case_003/run/checkpoint.h5" ] || { echo "case_003 never checkpointed"; show_logs; exit 1; }
+scancel --batch --signal=TERM "${job}_3"
+echo "[${SECONDS} s] signalled the batch shell of ${job}_3"
+for _ in $(seq 200); do [ "$(count "$work/cancel" interrupted)" -eq 2 ] && break; sleep 0.2; done
 "$tessera" sweep "$work/cancel" --status | tee "$work/status.log"
-grep -q "case_001 *interrupted *slurm ${job}_1" "$work/status.log" ||
-  { echo "the cancelled case is not reported interrupted"; cat "$work/cancel/case_001/log.txt"; show_logs; exit 1; }
-grep -q '"exit_status": 130' "$work/cancel/case_001/exit.json"
+for n in 1 3; do
+  grep -q "case_00$n *interrupted *slurm ${job}_$n" "$work/status.log" ||
+    { echo "case_00$n is not reported interrupted"; cat "$work/cancel/case_00$n/log.txt"; show_logs; exit 1; }
+  grep -q '"exit_status": 130' "$work/cancel/case_00$n/attempt.json"
+done
 "$tessera" sweep "$work/cancel" --resubmit | tee "$work/resubmit.log"
-grep -q "submitted 1 case(s) .* (array 1%2)" "$work/resubmit.log"
+grep -q "submitted 2 case(s) .* (array 1,3%2)" "$work/resubmit.log"
 wait_complete "$work/cancel"
 echo "[${SECONDS} s] resubmitted case done"
 grep -q "resuming case_001" "$work/cancel/slurm/task_"*_1.out
+grep -q "resuming case_003" "$work/cancel/slurm/task_"*_3.out
 grep -q "resuming case_002" "$work/cancel/slurm/task_${job}_2.out" || { echo "the requeued case did not resume"; exit 1; }
 same_results "$work/local" "$work/cancel"
 "$tessera" sweep "$work/cancel" --resubmit | grep -q "nothing to resubmit"
-echo "ok: Slurm sweep equals the local one; a cancelled case resumed by --resubmit, a requeued one by Slurm, to the same results"
+echo "ok: Slurm sweep equals the local one; cancelled and signalled cases resumed by --resubmit, a requeued one by Slurm, to the same results"
