@@ -1,6 +1,6 @@
 // Solver speed on the default slab (7 x 7 planar blocks, 0.6 mm nodes, 0.25 mm voxels) during
 // indentation: time per step and node-vs-level-set evaluations per second per core, with 1 and
-// 2 threads, for the exact convex level sets (default) and the grids.
+// 2 threads, for the exact convex level sets (default), the exact mesh level sets and the grids.
 // Run: build/bench/bench_solver --benchmark_min_time=3   (results: bench/README.md)
 #include "bench/default_slab.h"
 #include "solver/world.h"
@@ -18,11 +18,12 @@ const Bundle& defaultSlab() {
   return slab;
 }
 
-// Arguments: threads, exact convex level sets (1) or grids (0).
+// Arguments: threads, level-set path (0 exact planes, 1 exact mesh, 2 grid).
 void IndentationStep(benchmark::State& state) {
   SolverSettings s;
   s.threads = static_cast<int>(state.range(0));
-  s.exactConvexLevelSets = state.range(1) != 0;
+  s.exactConvexLevelSets = state.range(1) == 0;
+  s.exactMeshLevelSets = state.range(1) == 1;
   s.localDamping = 0.3;
   World world(defaultSlab(), ContactParameters{}, s);
   SphereObstacle indenter;
@@ -47,5 +48,8 @@ void IndentationStep(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(IndentationStep)->Args({1, 1})->Args({2, 1})->Args({1, 0})->Args({2, 0})->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(IndentationStep)
+    ->ArgNames({"threads", "path"})
+    ->Args({1, 0})->Args({2, 0})->Args({1, 1})->Args({2, 1})->Args({1, 2})->Args({2, 2})
+    ->Unit(benchmark::kMicrosecond)->UseRealTime();
 BENCHMARK_MAIN();

@@ -1,13 +1,25 @@
 #include "levelset/shape.h"
 
+#include "levelset/mesh_sdf_builder.h"
+
 #include <cstdio>
 
 namespace tessera {
 
-std::string levelSetPath(const Shape& shape, bool exactConvexLevelSets) {
-  if (!shape.convex) return "grid (not convex)";
-  if (!exactConvexLevelSets) return "grid (exact planes off)";
+void deriveLevelSets(Shape& shape) {
+  shape.convex = fitConvexPolyhedron(shape.mesh);
+  shape.exactMesh = buildMeshSdf(shape.mesh, shape.sdf, kExactMeshBandVoxels * shape.sdf.voxelSize);
+}
+
+std::string levelSetPath(const Shape& shape, bool exactConvexLevelSets, bool exactMeshLevelSets) {
   char buffer[96];
+  if (!shape.convex || !exactConvexLevelSets) {
+    if (!exactMeshLevelSets || shape.exactMesh.empty())
+      return shape.convex ? "grid (exact planes and mesh off)" : "grid (not convex; exact mesh off)";
+    std::snprintf(buffer, sizeof buffer, "exact mesh (%zu triangles%s)", shape.exactMesh.triangles.size(),
+                  shape.convex ? "; exact planes off" : ", not convex");
+    return buffer;
+  }
   std::snprintf(buffer, sizeof buffer, "exact planes (%zu faces, convex to %.2g mm)", shape.convex->planes.size(),
                 shape.convex->deviation * 1e3);
   return buffer;

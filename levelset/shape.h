@@ -5,6 +5,7 @@
 #include "geometry/surface_nodes.h"
 #include "geometry/triangle_mesh.h"
 #include "levelset/dense_sdf.h"
+#include "levelset/mesh_sdf.h"
 
 #include <optional>
 #include <string>
@@ -51,10 +52,23 @@ struct Shape {
   /// Body frame: the face planes when the mesh is convex to within the data's precision
   /// (fitConvexPolyhedron); the solver then uses them as an exact level set instead of the grid.
   std::optional<ConvexFit> convex;
+  /// Body frame: the exact level set of the mesh near its surface, used where the planes are not
+  /// (derived from `mesh` and `sdf` when the shape is made or read; not stored).
+  MeshSdf exactMesh;
 };
 
+/// Within this many voxels of the surface, the exact mesh level set lists its triangles: more
+/// than the solver's candidate band (2.5 voxels at the default resolution), so that every node
+/// that can touch is evaluated exactly.
+constexpr int kExactMeshBandVoxels = 3;
+
+/// Derives the shape's level sets from its mesh and grid: the face planes when it is convex, and
+/// the exact mesh level set.
+void deriveLevelSets(Shape& shape);
+
 /// The level-set path a shape takes in the solver, as printed and stored: "exact planes (6 faces,
-/// convex to 2e-06 mm)" or "grid (not convex)"; "grid (planes off)" when exact planes are disabled.
-std::string levelSetPath(const Shape& shape, bool exactConvexLevelSets = true);
+/// convex to 2e-06 mm)", "exact mesh (212 triangles)", or "grid (...)" when the exact path is
+/// turned off.
+std::string levelSetPath(const Shape& shape, bool exactConvexLevelSets = true, bool exactMeshLevelSets = true);
 
 }  // namespace tessera

@@ -126,12 +126,11 @@ Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& 
   nodeOptions.featureAngle = resolved.featureAngle;
   shape.nodes = sampleSurfaceNodes(shape.mesh, features, nodeOptions);
 
-  shape.convex = fitConvexPolyhedron(shape.mesh);
-
   SignedDistanceOptions sdfOptions;
   sdfOptions.voxelSize = resolved.voxelSize;
   sdfOptions.exteriorBandVoxels = resolved.exteriorBandVoxels;
   shape.sdf = buildSignedDistance(shape.mesh, sdfOptions);
+  deriveLevelSets(shape);
   return shape;
 }
 

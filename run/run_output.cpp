@@ -98,7 +98,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   nlohmann::json shapes = nlohmann::json::array();
   for (const Shape& shape : bundle.shapes)
     shapes.push_back({{"name", shape.name},
-                      {"level_set", levelSetPath(shape, scene.solver.exactConvexLevelSets)},
+                      {"level_set", levelSetPath(shape, scene.solver.exactConvexLevelSets, scene.solver.exactMeshLevelSets)},
                       {"voxel_mm", shape.resolution.voxelSize * 1e3},
                       {"node_spacing_mm", shape.resolution.nodeSpacing * 1e3},
                       {"nodes", shape.nodes.size()}});

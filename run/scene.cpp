@@ -204,6 +204,7 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   solver.number("max_penetration", scene.solver.maxPenetration, 0, 1, "m; 0 = a quarter of the thinnest block");
   solver.number("broad_phase_margin", scene.solver.broadPhaseMargin, 0, 1, "m; 0 = 0.157 x the thinnest block");
   solver.boolean("exact_convex_level_sets", scene.solver.exactConvexLevelSets);
+  solver.boolean("exact_mesh_level_sets", scene.solver.exactMeshLevelSets);
   solver.finish();
 
   Table resolution(path, "resolution", root["resolution"].as_table());

@@ -237,7 +237,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
       const int rank = static_cast<int>(key & kRankMask);
       const Eigen::Vector3d xO = toO * sm.nodes.position[rank] + shift;
       Eigen::Vector3d normalO = Eigen::Vector3d::Zero();
-      const double phi = so.gridLevelSet(xO, normalO);
+      const double phi = so.meshLevelSet(xO, normalO);
       if (phi < 0)
         acc.add(key, RO * xO + other.position, RM * sm.nodes.normal[rank], 0.5 * sm.nodes.area[rank], RO * normalO,
                 -phi, node, other, side == 0);

@@ -1,6 +1,7 @@
 #pragma once
 #include "geometry/convex_planes.h"
 #include "levelset/dense_sdf.h"
+#include "levelset/mesh_sdf.h"
 #include "solver/contact_law.h"
 #include "solver/contact_parameters.h"
 #include "solver/node_bins.h"
@@ -13,12 +14,34 @@
 namespace tessera {
 
 /// What the solver keeps of a shape: its nodes binned, and its level set: the face planes of a
-/// convex polyhedron (exact, analytic) when the shape is one, else the signed-distance grid.
+/// convex polyhedron (exact, analytic) when the shape is one, else the exact mesh level set near
+/// the surface and the signed-distance grid beyond it.
 struct ShapeModel {
   NodeBins nodes;
   DenseSdf sdf;
   std::vector<FacePlane> planes;  ///< body frame; empty: use the grid
+  MeshSdf exactMesh;              ///< body frame; empty: the grid near the surface too
   double radius = 0.0;            ///< m, largest |node| (bounding sphere about the centroid)
+
+  /// The level set of a shape without planes at a body-frame point, as gridLevelSet: the exact
+  /// mesh level set where the grid's value is within its interpolation error of the surface or
+  /// inside, else the grid's value (most candidates are well outside). The grid's nodes hold the
+  /// exact phi, which is 1-Lipschitz, so its trilinear interpolation exceeds phi(x) by at most
+  /// sum_i w_i |v_i - x| <= (sqrt 3 / 2) h (the cell's centre): a grid value above that is a point
+  /// outside, whose value no force uses.
+  double meshLevelSet(const Eigen::Vector3d& x, Eigen::Vector3d& normal) const {
+    if (!exactMesh.empty()) {
+      const double outside = sdf.value(x);
+      if (outside > 0.8660254037844386 * sdf.voxelSize) return outside;
+      double phi;
+      Eigen::Vector3d gradient;
+      if (exactMesh.evaluate(x, phi, gradient)) {
+        if (phi < 0) normal = gradient;
+        return phi;
+      }
+    }
+    return gridLevelSet(x, normal);
+  }
 
   /// The grid's level set at a body-frame point: phi (m, < 0 inside; positive outside, also
   /// beyond the grid), and when phi < 0 its unit gradient in `normal`. About 1-Lipschitz (to the

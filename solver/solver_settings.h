@@ -31,6 +31,10 @@ struct SolverSettings {
   /// Convex polyhedral shapes (the planar and hex TIS blocks) use their face planes as an exact,
   /// analytic level set instead of the grid; false forces the grid everywhere.
   bool exactConvexLevelSets = true;
+  /// Shapes without exact planes (not convex, or planes off) use their exact mesh level set near
+  /// the surface (the distance to the closest triangle, signed by pseudo-normals) instead of the
+  /// grid; false leaves them the grid.
+  bool exactMeshLevelSets = true;
 };
 
 }  // namespace tessera

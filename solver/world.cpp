@@ -20,11 +20,12 @@ struct World::ThreadArena {
 
 namespace {
 
-ShapeModel makeShapeModel(const Shape& shape, bool exactConvex) {
+ShapeModel makeShapeModel(const Shape& shape, bool exactConvex, bool exactMesh) {
   ShapeModel m;
   m.nodes = makeNodeBins(shape.nodes);
   m.sdf = shape.sdf;
   if (exactConvex && shape.convex) m.planes = shape.convex->planes;
+  if (exactMesh && m.planes.empty()) m.exactMesh = shape.exactMesh;
   for (const auto& x : shape.nodes.positions) m.radius = std::max(m.radius, x.norm());
   return m;
 }
@@ -71,7 +72,7 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   if (!(settings.density > 0)) throw std::invalid_argument("density must be positive");
   if (settings.localDamping < 0 || settings.localDamping >= 1)
     throw std::invalid_argument("local damping must lie in [0, 1)");
-  for (const Shape& s : bundle.shapes) shapes_.push_back(makeShapeModel(s, settings.exactConvexLevelSets));
+  for (const Shape& s : bundle.shapes) shapes_.push_back(makeShapeModel(s, settings.exactConvexLevelSets, settings.exactMeshLevelSets));
   state_.bodies = makeRigidBodies(bundle, settings.density);
 
   double omega = 0.0, thinnest = std::numeric_limits<double>::infinity();

@@ -121,7 +121,7 @@ int runTest(const RunArguments& a) {
                world.timeStep(), world.automaticTimeStep());
   for (const Shape& shape : session->bundle().shapes)
     std::fprintf(stderr, "run: shape '%s': %s\n", shape.name.c_str(),
-                 levelSetPath(shape, session->scene().solver.exactConvexLevelSets).c_str());
+                 levelSetPath(shape, session->scene().solver.exactConvexLevelSets, session->scene().solver.exactMeshLevelSets).c_str());
 
   RunHooks hooks;
   hooks.progress = [](const Progress& p) {

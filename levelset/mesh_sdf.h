@@ -1,0 +1,133 @@
+#pragma once
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace tessera {
+
+/// The exact signed distance to a closed triangle mesh near its surface: for each cell of a
+/// grid (the voxels of the shape's DenseSdf), the few triangles that can hold the closest
+/// point of any point in the cell. Cells farther than `band` from the surface hold none; there the grid's
+/// value serves. Read-only and thread-safe.
+///
+///   phi(x) = s |x - q|,  q the closest point of the mesh to x,
+///   s = sign((x - q) . N), N the angle-weighted pseudo-normal of the feature (face, edge or
+///   vertex) holding q (Baerentzen & Aanaes, IEEE TVCG 11(3), 2005: the sign is exact for a
+///   closed, outward-oriented, manifold mesh),
+///   grad phi = s (x - q) / |x - q|  (N / |N| on the surface itself).
+struct MeshSdf {
+  /// One triangle: corners, unit face normal, and the pseudo-normals of its edges (corner k to
+  /// k+1: the sum of the unit normals of the two faces sharing it) and of its corners
+  /// (the angle-weighted sum of the unit normals of every face at the vertex).
+  struct Triangle {
+    std::array<Eigen::Vector3d, 3> corner;
+    Eigen::Vector3d normal;
+    std::array<Eigen::Vector3d, 3> edgeNormal;
+    std::array<Eigen::Vector3d, 3> vertexNormal;
+  };
+  std::vector<Triangle> triangles;
+  Eigen::Vector3d origin{0, 0, 0};        ///< m, lower corner of cell (0, 0, 0)
+  double cellSize = 0.0;                   ///< m
+  std::array<int, 3> cells{0, 0, 0};       ///< cells along x, y, z
+  double band = 0.0;                       ///< m, every point within this distance of the surface has a list
+  std::vector<std::uint32_t> cellStart;    ///< cell c's triangles: cellTriangles[cellStart[c] .. cellStart[c + 1])
+  std::vector<std::uint32_t> cellTriangles;  ///< each cell's in increasing distance from its centre
+  std::vector<float> centreDistance;         ///< m, of each listed triangle from its cell's centre (rounded down)
+
+  bool empty() const { return triangles.empty(); }
+
+  /// The exact phi (m, negative inside) and its unit gradient at x (body frame); false when x's
+  /// cell has no triangles (x outside the grid or farther than `band` from the surface).
+  bool evaluate(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& gradient) const {
+    const Eigen::Vector3d u = (x - origin) / cellSize;
+    if (!(u.minCoeff() >= 0)) return false;
+    const int i = static_cast<int>(u[0]), j = static_cast<int>(u[1]), k = static_cast<int>(u[2]);
+    if (i >= cells[0] || j >= cells[1] || k >= cells[2]) return false;
+    const std::size_t c = (static_cast<std::size_t>(i) * cells[1] + j) * cells[2] + k;
+    const std::uint32_t begin = cellStart[c], end = cellStart[c + 1];
+    if (begin == end) return false;
+    // Triangles in increasing distance from the cell's centre c: once a triangle's distance from c
+    // less |x - c| exceeds the best distance so far, neither it nor any later one can be closer.
+    const Eigen::Vector3d centre = origin + cellSize * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+    const double offCentre = (x - centre).norm();
+    double best = INFINITY;
+    Eigen::Vector3d closest = x, pseudoNormal = Eigen::Vector3d::UnitZ();
+    for (std::uint32_t n = begin; n < end; ++n) {
+      const double bound = centreDistance[n] - offCentre;
+      if (bound > 0 && bound * bound > best) break;
+      const Triangle& t = triangles[cellTriangles[n]];
+      Eigen::Vector3d q;
+      const Eigen::Vector3d* feature = nullptr;
+      closestPoint(x, t, q, feature);
+      const double d2 = (x - q).squaredNorm();
+      if (d2 < best) {
+        best = d2;
+        closest = q;
+        pseudoNormal = *feature;
+      }
+    }
+    const Eigen::Vector3d away = x - closest;
+    const double distance = std::sqrt(best);
+    const double sign = away.dot(pseudoNormal) < 0 ? -1.0 : 1.0;
+    phi = sign * distance;
+    gradient = distance > 0 ? Eigen::Vector3d(sign * away / distance) : Eigen::Vector3d(pseudoNormal.normalized());
+    return true;
+  }
+
+  /// The closest point q of triangle t to p and the pseudo-normal of the feature holding it
+  /// (Ericson, Real-Time Collision Detection, 2005, section 5.1.5: the Voronoi regions of the
+  /// vertices, then of the edges, else the face).
+  static void closestPoint(const Eigen::Vector3d& p, const Triangle& t, Eigen::Vector3d& q,
+                           const Eigen::Vector3d*& feature) {
+    const Eigen::Vector3d& a = t.corner[0];
+    const Eigen::Vector3d& b = t.corner[1];
+    const Eigen::Vector3d& c = t.corner[2];
+    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) {
+      q = a;
+      feature = &t.vertexNormal[0];
+      return;
+    }
+    const Eigen::Vector3d bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) {
+      q = b;
+      feature = &t.vertexNormal[1];
+      return;
+    }
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+      q = a + (d1 / (d1 - d3)) * ab;
+      feature = &t.edgeNormal[0];  // edge a-b
+      return;
+    }
+    const Eigen::Vector3d cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) {
+      q = c;
+      feature = &t.vertexNormal[2];
+      return;
+    }
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+      q = a + (d2 / (d2 - d6)) * ac;
+      feature = &t.edgeNormal[2];  // edge c-a
+      return;
+    }
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+      q = b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+      feature = &t.edgeNormal[1];  // edge b-c
+      return;
+    }
+    const double denominator = 1.0 / (va + vb + vc);
+    q = a + ab * (vb * denominator) + ac * (vc * denominator);
+    feature = &t.normal;
+  }
+};
+
+}  // namespace tessera
