@@ -43,9 +43,9 @@ struct MeshSdf {
   /// cell has no triangles (x outside the grid or farther than `band` from the surface).
   bool evaluate(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& gradient) const {
     const Eigen::Vector3d u = (x - origin) / cellSize;
-    if (!(u.minCoeff() >= 0)) return false;
+    // Compared as doubles first: NaN and far points never reach the integer conversion.
+    if (!(u.minCoeff() >= 0) || !(u[0] < cells[0] && u[1] < cells[1] && u[2] < cells[2])) return false;
     const int i = static_cast<int>(u[0]), j = static_cast<int>(u[1]), k = static_cast<int>(u[2]);
-    if (i >= cells[0] || j >= cells[1] || k >= cells[2]) return false;
     const std::size_t c = (static_cast<std::size_t>(i) * cells[1] + j) * cells[2] + k;
     const std::uint32_t begin = cellStart[c], end = cellStart[c + 1];
     if (begin == end) return false;
