@@ -27,7 +27,8 @@ Block makeBlock(bool wave) {
   const double theta = 5.0 * M_PI / 180;
   TriangleMesh mesh = wave ? makeWaveBlock(10e-3, 3.18e-3, theta, 0.2e-3, 1, 24) : makePlanarBlock(10e-3, 3.18e-3, theta);
   PrepLog log;
-  const Shape shape = buildShape(wave ? "wave" : "planar", std::move(mesh), {}, {}, "bench", log);
+  Shape shape = buildShape(wave ? "wave" : "planar", std::move(mesh), {}, {}, "bench", log);
+  deriveExactMesh(shape);
   Block b;
   b.model.sdf = shape.sdf;
   b.model.exactMesh = shape.exactMesh;

@@ -204,7 +204,7 @@ Shape readShape(hid_t shapes, const std::string& name) {
   if (dims.size() != 3 || dims[0] < 2 || dims[1] < 2 || dims[2] < 2 || !(s.sdf.voxelSize > 0))
     throw std::runtime_error(where + "/sdf is not a 3-D grid of at least 2 nodes per axis with a positive voxel size");
   for (int a = 0; a < 3; ++a) s.sdf.dims[a] = static_cast<int>(dims[a]);
-  deriveLevelSets(s);
+  s.convex = fitConvexPolyhedron(s.mesh);
   return s;
 }
 

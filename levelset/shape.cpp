@@ -6,8 +6,7 @@
 
 namespace tessera {
 
-void deriveLevelSets(Shape& shape) {
-  shape.convex = fitConvexPolyhedron(shape.mesh);
+void deriveExactMesh(Shape& shape) {
   shape.exactMesh = buildMeshSdf(shape.mesh, shape.sdf, kExactMeshBandVoxels * shape.sdf.voxelSize);
 }
 

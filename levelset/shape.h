@@ -52,8 +52,8 @@ struct Shape {
   /// Body frame: the face planes when the mesh is convex to within the data's precision
   /// (fitConvexPolyhedron); the solver then uses them as an exact level set instead of the grid.
   std::optional<ConvexFit> convex;
-  /// Body frame: the exact level set of the mesh near its surface, used where the planes are not
-  /// (derived from `mesh` and `sdf` when the shape is made or read; not stored).
+  /// Body frame: the exact level set of the mesh near its surface, used where the planes are not;
+  /// derived from `mesh` and `sdf` for a run (deriveExactMesh), not stored; empty until then.
   MeshSdf exactMesh;
 };
 
@@ -62,9 +62,9 @@ struct Shape {
 /// that can touch is evaluated exactly.
 constexpr int kExactMeshBandVoxels = 3;
 
-/// Derives the shape's level sets from its mesh and grid: the face planes when it is convex, and
-/// the exact mesh level set.
-void deriveLevelSets(Shape& shape);
+/// Derives the shape's exact mesh level set from its mesh and grid (for a run: tile, prep and
+/// inspect do not need it, and a bundle's reader does not build it).
+void deriveExactMesh(Shape& shape);
 
 /// The level-set path a shape takes in the solver, as printed and stored: "exact planes (6 faces,
 /// convex to 2e-06 mm)", "exact mesh (212 triangles)", or "grid (...)" when the exact path is

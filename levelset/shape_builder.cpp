@@ -130,7 +130,7 @@ Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& 
   sdfOptions.voxelSize = resolved.voxelSize;
   sdfOptions.exteriorBandVoxels = resolved.exteriorBandVoxels;
   shape.sdf = buildSignedDistance(shape.mesh, sdfOptions);
-  deriveLevelSets(shape);
+  shape.convex = fitConvexPolyhedron(shape.mesh);
   return shape;
 }
 

@@ -94,6 +94,8 @@ Bundle loadRunBundle(const Scene& scene, const RunLog& log) {
   const double tolerance = 0.1 * finestVoxel(bundle);
   refuseOverlaps(bundle, checkAssembly(bundle, tolerance, 0.5 * finestVoxel(bundle)), tolerance, scene.bundle + ": ",
                  "rebuild the bundle with tessera tile or assemble");
+  for (Shape& shape : bundle.shapes)  // the exact mesh level sets of the shapes that will use them
+    if (scene.solver.exactMeshLevelSets && !(shape.convex && scene.solver.exactConvexLevelSets)) deriveExactMesh(shape);
   return bundle;
 }
 
