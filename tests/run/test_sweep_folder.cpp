@@ -4,11 +4,11 @@
 #include "io/input_error.h"
 #include "run/slurm_sweep.h"
 #include "run/sweep.h"
+#include "tests/fixtures/temp_dir.h"
 
 #include <catch2/catch.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <unistd.h>
 
 using namespace tessera;
@@ -16,25 +16,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TemporaryFolder {
-  fs::path path;
-  TemporaryFolder() {
-    char name[] = "/tmp/tessera-sweep-test-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TemporaryFolder() { fs::remove_all(path); }
-};
-
 void writeText(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
-  std::ofstream(path) << text;
+  test::writeFile(path.string(), text);
 }
 
 }  // namespace
 
 TEST_CASE("a case's state is read from its files: missing, failed, interrupted, running, complete") {
-  TemporaryFolder folder;
-  const fs::path c = folder.path / "case_007";
+  test::TempDir folder;
+  const fs::path c = folder.path() / "case_007";
   fs::create_directories(c);
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Missing);
   CHECK(sweepCaseNumber(c.string()) == 7);
@@ -89,21 +80,21 @@ TEST_CASE("a case's state is read from its files: missing, failed, interrupted, 
 }
 
 TEST_CASE("a sweep folder's cases are read from its manifest; a folder that is not one is refused") {
-  TemporaryFolder folder;
-  CHECK_THROWS_AS(readSweepFolder((folder.path / "none").string()), InputError);
-  CHECK_THROWS_AS(readSweepFolder(folder.path.string()), InputError);
-  writeText(folder.path / "sweep.json", R"({"keys": ["material.friction"], "cases": [
+  test::TempDir folder;
+  CHECK_THROWS_AS(readSweepFolder((folder.path() / "none").string()), InputError);
+  CHECK_THROWS_AS(readSweepFolder(folder.path().string()), InputError);
+  writeText(folder.path() / "sweep.json", R"({"keys": ["material.friction"], "cases": [
     {"directory": "case_000", "values": [0.3]}, {"directory": "case_001", "values": [0.5]}]})");
-  writeText(folder.path / "case_001" / "scene.toml", "bundle = \"slab\"\n");
-  const std::vector<SweepCase> cases = readSweepFolder(folder.path.string());
+  writeText(folder.path() / "case_001" / "scene.toml", "bundle = \"slab\"\n");
+  const std::vector<SweepCase> cases = readSweepFolder(folder.path().string());
   REQUIRE(cases.size() == 2);
   CHECK(cases[1].values == std::vector<double>{0.5});
   CHECK(cases[1].scene == "bundle = \"slab\"\n");
   CHECK(sweepCaseNumber(cases[1].dir) == 1);
-  writeText(folder.path / "sweep.json", R"({"keys": [], "cases": [{"directory": "results", "values": []}]})");
-  CHECK_THROWS_AS(readSweepFolder(folder.path.string()), InputError);
-  writeText(folder.path / "sweep.json", "{\"keys\": [");
-  CHECK_THROWS_AS(readSweepFolder(folder.path.string()), InputError);
+  writeText(folder.path() / "sweep.json", R"({"keys": [], "cases": [{"directory": "results", "values": []}]})");
+  CHECK_THROWS_AS(readSweepFolder(folder.path().string()), InputError);
+  writeText(folder.path() / "sweep.json", "{\"keys\": [");
+  CHECK_THROWS_AS(readSweepFolder(folder.path().string()), InputError);
 }
 
 TEST_CASE("the Slurm array specification joins runs of case numbers") {
@@ -147,14 +138,14 @@ TEST_CASE("Slurm settings sbatch would refuse, and folders it cannot name, are r
 }
 
 TEST_CASE("the record of Slurm submissions keeps the settings and every job, oldest first") {
-  TemporaryFolder folder;
-  CHECK(readSlurmRecord(folder.path.string()).jobs.empty());
-  fs::create_directories(folder.path / "slurm");
+  test::TempDir folder;
+  CHECK(readSlurmRecord(folder.path().string()).jobs.empty());
+  fs::create_directories(folder.path() / "slurm");
   SlurmRecord record;
   record.settings = {"compute", "01:00:00", 2, 4, {"--qos=long"}};
   record.jobs = {{"41", {0, 1, 2, 3}}, {"57", {1}}};
-  writeSlurmRecord(folder.path.string(), record);
-  const SlurmRecord back = readSlurmRecord(folder.path.string());
+  writeSlurmRecord(folder.path().string(), record);
+  const SlurmRecord back = readSlurmRecord(folder.path().string());
   CHECK(back.settings.partition == "compute");
   CHECK(back.settings.timeLimit == "01:00:00");
   CHECK(back.settings.cpusPerTask == 2);
@@ -163,6 +154,6 @@ TEST_CASE("the record of Slurm submissions keeps the settings and every job, old
   REQUIRE(back.jobs.size() == 2);
   CHECK(back.jobs[1].id == "57");
   CHECK(back.jobs[1].cases == std::vector<int>{1});
-  writeText(folder.path / "slurm" / "jobs.json", "{\"jobs\": 3}");
-  CHECK_THROWS_AS(readSlurmRecord(folder.path.string()), InputError);
+  writeText(folder.path() / "slurm" / "jobs.json", "{\"jobs\": 3}");
+  CHECK_THROWS_AS(readSlurmRecord(folder.path().string()), InputError);
 }
