@@ -1,35 +1,38 @@
-// Solver speed on the default slab (7 x 7 planar blocks, 0.6 mm nodes, 0.25 mm voxels) during
-// indentation: time per step and node-vs-level-set evaluations per second per core, with 1 and
-// 2 threads, for the exact convex level sets (default), the exact mesh level sets and the grids.
+// Solver speed on the default slab (7 x 7 planar blocks, 0.6 mm nodes, 0.25 mm voxels) and on
+// 15 x 15 and 31 x 31 slabs of the same block during indentation: time per step, per node contact
+// and node-vs-level-set evaluations per second per core, with 1 and 2 threads, for the exact
+// convex level sets (default), the exact mesh level sets and the grids.
 // Run: build/bench/bench_solver --benchmark_min_time=3   (results: bench/README.md)
 #include "bench/default_slab.h"
 #include "solver/world.h"
 
 #include <benchmark/benchmark.h>
 
+#include <map>
 #include <memory>
 
 using namespace tessera;
 
 namespace {
 
-const Bundle& defaultSlab() {
-  static const Bundle slab = [] {
-    Bundle b = bench::defaultSlab();
-    for (Shape& shape : b.shapes) deriveExactMesh(shape);  // for path 1, as a run does
-    return b;
-  }();
-  return slab;
+const Bundle& slab(int blocksPerSide) {
+  static std::map<int, Bundle> slabs;
+  auto [it, added] = slabs.try_emplace(blocksPerSide);
+  if (added) {
+    it->second = bench::defaultSlab(blocksPerSide);
+    for (Shape& shape : it->second.shapes) deriveExactMesh(shape);  // for path 1, as a run does
+  }
+  return it->second;
 }
 
-// Arguments: threads, level-set path (0 exact planes, 1 exact mesh, 2 grid).
+// Arguments: threads, level-set path (0 exact planes, 1 exact mesh, 2 grid), blocks per side.
 void IndentationStep(benchmark::State& state) {
   SolverSettings s;
   s.threads = static_cast<int>(state.range(0));
   s.exactConvexLevelSets = state.range(1) == 0;
   s.exactMeshLevelSets = state.range(1) == 1;
   s.localDamping = 0.3;
-  World world(defaultSlab(), ContactParameters{}, s);
+  World world(slab(static_cast<int>(state.range(2))), ContactParameters{}, s);
   SphereObstacle indenter;
   indenter.center = Eigen::Vector3d(0, 0, 1.59e-3 + 2.5e-3 - 0.02e-3);  // already pressing
   indenter.velocity = Eigen::Vector3d(0, 0, -6e-3);
@@ -45,6 +48,9 @@ void IndentationStep(benchmark::State& state) {
   }
   state.counters["contacts_per_step"] = benchmark::Counter(static_cast<double>(contacts) / state.iterations());
   state.counters["evaluations_per_step"] = benchmark::Counter(static_cast<double>(evaluations) / state.iterations());
+  // Wall time per node contact (time / contacts, in ns).
+  state.counters["ns_per_contact"] =
+      benchmark::Counter(static_cast<double>(contacts) * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["evaluations_per_s_per_core"] =
       benchmark::Counter(static_cast<double>(evaluations) / static_cast<double>(s.threads), benchmark::Counter::kIsRate);
   state.counters["pairs"] = static_cast<double>(world.pairs().size());
@@ -53,7 +59,8 @@ void IndentationStep(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(IndentationStep)
-    ->ArgNames({"threads", "path"})
-    ->Args({1, 0})->Args({2, 0})->Args({1, 1})->Args({2, 1})->Args({1, 2})->Args({2, 2})
+    ->ArgNames({"threads", "path", "side"})
+    ->Args({1, 0, 7})->Args({2, 0, 7})->Args({1, 1, 7})->Args({2, 1, 7})->Args({1, 2, 7})->Args({2, 2, 7})
+    ->Args({1, 0, 15})->Args({2, 0, 15})->Args({1, 0, 31})->Args({2, 0, 31})
     ->Unit(benchmark::kMicrosecond)->UseRealTime();
 BENCHMARK_MAIN();

@@ -1,19 +1,9 @@
 #pragma once
 #include "solver/contact_parameters.h"
 
-#include <Eigen/Core>
-#include <algorithm>
-#include <cmath>
+#include <vector>
 
 namespace tessera {
-
-/// One node in contact, as the contact law sees it.
-struct NodeContactInput {
-  Eigen::Vector3d normal;            ///< unit, world: out of the other body, towards the node's body
-  double depth;                      ///< m, penetration d > 0
-  double area;                       ///< m^2, the node's effective area (see docs/physics.md)
-  Eigen::Vector3d relativeVelocity;  ///< m/s, node's body minus the other body, at the node
-};
 
 /// What the node contacts of a pair add up to over one step (docs/physics.md, "Energy balance").
 struct ContactTally {
@@ -28,53 +18,45 @@ struct ContactTally {
   int sliding = 0;        ///< node contacts at the Coulomb cap
 };
 
-/// Force (N, world) on the node's body from one node contact, and the update of its tangential
-/// spring (m, the elastic tangential displacement, carried from step to step). Sets `stored` to
-/// the contact's stored energy and adds it, and what it dissipated, to `tally` (J). Equations (docs/physics.md, "Contact law"):
+/// Node contacts evaluated together by the contact law: entries 0 .. count-1, one per node contact,
+/// each quantity in its own array (world frame, SI units), so that the law runs over the contacts
+/// in SIMD lanes. The arrays only grow: a batch reused step after step allocates nothing.
+struct NodeContactBatch {
+  int count = 0;
+  // In.
+  std::vector<double> nx, ny, nz;  ///< unit contact normal: out of the other body, towards the node's body
+  std::vector<double> depth;       ///< m, penetration d > 0
+  std::vector<double> area;        ///< m^2, the node's effective area a (docs/physics.md)
+  std::vector<double> vx, vy, vz;  ///< m/s, relative velocity at the node: node's body minus the other
+  // In and out: the tangential spring u (m), carried from step to step.
+  std::vector<double> ux, uy, uz;
+  // Out.
+  std::vector<double> fx, fy, fz;  ///< N, force on the node's body
+  std::vector<double> fn;          ///< N, its normal part f . n
+  std::vector<double> stored;      ///< J, the contact's stored energy
+  std::vector<double> friction;    ///< J, dissipated by sliding this step
+  std::vector<double> viscous;     ///< J, dissipated by the normal viscosity this step
+  std::vector<double> sliding;     ///< 1 at the Coulomb cap, else 0
+
+  /// Room for n entries (values unset); count unchanged.
+  void reserve(int n) {
+    if (n > static_cast<int>(depth.size())) grow(n);
+  }
+
+ private:
+  void grow(int n);
+};
+
+/// The contact law over entries 0 .. count-1 of a batch (docs/physics.md, "Contact law"): the force on each node's body and
+/// the update of its tangential spring,
 ///   f_n = k_n a d - eta_n a v_n, clipped at 0             (traction-based normal force)
 ///   u  <- u projected on the tangent plane, length kept   (history follows the contact frame)
 ///   u  <- u + v_t dt;  f_t = -k_t a u;  |f_t| <= mu f_n    (elastic spring capped by Coulomb; on
 ///                                                          sliding the spring is reset to the cap)
-/// With a per-node stiffness k (perNodeStiffness > 0) the products k_n a and k_t a become k and
-/// (k_t/k_n) k.
-inline Eigen::Vector3d contactForce(const ContactParameters& p, double kn, double kt, const NodeContactInput& c,
-                                    Eigen::Vector3d& spring, double& stored, double dt, ContactTally& tally) {
-  const Eigen::Vector3d& n = c.normal;
-  const double normalStiffness = p.perNodeStiffness > 0 ? p.perNodeStiffness : kn * c.area;
-  const double tangentStiffness = p.perNodeStiffness > 0 ? p.tangentialRatio * p.perNodeStiffness : kt * c.area;
-  const double vn = c.relativeVelocity.dot(n);
-  const double elastic = normalStiffness * c.depth;
-  const double fn = std::max(0.0, elastic - p.normalViscosity * c.area * vn);
-
-  // Turn the spring onto the tangent plane, keeping its length: u = (s - n (n.s)) |s| / |s - n (n.s)|.
-  Eigen::Vector3d u = spring;
-  const double along = n.dot(spring);
-  if (along != 0) {
-    const double length2 = spring.squaredNorm();
-    u -= along * n;
-    const double projected2 = u.squaredNorm();
-    if (projected2 > 0) u *= std::sqrt(length2 / projected2);
-  }
-  const Eigen::Vector3d turned = u, increment = (c.relativeVelocity - vn * n) * dt;
-  u += increment;
-  Eigen::Vector3d ft = -tangentStiffness * u;
-  const double cap = p.friction * fn, ft2 = ft.squaredNorm();
-  if (ft2 > cap * cap) {
-    // Sliding: f_t and u scaled back to the Coulomb cap (u = -f_t / k_t). Dissipated: the work
-    // put into the spring over the increment (trapezoidal, as a sticking spring stores it
-    // exactly) less what it now stores: k_t (u_0 + u) / 2 . du - k_t (|u|^2 - |u_0|^2) / 2.
-    const double scale = cap / std::sqrt(ft2);
-    ft *= scale;
-    u *= scale;
-    tally.friction += tangentStiffness * (0.5 * (turned + u).dot(increment) - 0.5 * (u.squaredNorm() - turned.squaredNorm()));
-    ++tally.sliding;
-  }
-  spring = u;
-  // The non-elastic part of the normal force, f_n - k_n a d, does the work (f_n - k_n a d) v_n dt.
-  tally.viscous += (elastic - fn) * vn * dt;
-  stored = 0.5 * elastic * c.depth + 0.5 * tangentStiffness * u.squaredNorm();
-  tally.elastic += stored;
-  return fn * n + ft;
-}
+/// with its stored energy 1/2 k_n a d^2 + 1/2 k_t a |u|^2 and what it dissipated. kn and kt in
+/// N/m^3; with a per-node stiffness k (perNodeStiffness > 0) the products k_n a and k_t a become k
+/// and (k_t/k_n) k. Each entry is computed on its own, by the same operations whatever the CPU's
+/// vector width (no fused multiply-add), so results do not depend on the machine.
+void applyContactLaw(const ContactParameters& p, double kn, double kt, double dt, NodeContactBatch& batch);
 
 }  // namespace tessera

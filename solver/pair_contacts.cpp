@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace tessera {
 
@@ -20,80 +21,347 @@ Eigen::AlignedBox3d regionInFrame(const Eigen::AlignedBox3d& otherBox, const Eig
   return Eigen::AlignedBox3d(centre - half, centre + half);
 }
 
-// A rigid motion as the contact law needs it: centroid, velocity, angular velocity (world).
+// A rigid motion: centroid, velocity, angular velocity (world).
 struct Motion {
   Eigen::Vector3d position, velocity, angularVelocity;
-  Eigen::Vector3d velocityAt(const Eigen::Vector3d& x) const { return velocity + angularVelocity.cross(x - position); }
 };
 
 Motion motionOf(const RigidBodies& bodies, int i) {
   return {bodies.position[i], bodies.velocity[i], bodies.angularVelocity(i)};
 }
 
-// Merge cursor over the previous step's contacts (sorted by key): the contact of a node that was
-// in contact, or none.
-struct History {
-  const std::vector<NodeContact>& previous;
-  std::size_t next = 0;
-  const NodeContact* find(std::uint32_t key) {
-    while (next < previous.size() && previous[next].key < key) ++next;
-    return next < previous.size() && previous[next].key == key ? &previous[next] : nullptr;
+constexpr std::uint32_t kRankMask = (1u << 31) - 1;
+
+// The node contacts of a pair, in key order (side 0, a's nodes in b, then side 1), gathered for
+// the contact law in one batch. Besides the law's inputs: each contact's key, its lever
+// r = x - c_a about body a's centroid (world), the sign of its force on a (+1: the node is a's),
+// and its area and stored energy before this step (area -1: a new contact). A contact with area
+// 0 is a node inside but facing away from the contact normal: the law's outputs are not used.
+struct PairBatch {
+  NodeContactBatch law;
+  std::vector<std::uint32_t> key;
+  std::vector<double> rx, ry, rz, sign, previousArea, previousEnergy;
+
+  int count() const { return law.count; }
+  /// Room for n contacts (values unset).
+  void reserve(int n) {
+    law.reserve(n);
+    if (static_cast<int>(key.size()) >= n) return;
+    const std::size_t size = law.depth.size();
+    key.resize(size);
+    for (auto* v : {&rx, &ry, &rz, &sign, &previousArea, &previousEnergy}) v->resize(size);
+  }
+  /// A new contact at the end; its index.
+  int append() {
+    reserve(law.count + 1);
+    return law.count++;
   }
 };
 
-// Shared per-node work: contact law, history, and the force on body a with its torque about a's
-// centroid; b's follow in finish() (equal and opposite force; torque moved by the short lever
-// between the two centroids, no cancellation against moments about a far origin).
+// The relative velocity at contacts first .. last-1 of one side (its nodes on body M, the other
+// side O): v_M - v_O + w_M x (x - c_M) - w_O x (x - c_O) = v0 + (w_M - w_O) x r with the lever
+// r = x - c_a, v0 = v_M - v_O + w_O x (c_O - c_a) - w_M x (c_M - c_a).
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void relativeVelocities(int first, int last, const Eigen::Vector3d& v0, const Eigen::Vector3d& spin,
+                        const double* __restrict rx, const double* __restrict ry, const double* __restrict rz,
+                        double* __restrict vx, double* __restrict vy, double* __restrict vz) {
+  const double ax = v0.x(), ay = v0.y(), az = v0.z(), wx = spin.x(), wy = spin.y(), wz = spin.z();
+#pragma omp simd
+  for (int i = first; i < last; ++i) {
+    vx[i] = ax + (wy * rz[i] - wz * ry[i]);
+    vy[i] = ay + (wz * rx[i] - wx * rz[i]);
+    vz[i] = az + (wx * ry[i] - wy * rx[i]);
+  }
+}
+
+// The face planes of a convex body expressed in another body's frame (x_O = R x_M + t), in hot
+// arrays: phi(p) = max_f (n_f . p - d_f), the exact level set of a convex polyhedron (1-Lipschitz),
+// evaluated without transforming p. With each plane's normal in the world frame.
+struct PlanesInFrame {
+  static constexpr int kMax = 64;  // ConvexFitOptions::maxPlanes' default
+  std::array<double, kMax> nx, ny, nz, offset;  // M's frame
+  std::array<double, kMax> wx, wy, wz;          // world
+  int count = 0;
+
+  // R, t: the other body's frame from M's; RM: M's orientation.
+  PlanesInFrame(const std::vector<FacePlane>& planes, const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                const Eigen::Matrix3d& RM)
+      : count(static_cast<int>(std::min<std::size_t>(planes.size(), kMax))) {
+    for (int f = 0; f < count; ++f) {
+      const Eigen::Vector3d n = R.transpose() * planes[f].normal, w = RM * n;
+      nx[f] = n.x();
+      ny[f] = n.y();
+      nz[f] = n.z();
+      offset[f] = planes[f].offset - planes[f].normal.dot(t);
+      wx[f] = w.x();
+      wy[f] = w.y();
+      wz[f] = w.z();
+    }
+  }
+  double phi(const Eigen::Vector3d& p, int& best) const {
+    best = 0;
+    double value = nx[0] * p.x() + ny[0] * p.y() + nz[0] * p.z() - offset[0];
+    for (int f = 1; f < count; ++f) {
+      const double v = nx[f] * p.x() + ny[f] * p.y() + nz[f] * p.z() - offset[f];
+      if (v > value) {
+        value = v;
+        best = f;
+      }
+    }
+    return value;
+  }
+};
+
+// PlanesInFrame::phi of n points at once (SIMD over the points, plane after plane), as it: the
+// first plane of largest value is the best.
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void planesPhi(const PlanesInFrame& planes, int n, const double* __restrict px, const double* __restrict py,
+               const double* __restrict pz, double* __restrict phi, int* __restrict best) {
+#pragma omp simd
+  for (int i = 0; i < n; ++i) {
+    phi[i] = planes.nx[0] * px[i] + planes.ny[0] * py[i] + planes.nz[0] * pz[i] - planes.offset[0];
+    best[i] = 0;
+  }
+  for (int f = 1; f < planes.count; ++f) {
+    const double a = planes.nx[f], b = planes.ny[f], c = planes.nz[f], d = planes.offset[f];
+#pragma omp simd
+    for (int i = 0; i < n; ++i) {
+      const double v = a * px[i] + b * py[i] + c * pz[i] - d;
+      best[i] = v > phi[i] ? f : best[i];
+      phi[i] = v > phi[i] ? v : phi[i];
+    }
+  }
+}
+
+// The candidates of a convex side found inside (index inside[k] of the candidates, with their
+// phi and best plane) as contacts of the batch, entries start .. start+count-1: key, lever
+// r = RM p + (c_M - c_a), the sign of the force on a, the world normal of the best plane, depth
+// -phi, and area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame),
+// clipped at 0.
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void planeContacts(int start, int count, const Eigen::Vector3d& shift, double forceSign, const int* __restrict inside, const std::uint32_t* __restrict keys, const double* __restrict px,
+                   const double* __restrict py, const double* __restrict pz, const double* __restrict phi,
+                   const int* __restrict best, const PlanesInFrame& planes, const Eigen::Matrix3d& RM,
+                   const double* __restrict nodeNormal, const double* __restrict nodeArea, PairBatch& batch) {
+  std::uint32_t* __restrict key = batch.key.data() + start;
+  double *__restrict rx = batch.rx.data() + start, *__restrict ry = batch.ry.data() + start, *__restrict rz = batch.rz.data() + start;
+  double* __restrict sign = batch.sign.data() + start;
+  double *__restrict nx = batch.law.nx.data() + start, *__restrict ny = batch.law.ny.data() + start,
+                     *__restrict nz = batch.law.nz.data() + start;
+  double *__restrict depth = batch.law.depth.data() + start, *__restrict area = batch.law.area.data() + start;
+  const double sx = shift.x(), sy = shift.y(), sz = shift.z();
+  const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
+               r21 = RM(2, 1), r22 = RM(2, 2);
+#pragma omp simd
+  for (int k = 0; k < count; ++k) {
+    const int i = inside[k], f = best[i];
+    const std::uint32_t rank = keys[i] & kRankMask;
+    key[k] = keys[i];
+    rx[k] = (r00 * px[i] + r01 * py[i] + r02 * pz[i]) + sx;
+    ry[k] = (r10 * px[i] + r11 * py[i] + r12 * pz[i]) + sy;
+    rz[k] = (r20 * px[i] + r21 * py[i] + r22 * pz[i]) + sz;
+    sign[k] = forceSign;
+    nx[k] = planes.wx[f];
+    ny[k] = planes.wy[f];
+    nz[k] = planes.wz[f];
+    depth[k] = -phi[i];
+    const double projection =
+        -(nodeNormal[3 * rank] * planes.nx[f] + nodeNormal[3 * rank + 1] * planes.ny[f] + nodeNormal[3 * rank + 2] * planes.nz[f]);
+    area[k] = projection > 0 ? 0.5 * nodeArea[rank] * projection : 0.0;
+  }
+}
+
+// What a pair's contacts add up to: force on body a, its moment about a's centroid (sum r x f),
+// the normal parts (sum f_n n), the contact points weighted by normal force (sum f_n r) and that
+// weight, the energies, sliding contacts, and the deepest penetration. A contact with area 0 adds
+// only the projection energy it had (see PairBatch).
+struct PairSums {
+  enum Vector { kForce = 0, kMoment = 3, kNormalForce = 6, kWeighted = 9 };
+  double value[12] = {};
+  double weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, maxDepth = 0;
+  Eigen::Vector3d vector(Vector v) const { return {value[v], value[v + 1], value[v + 2]}; }
+};
+
+// The sums, in SIMD lanes (the order of the additions follows the machine's vector width).
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+PairSums sumPair(const PairBatch& batch, bool perArea) {
+  const NodeContactBatch& law = batch.law;
+  const int n = batch.count();
+  double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nx = 0, ny = 0, nz = 0, wx = 0, wy = 0, wz = 0;
+  double weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, deepest = 0;
+  const double *__restrict ax = law.fx.data(), *__restrict ay = law.fy.data(), *__restrict az = law.fz.data();
+  const double *__restrict rx = batch.rx.data(), *__restrict ry = batch.ry.data(), *__restrict rz = batch.rz.data();
+#pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nx, ny, nz, wx, wy, wz, weight, elastic, friction, viscous, sliding, \
+                               projection) reduction(max : deepest)
+  for (int i = 0; i < n; ++i) {
+    const double area = law.area[i], on = area > 0 ? 1.0 : 0.0, toA = on * batch.sign[i];
+    const double f0 = toA * ax[i], f1 = toA * ay[i], f2 = toA * az[i], fn = on * law.fn[i], stored = on * law.stored[i];
+    fx += f0;
+    fy += f1;
+    fz += f2;
+    mx += ry[i] * f2 - rz[i] * f1;
+    my += rz[i] * f0 - rx[i] * f2;
+    mz += rx[i] * f1 - ry[i] * f0;
+    nx += toA * law.fn[i] * law.nx[i];
+    ny += toA * law.fn[i] * law.ny[i];
+    nz += toA * law.fn[i] * law.nz[i];
+    wx += fn * rx[i];
+    wy += fn * ry[i];
+    wz += fn * rz[i];
+    weight += fn;
+    elastic += stored;
+    friction += on * law.friction[i];
+    viscous += on * law.viscous[i];
+    sliding += on * law.sliding[i];
+    // Stored energy is proportional to the area: what the change of area alone removed (a contact
+    // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
+    const double previousArea = batch.previousArea[i];
+    projection += !(area > 0)                   ? batch.previousEnergy[i]
+                  : previousArea == 0           ? -stored
+                  : previousArea > 0 && perArea ? stored * (previousArea / (area > 0 ? area : 1.0) - 1)
+                                                : 0.0;
+    deepest = std::max(deepest, on * law.depth[i]);
+  }
+  PairSums sums;
+  const double value[12] = {fx, fy, fz, mx, my, mz, nx, ny, nz, wx, wy, wz};
+  std::copy(value, value + 12, sums.value);
+  sums.weight = weight;
+  sums.elastic = elastic;
+  sums.friction = friction;
+  sums.viscous = viscous;
+  sums.sliding = sliding;
+  sums.projection = projection;
+  sums.maxDepth = deepest;
+  return sums;
+}
+
+// Per-thread scratch (kept from pair to pair and step to step: no allocation once grown).
+struct Scratch {
+  PairBatch batch;
+  // The candidates of a convex side: body-frame positions, level set, the plane giving it, and
+  // the indices of those inside.
+  std::vector<double> px, py, pz, phi;
+  std::vector<int> best, inside;
+  void reserve(int n) {
+    if (static_cast<int>(phi.size()) >= n) return;
+    for (auto* v : {&px, &py, &pz, &phi}) v->resize(static_cast<std::size_t>(n));
+    for (auto* v : {&best, &inside}) v->resize(static_cast<std::size_t>(n));
+  }
+};
+thread_local Scratch threadScratch;
+
+// Collects a pair's node contacts side by side, then runs the law over all of them and sums
+// their forces: the force on body a with its torque about a's centroid; b's follow (equal and
+// opposite force; torque moved by the short lever between the two centroids, no cancellation
+// against moments about a far origin).
 struct Accumulator {
   const ContactScene& scene;
   PairContacts& pair;
-  History history;
   Eigen::Vector3d centreA;  // m, body a's centroid
   double kn, kt;            // N/m^3, this pair's stiffnesses
-  double weight = 0.0;      // sum of normal forces, for forcePoint
-  Eigen::Vector3d normalSum = Eigen::Vector3d::Zero();  // N, the normal parts of the forces on a
+  PairBatch& batch;
+  // The side being collected: its first contact, the sign of its forces on a, c_M - c_a, and the
+  // relative velocity's terms (relativeVelocities).
+  struct Side {
+    int first = 0, last = 0;
+    double sign = 1.0;
+    Eigen::Vector3d shift, v0, spin;
+  };
+  std::array<Side, 2> sides{};
+  int sideCount = 0;
 
-  // One node at world x of the body moving with `node`, inside the other side (moving with
-  // `other`) by depth along `normal` (world, out of the other side).
-  void add(std::uint32_t key, const Eigen::Vector3d& x, const Eigen::Vector3d& nodeNormal, double area,
-           const Eigen::Vector3d& normal, double depth, const Motion& node, const Motion& other, bool nodeBodyIsA) {
-    // Effective area: the node's area projected on the contact plane (docs/physics.md).
-    const double projection = -nodeNormal.dot(normal);
-    const NodeContact* before = history.find(key);
-    if (projection <= 0) {
-      // Inside, but facing away from the contact normal: no force. Kept with zero area, so that
-      // the energy this cut takes (and a return gives back) is booked below.
-      if (before) pair.tally.projection += before->energy;
-      pair.contacts.push_back({key, Eigen::Vector3d::Zero(), 0.0, 0.0});
-      return;
-    }
-    const NodeContactInput input{normal, depth, area * projection, node.velocityAt(x) - other.velocityAt(x)};
-    Eigen::Vector3d spring = before ? before->spring : Eigen::Vector3d::Zero();
-    double stored;
-    const Eigen::Vector3d f = contactForce(scene.parameters, kn, kt, input, spring, stored, scene.dt, pair.tally);
-    // Stored energy is proportional to the area: what the change of area alone removed (a contact
-    // coming back from a cut, area 0, brings all of its energy back).
-    if (before && before->area == 0) pair.tally.projection -= stored;
-    else if (before && scene.parameters.perNodeStiffness <= 0) pair.tally.projection += stored * (before->area / input.area - 1);
-    pair.contacts.push_back({key, spring, stored, input.area});
-    pair.maxDepth = std::max(pair.maxDepth, depth);
-    const double normalForce = f.dot(normal);  // f_n: the tangential part is normal to n
-    pair.forcePoint += normalForce * x;
-    weight += normalForce;
-    const Eigen::Vector3d fA = nodeBodyIsA ? f : Eigen::Vector3d(-f);
-    pair.forceA += fA;
-    normalSum += (nodeBodyIsA ? normalForce : -normalForce) * normal;
-    pair.torqueA += (x - centreA).cross(fA);
+  // Starts a side: the nodes of the body moving as `node` in the other side, moving as `other`.
+  Side& beginSide(const Motion& node, const Motion& other, bool nodeBodyIsA) {
+    Side& side = sides[sideCount++];
+    side.first = batch.count();
+    side.sign = nodeBodyIsA ? 1.0 : -1.0;
+    side.shift = node.position - centreA;
+    side.spin = node.angularVelocity - other.angularVelocity;
+    side.v0 = node.velocity - other.velocity + other.angularVelocity.cross(other.position - centreA) -
+              node.angularVelocity.cross(side.shift);
+    return side;
+  }
+  void endSide() { sides[sideCount - 1].last = batch.count(); }
+
+  // One node of the side's body at r = x - c_M (world), inside the other side by depth along
+  // `normal` (world, out of the other side), with its share of its node's area and the projection
+  // -n_i . n of its outward normal n_i on the contact normal: its effective area is area x
+  // projection, the node's area projected on the contact plane (docs/physics.md), 0 when it
+  // faces away.
+  void add(std::uint32_t key, const Eigen::Vector3d& r, double projection, double area, const Eigen::Vector3d& normal,
+           double depth) {
+    const Side& side = sides[sideCount - 1];
+    const int i = batch.append();
+    NodeContactBatch& law = batch.law;
+    batch.key[i] = key;
+    batch.rx[i] = r.x() + side.shift.x();
+    batch.ry[i] = r.y() + side.shift.y();
+    batch.rz[i] = r.z() + side.shift.z();
+    batch.sign[i] = side.sign;
+    law.nx[i] = normal.x();
+    law.ny[i] = normal.y();
+    law.nz[i] = normal.z();
+    law.depth[i] = depth;
+    law.area[i] = projection > 0 ? area * projection : 0.0;
   }
 
-  // Newton's third law: on b, -F_A at the same points: tau_B = -(tau_A + (c_A - c_B) x F_A).
+  // The law over the pair's contacts; their springs and forces stored in the pair.
   void finish() {
-    pair.normalForceA = normalSum;
+    NodeContactBatch& law = batch.law;
+    const int n = batch.count();
+    // Each contact's spring from the previous step, by merging the two key-sorted lists.
+    const NodeContact* before = pair.previous.data();
+    const NodeContact* const end = before + pair.previous.size();
+    for (int i = 0; i < n; ++i) {
+      const std::uint32_t key = batch.key[i];
+      while (before != end && before->key < key) ++before;
+      const bool found = before != end && before->key == key;
+      const Eigen::Vector3d spring = found ? before->spring : Eigen::Vector3d::Zero();
+      law.ux[i] = spring.x();
+      law.uy[i] = spring.y();
+      law.uz[i] = spring.z();
+      batch.previousArea[i] = found ? before->area : -1.0;
+      batch.previousEnergy[i] = found ? before->energy : 0.0;
+    }
+    for (int k = 0; k < sideCount; ++k)
+      relativeVelocities(sides[k].first, sides[k].last, sides[k].v0, sides[k].spin, batch.rx.data(), batch.ry.data(),
+                         batch.rz.data(), law.vx.data(), law.vy.data(), law.vz.data());
+    applyContactLaw(scene.parameters, kn, kt, scene.dt, law);
+    const PairSums sums = sumPair(batch, scene.parameters.perNodeStiffness <= 0);
+
+    pair.contacts.resize(static_cast<std::size_t>(n));
+    NodeContact* contacts = pair.contacts.data();
+    for (int i = 0; i < n; ++i) {
+      // A node facing away from the contact normal (area 0) is kept with no spring and no energy.
+      const bool on = law.area[i] > 0;
+      contacts[i] = {batch.key[i], on ? Eigen::Vector3d(law.ux[i], law.uy[i], law.uz[i]) : Eigen::Vector3d::Zero(),
+                     on ? law.stored[i] : 0.0, law.area[i]};
+    }
+    pair.tally.projection = sums.projection;
+    pair.tally.elastic = sums.elastic;
+    pair.tally.friction = sums.friction;
+    pair.tally.viscous = sums.viscous;
+    pair.tally.sliding = static_cast<int>(sums.sliding);
+    pair.maxDepth = sums.maxDepth;
+    pair.forceA = sums.vector(PairSums::kForce);
+    pair.torqueA = sums.vector(PairSums::kMoment);
+    pair.normalForceA = sums.vector(PairSums::kNormalForce);
+    pair.forcePoint = sums.weight > 0 ? Eigen::Vector3d(centreA + sums.vector(PairSums::kWeighted) / sums.weight)
+                                      : Eigen::Vector3d::Zero();
+    // Newton's third law: on b, -F_A at the same points: tau_B = -(tau_A + (c_A - c_B) x F_A).
     pair.forceB = -pair.forceA;
     if (pair.b >= 0) pair.torqueB = -(pair.torqueA + (centreA - scene.bodies->position[pair.b]).cross(pair.forceA));
-    if (weight > 0) pair.forcePoint /= weight;
+    batch.law.count = 0;
   }
 };
+
+// The pair's candidates of one side (keys side << 31 | rank), as [first, last).
+std::pair<const std::uint32_t*, const std::uint32_t*> candidatesOf(const PairContacts& pair, std::uint32_t side) {
+  const std::uint32_t* begin = pair.candidates.data();
+  const std::uint32_t* end = begin + pair.candidates.size();
+  const std::uint32_t* first = std::lower_bound(begin, end, side << 31);
+  return {first, side == 0 ? std::lower_bound(first, end, 1u << 31) : end};
+}
 
 // Visits the nodes of one side (key = side << 31 | rank) that can touch: the pair's candidates
 // of that side or, when they are being rebuilt, every node in `region`, keeping as candidates
@@ -108,46 +376,39 @@ void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::ui
     });
     return;
   }
-  const auto first = std::lower_bound(pair.candidates.begin(), pair.candidates.end(), side << 31);
-  const auto last = side == 0 ? std::lower_bound(first, pair.candidates.end(), 1u << 31) : pair.candidates.end();
-  for (auto k = first; k != last; ++k) test(*k);
+  const auto [first, last] = candidatesOf(pair, side);
+  for (const std::uint32_t* k = first; k != last; ++k) test(*k);
 }
 
-constexpr std::uint32_t kRankMask = (1u << 31) - 1;
-
-// The face planes of a convex body expressed in another body's frame (x_O = R x_M + t), in hot
-// arrays: phi(p) = max_f (n_f . p - d_f), the exact level set of a convex polyhedron (1-Lipschitz),
-// evaluated without transforming p.
-struct PlanesInFrame {
-  static constexpr int kMax = 64;  // ConvexFitOptions::maxPlanes' default
-  std::array<Eigen::Vector3d, kMax> normal;
-  std::array<double, kMax> offset;
+// The contacts of one side's candidates in a convex other side: every candidate's phi at once
+// (SIMD), the ones inside listed without branches, and their contacts added to the batch.
+void convexSideContacts(PairContacts& pair, std::uint32_t side, const NodeBins& nodes, const PlanesInFrame& planes,
+                        const Eigen::Matrix3d& RM, const Accumulator::Side& sideInfo, Scratch& scratch) {
+  const auto [first, last] = candidatesOf(pair, side);
+  const int n = static_cast<int>(last - first);
+  scratch.reserve(n);
+  double *px = scratch.px.data(), *py = scratch.py.data(), *pz = scratch.pz.data(), *phi = scratch.phi.data();
+  int *best = scratch.best.data(), *inside = scratch.inside.data();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d& p = nodes.position[first[i] & kRankMask];
+    px[i] = p.x();
+    py[i] = p.y();
+    pz[i] = p.z();
+  }
+  planesPhi(planes, n, px, py, pz, phi, best);
+  pair.evaluations += n;
   int count = 0;
-
-  PlanesInFrame(const std::vector<FacePlane>& planes, const Eigen::Matrix3d& R, const Eigen::Vector3d& t)
-      : count(static_cast<int>(std::min<std::size_t>(planes.size(), kMax))) {
-    for (int f = 0; f < count; ++f) {
-      normal[f] = R.transpose() * planes[f].normal;
-      offset[f] = planes[f].offset - planes[f].normal.dot(t);
-    }
+  for (int i = 0; i < n; ++i) {
+    inside[count] = i;
+    count += phi[i] < 0;
   }
-  double phi(const Eigen::Vector3d& p, int& best) const {
-    best = 0;
-    double value = normal[0].dot(p) - offset[0];
-    for (int f = 1; f < count; ++f) {
-      const double v = normal[f].dot(p) - offset[f];
-      if (v > value) {
-        value = v;
-        best = f;
-      }
-    }
-    return value;
-  }
-};
-
-}  // namespace
-
-namespace {
+  PairBatch& batch = scratch.batch;
+  const int start = batch.count();
+  batch.reserve(start + count);
+  batch.law.count = start + count;
+  planeContacts(start, count, sideInfo.shift, sideInfo.sign, inside, first, px, py, pz, phi, best, planes, RM,
+                nodes.normal.data()->data(), nodes.area.data(), batch);
+}
 
 // Clears the pair's last evaluation (its contacts become the history) and says whether its
 // candidate nodes are to be rebuilt.
@@ -174,14 +435,16 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
   const ShapeModel& sm = (*scene.shapes)[bodies.shape[m]];
   const Eigen::Matrix3d RM = bodies.orientation[m].toRotationMatrix();
   const Motion node = motionOf(bodies, m);
+  acc.beginSide(node, other, true);
   visitSide(sm.nodes, region, 0, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
     ++pair.evaluations;
-    const Eigen::Vector3d x = RM * sm.nodes.position[key] + node.position;
+    const Eigen::Vector3d r = RM * sm.nodes.position[key];
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    const double phi = phiAndNormal(x, normal);
-    if (phi < 0) acc.add(key, x, RM * sm.nodes.normal[key], sm.nodes.area[key], normal, -phi, node, other, true);
+    const double phi = phiAndNormal(r + node.position, normal);
+    if (phi < 0) acc.add(key, r, -(RM * sm.nodes.normal[key]).dot(normal), sm.nodes.area[key], normal, -phi);
     return phi;
   });
+  acc.endSide();
   acc.finish();
 }
 
@@ -197,7 +460,8 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
 
 void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = beginEvaluation(pair);
-  Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a], scene.kn, scene.kt};
+  Scratch& scratch = threadScratch;
+  Accumulator acc{scene, pair, scene.bodies->position[pair.a], scene.kn, scene.kt, scratch.batch};
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
   for (std::uint32_t side = 0; side < 2; ++side) {
@@ -215,34 +479,37 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
       region.min().array() -= scene.candidateBand;
       region.max().array() += scene.candidateBand;
     }
+    const Accumulator::Side& sideInfo = acc.beginSide(node, other, side == 0);
     if (!so.planes.empty()) {
       // A convex other side: its planes moved into M's frame once, n' = toO^T n, d' = d - n . shift,
       // so that a candidate is tested as it is: phi = max_f (n'_f . p - d'_f).
-      const PlanesInFrame planes(so.planes, toO, shift);
+      const PlanesInFrame planes(so.planes, toO, shift, RM);
+      // The candidates first, if they are being rebuilt; then every candidate's phi at once
+      // (SIMD), the ones inside listed without branches, and their contacts: one path for every
+      // step, so that a run resumed from a checkpoint (which rebuilds them) gives the same bits.
+      if (rebuild)
+        visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
+          ++pair.evaluations;
+          int best;
+          return planes.phi(sm.nodes.position[key & kRankMask], best);
+        });
+      convexSideContacts(pair, side, sm.nodes, planes, RM, sideInfo, scratch);
+    } else {
       visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
         ++pair.evaluations;
         const int rank = static_cast<int>(key & kRankMask);
-        const Eigen::Vector3d& p = sm.nodes.position[rank];
-        int best;
-        const double phi = planes.phi(p, best);
-        if (phi < 0)
-          acc.add(key, RM * p + node.position, RM * sm.nodes.normal[rank], 0.5 * sm.nodes.area[rank],
-                  RM * planes.normal[best], -phi, node, other, side == 0);
+        const Eigen::Vector3d xO = toO * sm.nodes.position[rank] + shift;
+        Eigen::Vector3d normalO = Eigen::Vector3d::Zero();
+        const double phi = so.meshLevelSet(xO, normalO);
+        if (phi < 0) {
+          const Eigen::Vector3d normal = RO * normalO;
+          acc.add(key, RO * xO + (other.position - node.position), -(RM * sm.nodes.normal[rank]).dot(normal),
+                  0.5 * sm.nodes.area[rank], normal, -phi);
+        }
         return phi;
       });
-      continue;
     }
-    visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
-      ++pair.evaluations;
-      const int rank = static_cast<int>(key & kRankMask);
-      const Eigen::Vector3d xO = toO * sm.nodes.position[rank] + shift;
-      Eigen::Vector3d normalO = Eigen::Vector3d::Zero();
-      const double phi = so.meshLevelSet(xO, normalO);
-      if (phi < 0)
-        acc.add(key, RO * xO + other.position, RM * sm.nodes.normal[rank], 0.5 * sm.nodes.area[rank], RO * normalO,
-                -phi, node, other, side == 0);
-      return phi;
-    });
+    acc.endSide();
   }
   acc.finish();
 }
@@ -250,8 +517,8 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
 void evaluateSpherePair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = beginEvaluation(pair);
   const SphereObstacle& sphere = (*scene.spheres)[-1 - pair.b];
-  Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a],
-                  scene.kn * sphere.stiffnessFactor, scene.kt * sphere.stiffnessFactor};
+  Accumulator acc{scene, pair, scene.bodies->position[pair.a],
+                  scene.kn * sphere.stiffnessFactor, scene.kt * sphere.stiffnessFactor, threadScratch.batch};
   const Eigen::Vector3d& position = scene.bodies->position[pair.a];
   const Eigen::Vector3d centre = scene.bodies->orientation[pair.a].conjugate() * (sphere.center - position);
   const double reach = sphere.radius + scene.candidateBand;
@@ -267,7 +534,7 @@ void evaluateSpherePair(const ContactScene& scene, PairContacts& pair) {
 void evaluatePlanePair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = beginEvaluation(pair);
   const PlaneObstacle& plane = (*scene.planes)[-1 - pair.b - static_cast<int>(scene.spheres->size())];
-  Accumulator acc{scene, pair, History{pair.previous}, scene.bodies->position[pair.a], scene.kn, scene.kt};
+  Accumulator acc{scene, pair, scene.bodies->position[pair.a], scene.kn, scene.kt, threadScratch.batch};
   const ShapeModel& sm = (*scene.shapes)[scene.bodies->shape[pair.a]];
   visitObstacle(scene, pair, acc, rebuild, sm.nodes.box, Motion{plane.point, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()},
                 [&](const Eigen::Vector3d& x, Eigen::Vector3d& normal) {
