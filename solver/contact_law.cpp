@@ -38,7 +38,8 @@ void contactLaw(int n, double perNodeNormal, double perAreaNormal, double perNod
     const double length2 = ux[i] * ux[i] + uy[i] * uy[i] + uz[i] * uz[i];
     double tx = ux[i] - along * nx[i], ty = uy[i] - along * ny[i], tz = uz[i] - along * nz[i];
     const double projected2 = tx * tx + ty * ty + tz * tz;
-    const double turn = std::sqrt(projected2 > 0 ? length2 / projected2 : 1.0);
+    const double ratio = length2 / (projected2 > 0 ? projected2 : 1.0);  // every operation in every lane:
+    const double turn = std::sqrt(projected2 > 0 ? ratio : 1.0);           // then the lanes choose
     tx *= turn;
     ty *= turn;
     tz *= turn;
@@ -51,7 +52,8 @@ void contactLaw(int n, double perNodeNormal, double perAreaNormal, double perNod
     // put into the spring over the increment (trapezoidal, as a sticking spring stores it
     // exactly) less what it now stores: k_t a (u_0 + u) / 2 . du - k_t a (|u|^2 - |u_0|^2) / 2.
     const bool slides = ft2 > cap * cap;
-    const double scale = slides ? cap / std::sqrt(ft2 > 0 ? ft2 : 1.0) : 1.0;
+    const double capped = cap / std::sqrt(ft2 > 0 ? ft2 : 1.0);
+    const double scale = slides ? capped : 1.0;
     ftx *= scale;
     fty *= scale;
     ftz *= scale;

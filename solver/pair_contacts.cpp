@@ -216,9 +216,10 @@ PairSums sumPair(const PairBatch& batch, bool perArea) {
     // Stored energy is proportional to the area: what the change of area alone removed (a contact
     // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
     const double previousArea = batch.previousArea[i];
+    const double scaled = stored * (previousArea / (area > 0 ? area : 1.0) - 1);
     projection += !(area > 0)                   ? batch.previousEnergy[i]
                   : previousArea == 0           ? -stored
-                  : previousArea > 0 && perArea ? stored * (previousArea / (area > 0 ? area : 1.0) - 1)
+                  : previousArea > 0 && perArea ? scaled
                                                 : 0.0;
     deepest = std::max(deepest, on * law.depth[i]);
   }
@@ -329,13 +330,12 @@ struct Accumulator {
     applyContactLaw(scene.parameters, kn, kt, scene.dt, law);
     const PairSums sums = sumPair(batch, scene.parameters.perNodeStiffness <= 0);
 
-    pair.contacts.resize(static_cast<std::size_t>(n));
-    NodeContact* contacts = pair.contacts.data();
+    pair.contacts.reserve(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) {
       // A node facing away from the contact normal (area 0) is kept with no spring and no energy.
       const bool on = law.area[i] > 0;
-      contacts[i] = {batch.key[i], on ? Eigen::Vector3d(law.ux[i], law.uy[i], law.uz[i]) : Eigen::Vector3d::Zero(),
-                     on ? law.stored[i] : 0.0, law.area[i]};
+      pair.contacts.push_back({batch.key[i], on ? Eigen::Vector3d(law.ux[i], law.uy[i], law.uz[i]) : Eigen::Vector3d::Zero(),
+                               on ? law.stored[i] : 0.0, law.area[i]});
     }
     pair.tally.projection = sums.projection;
     pair.tally.elastic = sums.elastic;
