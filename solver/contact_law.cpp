@@ -4,12 +4,6 @@
 
 namespace tessera {
 
-void NodeContactBatch::grow(int n) {
-  for (std::vector<double>* v : {&nx, &ny, &nz, &depth, &area, &vx, &vy, &vz, &ux, &uy, &uz, &fx, &fy, &fz, &fn, &stored,
-                                 &friction, &viscous, &sliding})
-    v->resize(static_cast<std::size_t>(n + n / 2));
-}
-
 namespace {
 
 // The law over n entries, written without branches so that the compiler runs it in SIMD lanes;
@@ -25,8 +19,9 @@ void contactLaw(int n, double perNodeNormal, double perAreaNormal, double perNod
                 double* __restrict dissipatedFriction, double* __restrict dissipatedViscous, double* __restrict sliding) {
 #pragma omp simd
   for (int i = 0; i < n; ++i) {
-    const double kna = perNodeNormal + perAreaNormal * area[i];  // k_n a, or the per-node k
-    const double kta = perNodeTangent + perAreaTangent * area[i];
+    const double keep = area[i] > 0 ? 1.0 : 0.0;  // 0: facing away, no force, spring or energy
+    const double kna = keep * (perNodeNormal + perAreaNormal * area[i]);  // k_n a, or the per-node k
+    const double kta = keep * (perNodeTangent + perAreaTangent * area[i]);
     const double vn = vx[i] * nx[i] + vy[i] * ny[i] + vz[i] * nz[i];
     const double elastic = kna * depth[i];
     const double pushed = elastic - viscosity * area[i] * vn;
@@ -64,9 +59,9 @@ void contactLaw(int n, double perNodeNormal, double perAreaNormal, double perNod
     const double work = 0.5 * ((tx + sx) * dx + (ty + sy) * dy + (tz + sz) * dz);
     dissipatedFriction[i] = slides ? kta * (work - 0.5 * (u2 - turned2)) : 0.0;
     sliding[i] = slides ? 1.0 : 0.0;
-    ux[i] = sx;
-    uy[i] = sy;
-    uz[i] = sz;
+    ux[i] = keep * sx;
+    uy[i] = keep * sy;
+    uz[i] = keep * sz;
     // The non-elastic part of the normal force, f_n - k_n a d, does the work (f_n - k_n a d) v_n dt.
     dissipatedViscous[i] = (elastic - fn) * vn * dt;
     stored[i] = 0.5 * elastic * depth[i] + 0.5 * kta * u2;
@@ -79,13 +74,12 @@ void contactLaw(int n, double perNodeNormal, double perAreaNormal, double perNod
 
 }  // namespace
 
-void applyContactLaw(const ContactParameters& p, double kn, double kt, double dt, NodeContactBatch& b) {
+void applyContactLaw(const ContactParameters& p, double kn, double kt, double dt, const NodeContactBatch& b) {
   const bool perNode = p.perNodeStiffness > 0;
   contactLaw(b.count, perNode ? p.perNodeStiffness : 0.0, perNode ? 0.0 : kn,
              perNode ? p.tangentialRatio * p.perNodeStiffness : 0.0, perNode ? 0.0 : kt, p.normalViscosity, p.friction, dt,
-             b.nx.data(), b.ny.data(), b.nz.data(), b.depth.data(), b.area.data(), b.vx.data(), b.vy.data(), b.vz.data(),
-             b.ux.data(), b.uy.data(), b.uz.data(), b.fx.data(), b.fy.data(), b.fz.data(), b.fn.data(), b.stored.data(),
-             b.friction.data(), b.viscous.data(), b.sliding.data());
+             b.nx, b.ny, b.nz, b.depth, b.area, b.vx, b.vy, b.vz, b.ux, b.uy, b.uz, b.fx, b.fy, b.fz, b.fn, b.stored,
+             b.friction, b.viscous, b.sliding);
 }
 
 }  // namespace tessera

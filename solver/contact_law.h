@@ -1,7 +1,6 @@
 #pragma once
 #include "solver/contact_parameters.h"
 
-#include <vector>
 
 namespace tessera {
 
@@ -19,32 +18,24 @@ struct ContactTally {
 };
 
 /// Node contacts evaluated together by the contact law: entries 0 .. count-1, one per node contact,
-/// each quantity in its own array (world frame, SI units), so that the law runs over the contacts
-/// in SIMD lanes. The arrays only grow: a batch reused step after step allocates nothing.
+/// each quantity in its own array (world frame, SI units; the arrays belong to the caller), so
+/// that the law runs over the contacts in SIMD lanes.
 struct NodeContactBatch {
   int count = 0;
   // In.
-  std::vector<double> nx, ny, nz;  ///< unit contact normal: out of the other body, towards the node's body
-  std::vector<double> depth;       ///< m, penetration d > 0
-  std::vector<double> area;        ///< m^2, the node's effective area a (docs/physics.md)
-  std::vector<double> vx, vy, vz;  ///< m/s, relative velocity at the node: node's body minus the other
+  const double *nx, *ny, *nz;  ///< unit contact normal: out of the other body, towards the node's body
+  const double* depth;         ///< m, penetration d > 0
+  const double* area;          ///< m^2, the node's effective area a (docs/physics.md); 0: facing away
+  const double *vx, *vy, *vz;  ///< m/s, relative velocity at the node: node's body minus the other
   // In and out: the tangential spring u (m), carried from step to step.
-  std::vector<double> ux, uy, uz;
+  double *ux, *uy, *uz;
   // Out.
-  std::vector<double> fx, fy, fz;  ///< N, force on the node's body
-  std::vector<double> fn;          ///< N, its normal part f . n
-  std::vector<double> stored;      ///< J, the contact's stored energy
-  std::vector<double> friction;    ///< J, dissipated by sliding this step
-  std::vector<double> viscous;     ///< J, dissipated by the normal viscosity this step
-  std::vector<double> sliding;     ///< 1 at the Coulomb cap, else 0
-
-  /// Room for n entries (values unset); count unchanged.
-  void reserve(int n) {
-    if (n > static_cast<int>(depth.size())) grow(n);
-  }
-
- private:
-  void grow(int n);
+  double *fx, *fy, *fz;  ///< N, force on the node's body
+  double* fn;            ///< N, its normal part f . n
+  double* stored;        ///< J, the contact's stored energy
+  double* friction;      ///< J, dissipated by sliding this step
+  double* viscous;       ///< J, dissipated by the normal viscosity this step
+  double* sliding;       ///< 1 at the Coulomb cap, else 0
 };
 
 /// The contact law over entries 0 .. count-1 of a batch (docs/physics.md, "Contact law"): the force on each node's body and
@@ -55,8 +46,9 @@ struct NodeContactBatch {
 ///                                                          sliding the spring is reset to the cap)
 /// with its stored energy 1/2 k_n a d^2 + 1/2 k_t a |u|^2 and what it dissipated. kn and kt in
 /// N/m^3; with a per-node stiffness k (perNodeStiffness > 0) the products k_n a and k_t a become k
-/// and (k_t/k_n) k. Each entry is computed on its own, by the same operations whatever the CPU's
-/// vector width (no fused multiply-add), so results do not depend on the machine.
-void applyContactLaw(const ContactParameters& p, double kn, double kt, double dt, NodeContactBatch& batch);
+/// and (k_t/k_n) k. An entry with area 0 (a node inside but facing away from the contact normal)
+/// gets no force, no spring and no energy. Each entry is computed on its own, by the same
+/// operations whatever the CPU's vector width (no fused multiply-add).
+void applyContactLaw(const ContactParameters& p, double kn, double kt, double dt, const NodeContactBatch& batch);
 
 }  // namespace tessera

@@ -32,29 +32,37 @@ Motion motionOf(const RigidBodies& bodies, int i) {
 
 constexpr std::uint32_t kRankMask = (1u << 31) - 1;
 
-// The node contacts of a pair, in key order (side 0, a's nodes in b, then side 1), gathered for
-// the contact law in one batch. Besides the law's inputs: each contact's key, its lever
-// r = x - c_a about body a's centroid (world), the sign of its force on a (+1: the node is a's),
-// and its area and stored energy before this step (area -1: a new contact). A contact with area
-// 0 is a node inside but facing away from the contact normal: the law's outputs are not used.
+// The node contacts of a pair being collected, in key order (side 0, a's nodes in b, then side 1),
+// for the contact law: its inputs and outputs but the springs and energies (which are the pair's
+// own NodeContacts), each contact's key, its lever r = x - c_a about body a's centroid (world),
+// the sign of its force on a (+1: the node is a's), and its area and stored energy before this
+// step (area -1: a new contact). Area 0: a node inside but facing away from the contact normal.
 struct PairBatch {
-  NodeContactBatch law;
+  int count = 0;
   std::vector<std::uint32_t> key;
-  std::vector<double> rx, ry, rz, sign, previousArea, previousEnergy;
+  std::vector<double> rx, ry, rz, sign, nx, ny, nz, depth, area, vx, vy, vz, fx, fy, fz, fn, friction, viscous, sliding,
+      previousArea, previousEnergy;
 
-  int count() const { return law.count; }
   /// Room for n contacts (values unset).
   void reserve(int n) {
-    law.reserve(n);
     if (static_cast<int>(key.size()) >= n) return;
-    const std::size_t size = law.depth.size();
+    const std::size_t size = static_cast<std::size_t>(n + n / 2);
     key.resize(size);
-    for (auto* v : {&rx, &ry, &rz, &sign, &previousArea, &previousEnergy}) v->resize(size);
+    for (auto* v : {&rx, &ry, &rz, &sign, &nx, &ny, &nz, &depth, &area, &vx, &vy, &vz, &fx, &fy, &fz, &fn, &friction, &viscous,
+                    &sliding, &previousArea, &previousEnergy})
+      v->resize(size);
   }
   /// A new contact at the end; its index.
   int append() {
-    reserve(law.count + 1);
-    return law.count++;
+    reserve(count + 1);
+    return count++;
+  }
+  /// The law's view of the contacts, with the springs and energies in `contacts`.
+  NodeContactBatch law(NodeContacts& contacts) {
+    return {count,          nx.data(),  ny.data(),  nz.data(), depth.data(),           area.data(),
+            vx.data(),      vy.data(),  vz.data(),  contacts.springX.data(), contacts.springY.data(), contacts.springZ.data(),
+            fx.data(),      fy.data(),  fz.data(),  fn.data(), contacts.energy.data(), friction.data(),
+            viscous.data(), sliding.data()};
   }
 };
 
@@ -146,9 +154,8 @@ void planeContacts(int start, int count, const Eigen::Vector3d& shift, double fo
   std::uint32_t* __restrict key = batch.key.data() + start;
   double *__restrict rx = batch.rx.data() + start, *__restrict ry = batch.ry.data() + start, *__restrict rz = batch.rz.data() + start;
   double* __restrict sign = batch.sign.data() + start;
-  double *__restrict nx = batch.law.nx.data() + start, *__restrict ny = batch.law.ny.data() + start,
-                     *__restrict nz = batch.law.nz.data() + start;
-  double *__restrict depth = batch.law.depth.data() + start, *__restrict area = batch.law.area.data() + start;
+  double *__restrict nx = batch.nx.data() + start, *__restrict ny = batch.ny.data() + start, *__restrict nz = batch.nz.data() + start;
+  double *__restrict depth = batch.depth.data() + start, *__restrict area = batch.area.data() + start;
   const double sx = shift.x(), sy = shift.y(), sz = shift.z();
   const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
                r21 = RM(2, 1), r22 = RM(2, 2);
@@ -184,44 +191,43 @@ struct PairSums {
 
 // The sums, in SIMD lanes (the order of the additions follows the machine's vector width).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-PairSums sumPair(const PairBatch& batch, bool perArea) {
-  const NodeContactBatch& law = batch.law;
-  const int n = batch.count();
+PairSums sumPair(const PairBatch& batch, const NodeContacts& contacts, bool perArea) {
+  const int n = batch.count;
   double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nx = 0, ny = 0, nz = 0, wx = 0, wy = 0, wz = 0;
   double weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, deepest = 0;
-  const double *__restrict ax = law.fx.data(), *__restrict ay = law.fy.data(), *__restrict az = law.fz.data();
   const double *__restrict rx = batch.rx.data(), *__restrict ry = batch.ry.data(), *__restrict rz = batch.rz.data();
+  const double* __restrict stored = contacts.energy.data();
 #pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nx, ny, nz, wx, wy, wz, weight, elastic, friction, viscous, sliding, \
                                projection) reduction(max : deepest)
   for (int i = 0; i < n; ++i) {
-    const double area = law.area[i], on = area > 0 ? 1.0 : 0.0, toA = on * batch.sign[i];
-    const double f0 = toA * ax[i], f1 = toA * ay[i], f2 = toA * az[i], fn = on * law.fn[i], stored = on * law.stored[i];
+    // Forces on a; a contact facing away (area 0) has none.
+    const double s = batch.sign[i], f0 = s * batch.fx[i], f1 = s * batch.fy[i], f2 = s * batch.fz[i], fn = batch.fn[i];
     fx += f0;
     fy += f1;
     fz += f2;
     mx += ry[i] * f2 - rz[i] * f1;
     my += rz[i] * f0 - rx[i] * f2;
     mz += rx[i] * f1 - ry[i] * f0;
-    nx += toA * law.fn[i] * law.nx[i];
-    ny += toA * law.fn[i] * law.ny[i];
-    nz += toA * law.fn[i] * law.nz[i];
+    nx += s * fn * batch.nx[i];
+    ny += s * fn * batch.ny[i];
+    nz += s * fn * batch.nz[i];
     wx += fn * rx[i];
     wy += fn * ry[i];
     wz += fn * rz[i];
     weight += fn;
-    elastic += stored;
-    friction += on * law.friction[i];
-    viscous += on * law.viscous[i];
-    sliding += on * law.sliding[i];
+    elastic += stored[i];
+    friction += batch.friction[i];
+    viscous += batch.viscous[i];
+    sliding += batch.sliding[i];
     // Stored energy is proportional to the area: what the change of area alone removed (a contact
     // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
-    const double previousArea = batch.previousArea[i];
-    const double scaled = stored * (previousArea / (area > 0 ? area : 1.0) - 1);
+    const double area = batch.area[i], previousArea = batch.previousArea[i];
+    const double scaled = stored[i] * (previousArea / (area > 0 ? area : 1.0) - 1);
     projection += !(area > 0)                   ? batch.previousEnergy[i]
-                  : previousArea == 0           ? -stored
+                  : previousArea == 0           ? -stored[i]
                   : previousArea > 0 && perArea ? scaled
                                                 : 0.0;
-    deepest = std::max(deepest, on * law.depth[i]);
+    deepest = std::max(deepest, area > 0 ? batch.depth[i] : 0.0);
   }
   PairSums sums;
   const double value[12] = {fx, fy, fz, mx, my, mz, nx, ny, nz, wx, wy, wz};
@@ -274,7 +280,7 @@ struct Accumulator {
   // Starts a side: the nodes of the body moving as `node` in the other side, moving as `other`.
   Side& beginSide(const Motion& node, const Motion& other, bool nodeBodyIsA) {
     Side& side = sides[sideCount++];
-    side.first = batch.count();
+    side.first = batch.count;
     side.sign = nodeBodyIsA ? 1.0 : -1.0;
     side.shift = node.position - centreA;
     side.spin = node.angularVelocity - other.angularVelocity;
@@ -282,7 +288,7 @@ struct Accumulator {
               node.angularVelocity.cross(side.shift);
     return side;
   }
-  void endSide() { sides[sideCount - 1].last = batch.count(); }
+  void endSide() { sides[sideCount - 1].last = batch.count; }
 
   // One node of the side's body at r = x - c_M (world), inside the other side by depth along
   // `normal` (world, out of the other side), with its share of its node's area and the projection
@@ -293,50 +299,44 @@ struct Accumulator {
            double depth) {
     const Side& side = sides[sideCount - 1];
     const int i = batch.append();
-    NodeContactBatch& law = batch.law;
     batch.key[i] = key;
     batch.rx[i] = r.x() + side.shift.x();
     batch.ry[i] = r.y() + side.shift.y();
     batch.rz[i] = r.z() + side.shift.z();
     batch.sign[i] = side.sign;
-    law.nx[i] = normal.x();
-    law.ny[i] = normal.y();
-    law.nz[i] = normal.z();
-    law.depth[i] = depth;
-    law.area[i] = projection > 0 ? area * projection : 0.0;
+    batch.nx[i] = normal.x();
+    batch.ny[i] = normal.y();
+    batch.nz[i] = normal.z();
+    batch.depth[i] = depth;
+    batch.area[i] = projection > 0 ? area * projection : 0.0;
   }
 
   // The law over the pair's contacts; their springs and forces stored in the pair.
   void finish() {
-    NodeContactBatch& law = batch.law;
-    const int n = batch.count();
+    const int n = batch.count;
+    NodeContacts& contacts = pair.contacts;
+    contacts.resize(static_cast<std::size_t>(n));
+    std::copy_n(batch.key.data(), n, contacts.key.data());
+    std::copy_n(batch.area.data(), n, contacts.area.data());
     // Each contact's spring from the previous step, by merging the two key-sorted lists.
-    const NodeContact* before = pair.previous.data();
-    const NodeContact* const end = before + pair.previous.size();
+    const NodeContacts& previous = pair.previous;
+    std::size_t before = 0;
     for (int i = 0; i < n; ++i) {
       const std::uint32_t key = batch.key[i];
-      while (before != end && before->key < key) ++before;
-      const bool found = before != end && before->key == key;
-      const Eigen::Vector3d spring = found ? before->spring : Eigen::Vector3d::Zero();
-      law.ux[i] = spring.x();
-      law.uy[i] = spring.y();
-      law.uz[i] = spring.z();
-      batch.previousArea[i] = found ? before->area : -1.0;
-      batch.previousEnergy[i] = found ? before->energy : 0.0;
+      while (before < previous.size() && previous.key[before] < key) ++before;
+      const bool found = before < previous.size() && previous.key[before] == key;
+      contacts.springX[i] = found ? previous.springX[before] : 0.0;
+      contacts.springY[i] = found ? previous.springY[before] : 0.0;
+      contacts.springZ[i] = found ? previous.springZ[before] : 0.0;
+      batch.previousArea[i] = found ? previous.area[before] : -1.0;
+      batch.previousEnergy[i] = found ? previous.energy[before] : 0.0;
     }
     for (int k = 0; k < sideCount; ++k)
       relativeVelocities(sides[k].first, sides[k].last, sides[k].v0, sides[k].spin, batch.rx.data(), batch.ry.data(),
-                         batch.rz.data(), law.vx.data(), law.vy.data(), law.vz.data());
-    applyContactLaw(scene.parameters, kn, kt, scene.dt, law);
-    const PairSums sums = sumPair(batch, scene.parameters.perNodeStiffness <= 0);
+                         batch.rz.data(), batch.vx.data(), batch.vy.data(), batch.vz.data());
+    applyContactLaw(scene.parameters, kn, kt, scene.dt, batch.law(contacts));
+    const PairSums sums = sumPair(batch, contacts, scene.parameters.perNodeStiffness <= 0);
 
-    pair.contacts.reserve(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) {
-      // A node facing away from the contact normal (area 0) is kept with no spring and no energy.
-      const bool on = law.area[i] > 0;
-      pair.contacts.push_back({batch.key[i], on ? Eigen::Vector3d(law.ux[i], law.uy[i], law.uz[i]) : Eigen::Vector3d::Zero(),
-                               on ? law.stored[i] : 0.0, law.area[i]});
-    }
     pair.tally.projection = sums.projection;
     pair.tally.elastic = sums.elastic;
     pair.tally.friction = sums.friction;
@@ -351,7 +351,7 @@ struct Accumulator {
     // Newton's third law: on b, -F_A at the same points: tau_B = -(tau_A + (c_A - c_B) x F_A).
     pair.forceB = -pair.forceA;
     if (pair.b >= 0) pair.torqueB = -(pair.torqueA + (centreA - scene.bodies->position[pair.b]).cross(pair.forceA));
-    batch.law.count = 0;
+    batch.count = 0;
   }
 };
 
@@ -403,9 +403,9 @@ void convexSideContacts(PairContacts& pair, std::uint32_t side, const NodeBins& 
     count += phi[i] < 0;
   }
   PairBatch& batch = scratch.batch;
-  const int start = batch.count();
+  const int start = batch.count;
   batch.reserve(start + count);
-  batch.law.count = start + count;
+  batch.count = start + count;
   planeContacts(start, count, sideInfo.shift, sideInfo.sign, inside, first, px, py, pz, phi, best, planes, RM,
                 nodes.normal.data()->data(), nodes.area.data(), batch);
 }
@@ -414,7 +414,6 @@ void convexSideContacts(PairContacts& pair, std::uint32_t side, const NodeBins& 
 // candidate nodes are to be rebuilt.
 bool beginEvaluation(PairContacts& pair) {
   std::swap(pair.contacts, pair.previous);
-  pair.contacts.clear();
   pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = pair.normalForceA = pair.forcePoint = Eigen::Vector3d::Zero();
   pair.tally = ContactTally{};
   pair.maxDepth = 0.0;

@@ -5,6 +5,7 @@
 #include "solver/contact_law.h"
 #include "solver/contact_parameters.h"
 #include "solver/node_bins.h"
+#include "solver/node_contacts.h"
 #include "solver/obstacles.h"
 #include "solver/rigid_bodies.h"
 
@@ -59,15 +60,6 @@ struct ShapeModel {
   }
 };
 
-/// A node in contact and its tangential spring: key = side << 31 | rank (side 0: a node of body
-/// a in b's level set; side 1: a node of b in a's), sorted by key.
-struct NodeContact {
-  std::uint32_t key;
-  Eigen::Vector3d spring;  ///< m
-  double energy;           ///< J, stored in this node contact
-  double area;             ///< m^2, its effective (projected) area
-};
-
 /// What the other side of a pair is: a body, or an analytic obstacle (each has its own collide
 /// function below).
 enum class PairKind : std::uint8_t { Bodies, Sphere, Plane };
@@ -78,7 +70,7 @@ enum class PairKind : std::uint8_t { Bodies, Sphere, Plane };
 struct PairContacts {
   int a = -1, b = -1;
   PairKind kind = PairKind::Bodies;  ///< pairKind(b, spheres)
-  std::vector<NodeContact> contacts, previous;
+  NodeContacts contacts, previous;  ///< of the last evaluation, and of the one before (its history)
   /// Keys (as in NodeContact) of the nodes within the candidate band of the other side when the
   /// broad phase was last built; only these can touch until it is built again. Sorted.
   std::vector<std::uint32_t> candidates;
