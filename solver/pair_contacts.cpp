@@ -245,13 +245,13 @@ PairSums sumPair(const PairBatch& batch, const NodeContacts& contacts, bool perA
 // Per-thread scratch (kept from pair to pair and step to step: no allocation once grown).
 struct Scratch {
   PairBatch batch;
-  // The candidates of a convex side: body-frame positions, level set, the plane giving it, and
-  // the indices of those inside.
-  std::vector<double> px, py, pz, phi;
+  // The candidates of a convex side: level set, the plane giving it, and the indices of those
+  // inside.
+  std::vector<double> phi;
   std::vector<int> best, inside;
   void reserve(int n) {
     if (static_cast<int>(phi.size()) >= n) return;
-    for (auto* v : {&px, &py, &pz, &phi}) v->resize(static_cast<std::size_t>(n));
+    phi.resize(static_cast<std::size_t>(n));
     for (auto* v : {&best, &inside}) v->resize(static_cast<std::size_t>(n));
   }
 };
@@ -372,7 +372,12 @@ void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::ui
   if (rebuild) {
     nodes.forEachNodeIn(region, [&](int rank) {
       const std::uint32_t key = side << 31 | static_cast<std::uint32_t>(rank);
-      if (test(key) < band) pair.candidates.push_back(key);
+      if (test(key) < band) {
+        pair.candidates.push_back(key);
+        pair.candidateX.push_back(nodes.position[rank].x());
+        pair.candidateY.push_back(nodes.position[rank].y());
+        pair.candidateZ.push_back(nodes.position[rank].z());
+      }
     });
     return;
   }
@@ -386,15 +391,11 @@ void convexSideContacts(PairContacts& pair, std::uint32_t side, const NodeBins& 
                         const Eigen::Matrix3d& RM, const Accumulator::Side& sideInfo, Scratch& scratch) {
   const auto [first, last] = candidatesOf(pair, side);
   const int n = static_cast<int>(last - first);
+  const std::size_t offset = static_cast<std::size_t>(first - pair.candidates.data());
   scratch.reserve(n);
-  double *px = scratch.px.data(), *py = scratch.py.data(), *pz = scratch.pz.data(), *phi = scratch.phi.data();
+  const double *px = pair.candidateX.data() + offset, *py = pair.candidateY.data() + offset, *pz = pair.candidateZ.data() + offset;
+  double* phi = scratch.phi.data();
   int *best = scratch.best.data(), *inside = scratch.inside.data();
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d& p = nodes.position[first[i] & kRankMask];
-    px[i] = p.x();
-    py[i] = p.y();
-    pz[i] = p.z();
-  }
   planesPhi(planes, n, px, py, pz, phi, best);
   pair.evaluations += n;
   int count = 0;
@@ -419,7 +420,12 @@ bool beginEvaluation(PairContacts& pair) {
   pair.maxDepth = 0.0;
   pair.evaluations = 0;
   const bool rebuild = !pair.candidatesValid;
-  if (rebuild) pair.candidates.clear();
+  if (rebuild) {
+    pair.candidates.clear();
+    pair.candidateX.clear();
+    pair.candidateY.clear();
+    pair.candidateZ.clear();
+  }
   pair.candidatesValid = true;
   return rebuild;
 }

@@ -74,6 +74,8 @@ struct PairContacts {
   /// Keys (as in NodeContact) of the nodes within the candidate band of the other side when the
   /// broad phase was last built; only these can touch until it is built again. Sorted.
   std::vector<std::uint32_t> candidates;
+  /// m: each candidate node's position in its own body's frame (so that a step reads them in order).
+  std::vector<double> candidateX, candidateY, candidateZ;
   bool candidatesValid = false;  ///< false: the next evaluation visits every node in range and rebuilds them
   Eigen::Vector3d forceA{0, 0, 0}, torqueA{0, 0, 0}, forceB{0, 0, 0}, torqueB{0, 0, 0};
   Eigen::Vector3d normalForceA{0, 0, 0};  ///< N, the part of forceA along the contact normals (forceA minus it: friction)
