@@ -28,6 +28,7 @@ const std::vector<CurveColumn>& curveColumns() {
       {"retired_kinetic", "J", &CurveSample::retiredKinetic},
       {"projection_energy", "J", &CurveSample::projection},
       {"energy_residual", "J", &CurveSample::residual},
+      {"indenter_speed", "m/s", &CurveSample::indenterSpeed},
   };
   return columns;
 }

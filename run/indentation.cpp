@@ -2,6 +2,7 @@
 
 #include "run/assembly_state.h"
 #include "run/load_point.h"
+#include "run/loading_rate.h"
 #include "run/protocol_scale.h"
 
 #include <algorithm>
@@ -50,7 +51,10 @@ void startLoading(World& world, const Bundle& bundle, const Scene& scene, Indent
   SphereObstacle indenter;
   indenter.radius = scene.indenter.radius > 0 ? scene.indenter.radius : scene.indenter.radiusRatio * record.thickness;
   indenter.center = Eigen::Vector3d(at.x(), at.y(), top + indenter.radius + scene.indenter.clearance);
-  indenter.velocity = Eigen::Vector3d(0, 0, -indenterSpeed(world, scene.indenter, record.thickness));
+  // With the adaptive loading rate, the indenter starts at its slowest speed and speeds up while
+  // the slab follows quasi-statically.
+  const double speed = indenterSpeed(world, scene.indenter, record.thickness);
+  indenter.velocity = Eigen::Vector3d(0, 0, -(scene.protocol.quasiStaticTarget > 0 ? kSlowestSpeedFraction * speed : speed));
   indenter.stiffnessFactor = scene.indenter.stiffnessFactor;
   state.sphere = world.addSphere(indenter);
   state.settledPosition = bodies.position;
@@ -167,8 +171,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
 
   // 2. Push at constant speed (or as the sample hook steers the indenter).
   RigidBodies& bodies = world.bodies();
-  const bool steered = state.speedSince != state.loadStart;  // resumed after the hook changed the speed
-  const double speed = steered ? indenterSpeed(world, scene.indenter, record.thickness) : -world.sphere(state.sphere).velocity.z();
+  const double speed = indenterSpeed(world, scene.indenter, record.thickness);  // the protocol's
   record.indenterSpeed = speed;
   record.indenterRadius = world.sphere(state.sphere).radius;
   const double travelMax = record.deltaMax + scene.indenter.clearance + record.indenterRadius;
@@ -198,6 +201,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     s.retiredKinetic = e.retiredKinetic;
     s.projection = e.projection;
     s.residual = e.residual();
+    s.indenterSpeed = -world.sphere(state.sphere).velocity.z();
     record.curve.push_back(s);
   };
   while (state.phase == 1) {
@@ -221,10 +225,12 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
 
     // A sample every sampleEvery of path, and, when the indenter goes slower than half the
     // protocol's speed (a hold), every 2 sampleEvery / speed of time: the sample hook keeps hearing.
+    // With the adaptive loading rate, slower than half its slowest speed.
     bool sampled = false, requested = false;
+    const double holdSpeed = scene.protocol.quasiStaticTarget > 0 ? kSlowestSpeedFraction * speed : speed;
     const bool pathDue = along >= state.nextSample;
     const bool timeDue = !record.curve.empty() &&
-                         world.time() - state.loadStart - record.curve.back().time >= 2 * scene.output.sampleEvery / speed;
+                         world.time() - state.loadStart - record.curve.back().time >= 2 * scene.output.sampleEvery / holdSpeed;
     if (state.contactTravel >= 0 && (pathDue || timeDue)) {
       sample(delta, load);
       sampled = true;
@@ -245,26 +251,36 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
       } else {
         state.quietFrom = -1;
       }
+      IndentationControl control{velocity, false};
+      // Adaptive loading rate: from first contact up to the peak, the speed that keeps KE / W
+      // under the target.
+      if (scene.protocol.quasiStaticTarget > 0 && load >= state.peak && last.externalWork > 0 && velocity > 0) {
+        double recent = 0;
+        const std::size_t n = record.curve.size();
+        for (std::size_t i = n - std::min<std::size_t>(n, kRecentSamples); i < n; ++i)
+          if (record.curve[i].externalWork > 0) recent = std::max(recent, record.curve[i].kinetic / record.curve[i].externalWork);
+        control.indenterSpeed = adaptedIndenterSpeed(velocity, last.kinetic / last.externalWork, recent,
+                                                     scene.protocol.quasiStaticTarget, kSlowestSpeedFraction * speed, speed);
+      }
       if (hooks.sample) {
-        IndentationControl control{velocity, false};
         hooks.sample(record.curve.back(), control);
         requested = control.stop;
-        if (control.indenterSpeed != velocity) {
-          // The broad phase finds the indenter's contacts only if it moves less than its margin
-          // between rebuilds: at most a tenth of the margin per step.
-          const double fastest = 0.1 * world.settings().broadPhaseMargin / world.timeStep();
-          if (!std::isfinite(control.indenterSpeed) || std::abs(control.indenterSpeed) > fastest) {
-            record.stopReason = "interrupted";  // as stopped here: resumable, its checkpoint written
-            finishSession();
-            throw std::invalid_argument("the sample hook set the indenter speed to " + std::to_string(control.indenterSpeed) +
-                                        " m/s; it must be finite and at most " + std::to_string(fastest) +
-                                        " m/s (a tenth of the broad-phase margin per time step)");
-          }
-          state.travelBase = travel;
-          state.pathBase = path;
-          state.speedSince = world.time();
-          world.sphere(state.sphere).velocity = Eigen::Vector3d(0, 0, -control.indenterSpeed);
+      }
+      if (control.indenterSpeed != velocity) {
+        // The broad phase finds the indenter's contacts only if it moves less than its margin
+        // between rebuilds: at most a tenth of the margin per step.
+        const double fastest = 0.1 * world.settings().broadPhaseMargin / world.timeStep();
+        if (!std::isfinite(control.indenterSpeed) || std::abs(control.indenterSpeed) > fastest) {
+          record.stopReason = "interrupted";  // as stopped here: resumable, its checkpoint written
+          finishSession();
+          throw std::invalid_argument("the sample hook set the indenter speed to " + std::to_string(control.indenterSpeed) +
+                                      " m/s; it must be finite and at most " + std::to_string(fastest) +
+                                      " m/s (a tenth of the broad-phase margin per time step)");
         }
+        state.travelBase = travel;
+        state.pathBase = path;
+        state.speedSince = world.time();
+        world.sphere(state.sphere).velocity = Eigen::Vector3d(0, 0, -control.indenterSpeed);
       }
     }
     if (state.contactTravel >= 0 && along >= state.nextSnapshot) {

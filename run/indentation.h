@@ -30,6 +30,7 @@ struct CurveSample {
   double retiredKinetic = 0;      ///< J, carried off by retired bodies
   double projection = 0;          ///< J, removed by changes of projected contact areas
   double residual = 0;            ///< J, EnergyBudget::residual
+  double indenterSpeed = 0;       ///< m/s, the indenter's downward speed at the sample
 };
 
 /// The contact of one pair at a snapshot (a force-chain link).

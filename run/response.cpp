@@ -9,7 +9,7 @@ namespace {
 
 ContactState contactStateAt(const CurveSample& s) {
   return {s.delta, s.blockDisplacement, s.indenterPenetration, s.blockContacts > 0 ? s.slidingContacts / s.blockContacts : 0.0,
-          s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0};
+          s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0, s.indenterSpeed};
 }
 
 // Trapezoidal area under P(delta) over samples [0, last].
@@ -108,6 +108,8 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
     if (c[i].externalWork > 0.01 * c[peak].externalWork)
       r.quasiStaticRatio = std::max(r.quasiStaticRatio, c[i].kinetic / c[i].externalWork);
   r.quasiStatic = r.quasiStaticRatio <= settings.quasiStaticLimit;
+  r.slowestSpeed = c[0].indenterSpeed;
+  for (std::size_t i = 0; i <= peak; ++i) r.slowestSpeed = std::min(r.slowestSpeed, c[i].indenterSpeed);
 
   // Failure mode from the final state.
   const int fallen = static_cast<int>(record.fallen.size());

@@ -30,6 +30,7 @@ struct ContactState {
   double indenterPenetration = 0;  ///< m
   double slidingFraction = 0;      ///< of the node contacts between bodies, the fraction at the Coulomb cap
   double loadedSlidingFraction = 0;  ///< the same on the loaded block's interfaces
+  double indenterSpeed = 0;        ///< m/s, the indenter's downward speed
 };
 
 /// The response parameters of an indentation (docs/outputs.md; Feldfogel et al., Fig. 1d).
@@ -49,6 +50,7 @@ struct ResponseParameters {
   CurveSample end;                ///< the last sample: energies at the end of the run
   double quasiStaticRatio = 0;    ///< max kinetic energy / external work before the peak (once 1 % of that work is done)
   bool quasiStatic = true;        ///< quasiStaticRatio is within ResponseSettings::quasiStaticLimit
+  double slowestSpeed = 0;        ///< m/s, the indenter's slowest downward speed at a sample up to the peak
   double thickness = 0;           ///< m, h of the loaded block
   /// Normalised (the paper's upper-bound comparison): P* = P / (E L^2), delta* = delta / h.
   double peakLoadNormalised = 0, deltaAtPeakNormalised = 0;

@@ -110,7 +110,8 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
                           {"block_displacement_mm", c.blockDisplacement * 1e3},
                           {"indenter_penetration_mm", c.indenterPenetration * 1e3},
                           {"sliding_fraction", c.slidingFraction},
-                          {"loaded_sliding_fraction", c.loadedSlidingFraction}};
+                          {"loaded_sliding_fraction", c.loadedSlidingFraction},
+                          {"indenter_speed_mm_per_s", c.indenterSpeed * 1e3}};
   };
   const CurveSample& end = response.end;
   const bool failed = response.failureDeflection >= 0;
@@ -151,6 +152,8 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
           {"residual_mJ", end.residual * 1e3}}},
         {"quasi_static_ratio", response.quasiStaticRatio},
         {"quasi_static", response.quasiStatic},
+        {"quasi_static_target", scene.protocol.quasiStaticTarget},
+        {"slowest_indenter_speed_mm_per_s", response.slowestSpeed * 1e3},
         {"peak_load_normalised", response.peakLoadNormalised},
         {"delta_at_peak_normalised", response.deltaAtPeakNormalised},
         {"thickness_mm", response.thickness * 1e3},

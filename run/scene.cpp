@@ -184,6 +184,8 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   protocol.number("fallen_clearance", scene.protocol.fallenClearance, 1e-3, 10, "of each body's size");
   protocol.number("stiffness_fit_ratio", scene.protocol.stiffnessFitRatio, 1e-3, 10, "of the loaded block's thickness");
   protocol.number("quasi_static_limit", scene.protocol.quasiStaticLimit, 1e-9, 1, "kinetic energy / indenter work");
+  protocol.number("quasi_static_target", scene.protocol.quasiStaticTarget, 0, 1,
+                  "kinetic energy / indenter work to keep the loading under; 0 = constant speed");
   if (root["protocol"]["fallen_distance"])
     throw InputError(path + ": protocol.fallen_distance is gone: a body now falls when no block contact holds it "
                             "(docs/physics.md, \"Failure\"); remove the key, or tune protocol.fallen_clearance (a ratio)");

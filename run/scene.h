@@ -63,6 +63,10 @@ struct ProtocolSettings {
   double stiffnessFitRatio = 0.4e-3 / kPaperThickness;
   /// Quasi-static check: the run warns and summary.json flags it when KE / W before the peak exceeds this.
   double quasiStaticLimit = 1e-2;
+  /// > 0: adaptive loading rate. Up to the peak the indenter's speed is lowered (to 1/64 of the
+  /// protocol's at most) where KE / W exceeds this, and raised back towards the protocol's speed
+  /// where KE / W is below a quarter of it (run/loading_rate.h). 0: constant speed.
+  double quasiStaticTarget = 0.0;
 };
 
 struct OutputSettings {

@@ -1,0 +1,71 @@
+// The adaptive loading rate (run/loading_rate.h): the rule on its own, and a slab pressed too fast
+// for a quasi-static answer, which the rule brings back to the slow run's stiffness.
+#include "run/loading_rate.h"
+#include "run/run_session.h"
+#include "tests/fixtures/scenes.h"
+#include "tests/fixtures/temp_dir.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace tessera;
+
+TEST_CASE("loading rate: above the target the speed drops, at most 4x a sample and never under the slowest; far below it, over the recent samples, it rises to the protocol's") {
+  const double v = 0.1, slowest = 0.01, fastest = 0.2, target = 1e-3;
+  // KE goes as v^2: v sqrt(target / q) would meet the target; the rule goes to 0.8 of that.
+  CHECK(adaptedIndenterSpeed(v, 4 * target, 4 * target, target, slowest, fastest) == Approx(0.8 * v * 0.5));
+  CHECK(adaptedIndenterSpeed(v, 1.01 * target, 1.01 * target, target, slowest, fastest) < 0.8 * v);  // at least 20 % slower
+  CHECK(adaptedIndenterSpeed(v, 1e6 * target, 1e6 * target, target, slowest, fastest) == Approx(0.25 * v));  // at most 4x slower
+  CHECK(adaptedIndenterSpeed(0.011, 1e6 * target, 1e6 * target, target, slowest, fastest) == Approx(slowest));
+  CHECK(adaptedIndenterSpeed(0.005, 1e6 * target, 1e6 * target, target, slowest, fastest) == Approx(0.005));  // never raised when too fast
+  CHECK(adaptedIndenterSpeed(v, 0.5 * target, 0.5 * target, target, slowest, fastest) == v);                   // in the band: kept
+  CHECK(adaptedIndenterSpeed(v, 0.1 * target, 0.1 * target, target, slowest, fastest) == Approx(1.25 * v));
+  CHECK(adaptedIndenterSpeed(v, 0.1 * target, 0.5 * target, target, slowest, fastest) == v);  // a recent sample too high: kept
+  CHECK(adaptedIndenterSpeed(0.19, 0.0, 0.0, target, slowest, fastest) == Approx(fastest));
+}
+
+namespace {
+
+struct Loading {
+  double stiffness = 0;        // N/m
+  double quasiStaticRatio = 0; // max KE / W before the peak
+  double slowest = 0;          // m/s
+  long steps = 0;
+};
+
+Loading press(const test::TempDir& dir, const std::string& name, double speed, double target) {
+  const std::string scene = dir / (name + ".toml");
+  test::writeFile(scene, "bundle = \"slab\"\n[material]\nyoungs_modulus = 4.2e9\nfriction = 0.23\n"
+                         "[indenter]\nradius = 2.5e-3\nspeed = " + std::to_string(speed) +
+                         "\n[protocol]\ndelta_max = 0.6e-3\nquasi_static_target = " + std::to_string(target) +
+                         "\n[damping]\nlocal = 0.3\n[output]\ncheckpoint_seconds = 1e5\n");
+  RunRequest request;
+  request.scene = scene;
+  request.threads = 1;
+  auto session = RunSession::start(request, {});
+  session->run({});
+  return {session->response().stiffness, session->response().quasiStaticRatio, session->response().slowestSpeed,
+          session->record().steps};
+}
+
+}  // namespace
+
+TEST_CASE("loading rate: a slab pressed 40x too fast keeps KE / W under the target and gets the slow run's stiffness") {
+  test::TempDir dir;
+  writeBundle(dir / "slab", test::smallSlab(3, 0.25e-3, 1.0e-3));
+  const Loading slow = press(dir, "slow", 0.03, 0.0);
+  const Loading fast = press(dir, "fast", 1.2, 0.0);
+  const Loading adaptive = press(dir, "adaptive", 1.2, 1e-3);
+  INFO("K: slow " << slow.stiffness << ", fast " << fast.stiffness << ", adaptive " << adaptive.stiffness
+                  << " N/m; KE/W: slow " << slow.quasiStaticRatio << ", fast " << fast.quasiStaticRatio << ", adaptive "
+                  << adaptive.quasiStaticRatio << "; steps: slow " << slow.steps << ", adaptive " << adaptive.steps
+                  << "; adaptive's slowest speed " << adaptive.slowest << " m/s");
+  CHECK(fast.quasiStaticRatio > 10 * 1e-3);
+  CHECK(adaptive.quasiStaticRatio <= 1e-3);
+  CHECK(adaptive.slowest < 1.2);
+  CHECK(std::abs(adaptive.stiffness / slow.stiffness - 1) < std::abs(fast.stiffness / slow.stiffness - 1));
+  CHECK(std::abs(adaptive.stiffness / slow.stiffness - 1) < 0.02);
+  CHECK(adaptive.steps < slow.steps);
+}
