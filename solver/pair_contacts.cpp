@@ -82,6 +82,21 @@ void relativeVelocities(int first, int last, const Eigen::Vector3d& v0, const Ei
   }
 }
 
+// Points moved into another frame, x' = R x + t, n at once (SIMD).
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void transformPoints(int n, const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const double* __restrict x,
+                     const double* __restrict y, const double* __restrict z, double* __restrict ox, double* __restrict oy,
+                     double* __restrict oz) {
+  const double r00 = R(0, 0), r01 = R(0, 1), r02 = R(0, 2), r10 = R(1, 0), r11 = R(1, 1), r12 = R(1, 2), r20 = R(2, 0),
+               r21 = R(2, 1), r22 = R(2, 2), tx = t.x(), ty = t.y(), tz = t.z();
+#pragma omp simd
+  for (int i = 0; i < n; ++i) {
+    ox[i] = (r00 * x[i] + r01 * y[i] + r02 * z[i]) + tx;
+    oy[i] = (r10 * x[i] + r11 * y[i] + r12 * z[i]) + ty;
+    oz[i] = (r20 * x[i] + r21 * y[i] + r22 * z[i]) + tz;
+  }
+}
+
 // The face planes of a convex body expressed in another body's frame (x_O = R x_M + t), in hot
 // arrays: phi(p) = max_f (n_f . p - d_f), the exact level set of a convex polyhedron (1-Lipschitz),
 // evaluated without transforming p. With each plane's normal in the world frame.
@@ -245,13 +260,13 @@ PairSums sumPair(const PairBatch& batch, const NodeContacts& contacts, bool perA
 // Per-thread scratch (kept from pair to pair and step to step: no allocation once grown).
 struct Scratch {
   PairBatch batch;
-  // The candidates of a convex side: level set, the plane giving it, and the indices of those
-  // inside.
-  std::vector<double> phi;
+  // The candidates of one side: level set (or the grid's value), the plane giving it, the
+  // indices of those inside (or near), and their positions in the other side's frame.
+  std::vector<double> phi, ox, oy, oz;
   std::vector<int> best, inside;
   void reserve(int n) {
     if (static_cast<int>(phi.size()) >= n) return;
-    phi.resize(static_cast<std::size_t>(n));
+    for (auto* v : {&phi, &ox, &oy, &oz}) v->resize(static_cast<std::size_t>(n));
     for (auto* v : {&best, &inside}) v->resize(static_cast<std::size_t>(n));
   }
 };
@@ -411,6 +426,41 @@ void convexSideContacts(PairContacts& pair, std::uint32_t side, const NodeBins& 
                 nodes.normal.data()->data(), nodes.area.data(), batch);
 }
 
+// The contacts of one side's candidates in a non-convex other side O (its exact mesh or grid level
+// set): every candidate's position in O's frame and the grid's value there (SIMD, no branches),
+// then the level set in full for those the grid cannot settle (ShapeModel::gridValueBound) and
+// their contacts. `toO`, `shift`: O's frame from M's; `offset` = c_O - c_M.
+void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const NodeBins& nodes, const ShapeModel& so,
+                          const Eigen::Matrix3d& toO, const Eigen::Vector3d& shift, const Eigen::Matrix3d& RM,
+                          const Eigen::Matrix3d& RO, const Eigen::Vector3d& offset, Accumulator& acc, Scratch& scratch) {
+  const auto [first, last] = candidatesOf(pair, side);
+  const int n = static_cast<int>(last - first);
+  const std::size_t at = static_cast<std::size_t>(first - pair.candidates.data());
+  scratch.reserve(n);
+  transformPoints(n, toO, shift, pair.candidateX.data() + at, pair.candidateY.data() + at, pair.candidateZ.data() + at,
+                  scratch.ox.data(), scratch.oy.data(), scratch.oz.data());
+  double* value = scratch.phi.data();
+  for (int i = 0; i < n; ++i) value[i] = so.sdf.value(Eigen::Vector3d(scratch.ox[i], scratch.oy[i], scratch.oz[i]));
+  pair.evaluations += n;
+  const double bound = so.gridValueBound();
+  int* near = scratch.inside.data();
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    near[count] = i;
+    count += value[i] <= bound;
+  }
+  for (int k = 0; k < count; ++k) {
+    const int i = near[k];
+    const Eigen::Vector3d xO(scratch.ox[i], scratch.oy[i], scratch.oz[i]);
+    Eigen::Vector3d normalO = Eigen::Vector3d::Zero();
+    const double phi = so.meshLevelSet(xO, value[i], normalO);
+    if (!(phi < 0)) continue;
+    const std::uint32_t rank = first[i] & kRankMask;
+    const Eigen::Vector3d normal = RO * normalO;
+    acc.add(first[i], RO * xO + offset, -(RM * nodes.normal[rank]).dot(normal), 0.5 * nodes.area[rank], normal, -phi);
+  }
+}
+
 // Clears the pair's last evaluation (its contacts become the history) and says whether its
 // candidate nodes are to be rebuilt.
 bool beginEvaluation(PairContacts& pair) {
@@ -500,19 +550,14 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
         });
       convexSideContacts(pair, side, sm.nodes, planes, RM, sideInfo, scratch);
     } else {
-      visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
-        ++pair.evaluations;
-        const int rank = static_cast<int>(key & kRankMask);
-        const Eigen::Vector3d xO = toO * sm.nodes.position[rank] + shift;
-        Eigen::Vector3d normalO = Eigen::Vector3d::Zero();
-        const double phi = so.meshLevelSet(xO, normalO);
-        if (phi < 0) {
-          const Eigen::Vector3d normal = RO * normalO;
-          acc.add(key, RO * xO + (other.position - node.position), -(RM * sm.nodes.normal[rank]).dot(normal),
-                  0.5 * sm.nodes.area[rank], normal, -phi);
-        }
-        return phi;
-      });
+      // As for a convex side: the candidates first (if rebuilt), then the level set of all of them.
+      if (rebuild)
+        visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
+          ++pair.evaluations;
+          Eigen::Vector3d normalO;
+          return so.meshLevelSet(toO * sm.nodes.position[key & kRankMask] + shift, normalO);
+        });
+      levelSetSideContacts(pair, side, sm.nodes, so, toO, shift, RM, RO, other.position - node.position, acc, scratch);
     }
     acc.endSide();
   }

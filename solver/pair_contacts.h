@@ -30,9 +30,13 @@ struct ShapeModel {
   /// exact phi, which is 1-Lipschitz, so its trilinear interpolation exceeds phi(x) by at most
   /// sum_i w_i |v_i - x| <= (sqrt 3 / 2) h (the cell's centre): a grid value above that is a point
   /// outside, whose value no force uses.
-  double meshLevelSet(const Eigen::Vector3d& x, Eigen::Vector3d& normal) const {
+  double meshLevelSet(const Eigen::Vector3d& x, Eigen::Vector3d& normal) const { return meshLevelSet(x, sdf.value(x), normal); }
+  /// meshLevelSet with the grid's value at x, sdf.value(x), known. A grid value above
+  /// gridValueBound() is the level set itself (outside, no contact); below it the level set needs
+  /// this call.
+  double meshLevelSet(const Eigen::Vector3d& x, double gridValue, Eigen::Vector3d& normal) const {
     if (!exactMesh.empty()) {
-      const double outside = sdf.value(x);
+      const double outside = gridValue;
       if (outside > 0.8660254037844386 * sdf.voxelSize) return outside;
       double phi;
       Eigen::Vector3d gradient;
@@ -41,15 +45,18 @@ struct ShapeModel {
         return phi;
       }
     }
-    return gridLevelSet(x, normal);
+    return gridLevelSet(x, gridValue, normal);
   }
+  double gridValueBound() const { return exactMesh.empty() ? 0.0 : 0.8660254037844386 * sdf.voxelSize; }
 
   /// The grid's level set at a body-frame point: phi (m, < 0 inside; positive outside, also
   /// beyond the grid), and when phi < 0 its unit gradient in `normal`. About 1-Lipschitz (to the
   /// interpolation error), which the pairs' candidate bands rely on. (With `planes`, the pair
   /// evaluation uses the exact phi = max_f (n_f . x - d_f) instead.)
-  double gridLevelSet(const Eigen::Vector3d& x, Eigen::Vector3d& normal) const {
-    const double outside = sdf.value(x);  // most candidates are outside: no gradient for them
+  double gridLevelSet(const Eigen::Vector3d& x, Eigen::Vector3d& normal) const { return gridLevelSet(x, sdf.value(x), normal); }
+  /// gridLevelSet with sdf.value(x) known.
+  double gridLevelSet(const Eigen::Vector3d& x, double gridValue, Eigen::Vector3d& normal) const {
+    const double outside = gridValue;  // most candidates are outside: no gradient for them
     if (outside >= 0) return outside;
     const SdfSample s = sdf.sample(x);
     if (s.phi >= 0) return s.phi;
