@@ -26,11 +26,11 @@ const std::vector<Preset>& presets() {
   static const std::vector<Preset> all = {
       {"fast", "nodes t/2.65, 20x the paper's speed (1.2 mm, 120 mm/s on its slab): P_max -3 %, K +12 %, W -2 %; 4-7 s on one thread",
        keys(1.2, 20)},
-      {"default", "nodes t/5.3, 5x the paper's speed (0.6 mm, 30 mm/s on its slab): P_max +8 %, K +5 %, W +2 %; 40 s on one thread",
+      {"default", "nodes t/5.3, 5x the paper's speed (0.6 mm, 30 mm/s on its slab): P_max +8 %, K +5 %, W +2 %; 33 s on one thread",
        keys(0.6, 5)},
-      {"paper", "nodes t/5.3 at the paper's speed (0.6 mm, 6 mm/s): as default (speed changes < 0.1 %); 87 s on two threads",
+      {"paper", "nodes t/5.3 at the paper's speed (0.6 mm, 6 mm/s): as default (speed changes < 0.1 %); 100 s on two threads",
        keys(0.6, 1)},
-      {"fine", "nodes t/10.6, 5x the paper's speed (0.3 mm, 30 mm/s): P_max +6 %, K +2 %, W +4 %; 130 s on one thread",
+      {"fine", "nodes t/10.6, 5x the paper's speed (0.3 mm, 30 mm/s): P_max +6 %, K +2 %, W +4 %; 65 s on one thread",
        keys(0.3, 5)},
   };
   return all;
