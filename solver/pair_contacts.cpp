@@ -189,12 +189,12 @@ void planesPhi(const PlanesInFrame& planes, int n, const double* __restrict px, 
 // phi and best plane) as contacts of the batch, entries start .. start+count-1: key, lever
 // r = RM p + (c_M - c_a), the sign of the force on a, the world normal of the best plane, depth
 // -phi, and area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame),
-// clipped at 0.
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-void planeContacts(int start, int count, const Eigen::Vector3d& shift, double forceSign, const int* __restrict inside, const std::uint32_t* __restrict keys, const double* __restrict px,
-                   const double* __restrict py, const double* __restrict pz, const double* __restrict phi,
-                   const int* __restrict best, const PlanesInFrame& planes, const Eigen::Matrix3d& RM,
-                   const double* __restrict nodeNormal, const double* __restrict nodeArea, PairBatch& batch) {
+// clipped at 0. Scalar: its loads are gathers, which on AVX-512 measured slower than this loop.
+void planeContacts(int start, int count, const Eigen::Vector3d& shift, double forceSign, const int* __restrict inside,
+                   const std::uint32_t* __restrict keys, const double* __restrict px, const double* __restrict py,
+                   const double* __restrict pz, const double* __restrict phi, const int* __restrict best,
+                   const PlanesInFrame& planes, const Eigen::Matrix3d& RM, const double* __restrict nodeNormal,
+                   const double* __restrict nodeArea, PairBatch& batch) {
   std::uint32_t* __restrict key = batch.key.data() + start;
   double *__restrict rx = batch.rx.data() + start, *__restrict ry = batch.ry.data() + start, *__restrict rz = batch.rz.data() + start;
   double* __restrict sign = batch.sign.data() + start;
@@ -203,7 +203,6 @@ void planeContacts(int start, int count, const Eigen::Vector3d& shift, double fo
   const double sx = shift.x(), sy = shift.y(), sz = shift.z();
   const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
                r21 = RM(2, 1), r22 = RM(2, 2);
-#pragma omp simd
   for (int k = 0; k < count; ++k) {
     const int i = inside[k], f = best[i];
     const std::uint32_t rank = keys[i] & kRankMask;
