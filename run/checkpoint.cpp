@@ -252,6 +252,7 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
   h5::writeAttribute(g, "path_base", s.pathBase);
   h5::writeAttribute(g, "speed_since", s.speedSince);
   h5::writeAttribute(g, "contact_path", s.contactPath);
+  h5::writeAttribute(g, "rate_adapted", std::int64_t{s.rateAdapted});
   writeVectors(g, "settled_position", s.settledPosition);
   writeDoubles(g, "out_at", s.outAt);
 
@@ -286,6 +287,7 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   s.pathBase = h5::readDoubleAttribute(g, "path_base");
   s.speedSince = h5::readDoubleAttribute(g, "speed_since");
   s.contactPath = h5::readDoubleAttribute(g, "contact_path");
+  s.rateAdapted = h5::readIntAttribute(g, "rate_adapted") != 0;
   s.settledPosition = readVectors(g, "settled_position");
   s.outAt = h5::readDataset<double>(g, "out_at");
   if ((s.phase > 0 && s.settledPosition.size() != bodies) || s.outAt.size() != s.settledPosition.size())

@@ -225,12 +225,12 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
 
     // A sample every sampleEvery of path, and, when the indenter goes slower than half the
     // protocol's speed (a hold), every 2 sampleEvery / speed of time: the sample hook keeps hearing.
-    // With the adaptive loading rate, slower than half its slowest speed.
+    // With the adaptive loading rate, a hold is slower than half its slowest speed.
     bool sampled = false, requested = false;
-    const double holdSpeed = scene.protocol.quasiStaticTarget > 0 ? kSlowestSpeedFraction * speed : speed;
     const bool pathDue = along >= state.nextSample;
-    const bool timeDue = !record.curve.empty() &&
-                         world.time() - state.loadStart - record.curve.back().time >= 2 * scene.output.sampleEvery / holdSpeed;
+    const bool hold = scene.protocol.quasiStaticTarget <= 0 || std::abs(velocity) < 0.5 * kSlowestSpeedFraction * speed;
+    const bool timeDue = hold && !record.curve.empty() &&
+                         world.time() - state.loadStart - record.curve.back().time >= 2 * scene.output.sampleEvery / speed;
     if (state.contactTravel >= 0 && (pathDue || timeDue)) {
       sample(delta, load);
       sampled = true;
@@ -252,21 +252,12 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
         state.quietFrom = -1;
       }
       IndentationControl control{velocity, false};
-      // Adaptive loading rate: from first contact up to the peak, the speed that keeps KE / W
-      // under the target.
-      if (scene.protocol.quasiStaticTarget > 0 && load >= state.peak && last.externalWork > 0 && velocity > 0) {
-        double recent = 0;
-        const std::size_t n = record.curve.size();
-        for (std::size_t i = n - std::min<std::size_t>(n, kRecentSamples); i < n; ++i)
-          if (record.curve[i].externalWork > 0) recent = std::max(recent, record.curve[i].kinetic / record.curve[i].externalWork);
-        control.indenterSpeed = adaptedIndenterSpeed(velocity, last.kinetic / last.externalWork, recent,
-                                                     scene.protocol.quasiStaticTarget, kSlowestSpeedFraction * speed, speed);
-      }
       if (hooks.sample) {
         hooks.sample(record.curve.back(), control);
         requested = control.stop;
       }
-      if (control.indenterSpeed != velocity) {
+      const bool steered = control.indenterSpeed != velocity;
+      if (steered) {
         // The broad phase finds the indenter's contacts only if it moves less than its margin
         // between rebuilds: at most a tenth of the margin per step.
         const double fastest = 0.1 * world.settings().broadPhaseMargin / world.timeStep();
@@ -277,6 +268,21 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
                                       " m/s; it must be finite and at most " + std::to_string(fastest) +
                                       " m/s (a tenth of the broad-phase margin per time step)");
         }
+      }
+      // Adaptive loading rate, from first contact until the load first falls below half its
+      // largest value (past the peak), or a sample hook sets the speed (it steers from then on):
+      // the speed that keeps KE / W under the target.
+      if (scene.protocol.quasiStaticTarget > 0 && (steered || (state.peak > 0 && load < 0.5 * state.peak)))
+        state.rateAdapted = true;
+      if (scene.protocol.quasiStaticTarget > 0 && !state.rateAdapted && last.externalWork > 0 && velocity > 0) {
+        double recent = 0;
+        const std::size_t n = record.curve.size();
+        for (std::size_t i = n - std::min<std::size_t>(n, kRecentSamples); i < n; ++i)
+          if (record.curve[i].externalWork > 0) recent = std::max(recent, record.curve[i].kinetic / record.curve[i].externalWork);
+        control.indenterSpeed = adaptedIndenterSpeed(velocity, last.kinetic / last.externalWork, recent,
+                                                     scene.protocol.quasiStaticTarget, kSlowestSpeedFraction * speed, speed);
+      }
+      if (control.indenterSpeed != velocity) {
         state.travelBase = travel;
         state.pathBase = path;
         state.speedSince = world.time();
@@ -295,7 +301,8 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
                                                   : record.deltaMax - delta;
       const EnergyBudget e = world.energy();
       hooks.progress({delta, load, e.kinetic, e.obstacleWork, static_cast<long>(countContacts(world, record.target).all),
-                      world.stepCount(), world.stepCount() / (wallBefore + wall()), eta(std::max(left, 0.0), speed), false});
+                      world.stepCount(), world.stepCount() / (wallBefore + wall()),
+                      eta(std::max(left, 0.0), velocity > 0 ? velocity : speed), false});
     }
     const bool reachedMax = (state.contactTravel >= 0 && delta >= record.deltaMax) ||
                             travel > travelMax + record.deltaMax;  // the latter: never touched anything

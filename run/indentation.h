@@ -111,6 +111,9 @@ struct IndentationState {
   double travelBase = 0, pathBase = 0;
   double speedSince = 0;     ///< s, when the indenter's velocity last changed (loadStart at first)
   double contactPath = -1;   ///< m, indenter path at first contact (< 0: not yet)
+  /// The adaptive loading rate is over: the load fell below half its largest value, or a sample
+  /// hook set the indenter's speed.
+  bool rateAdapted = false;
   std::vector<Eigen::Vector3d> settledPosition;
   std::vector<double> outAt;  ///< m of delta per body: when it lost its last contact path to a support or was pushed through (< 0: in)
 };

@@ -108,8 +108,7 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
     if (c[i].externalWork > 0.01 * c[peak].externalWork)
       r.quasiStaticRatio = std::max(r.quasiStaticRatio, c[i].kinetic / c[i].externalWork);
   r.quasiStatic = r.quasiStaticRatio <= settings.quasiStaticLimit;
-  r.slowestSpeed = c[0].indenterSpeed;
-  for (std::size_t i = 0; i <= peak; ++i) r.slowestSpeed = std::min(r.slowestSpeed, c[i].indenterSpeed);
+  if (c[peak].time > c[0].time) r.loadingSpeed = (c[peak].delta - c[0].delta) / (c[peak].time - c[0].time);
 
   // Failure mode from the final state.
   const int fallen = static_cast<int>(record.fallen.size());

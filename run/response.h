@@ -50,7 +50,7 @@ struct ResponseParameters {
   CurveSample end;                ///< the last sample: energies at the end of the run
   double quasiStaticRatio = 0;    ///< max kinetic energy / external work before the peak (once 1 % of that work is done)
   bool quasiStatic = true;        ///< quasiStaticRatio is within ResponseSettings::quasiStaticLimit
-  double slowestSpeed = 0;        ///< m/s, the indenter's slowest downward speed at a sample up to the peak
+  double loadingSpeed = 0;        ///< m/s, the indenter's mean speed from first contact to the peak (delta / time)
   double thickness = 0;           ///< m, h of the loaded block
   /// Normalised (the paper's upper-bound comparison): P* = P / (E L^2), delta* = delta / h.
   double peakLoadNormalised = 0, deltaAtPeakNormalised = 0;

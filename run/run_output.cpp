@@ -153,7 +153,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
         {"quasi_static_ratio", response.quasiStaticRatio},
         {"quasi_static", response.quasiStatic},
         {"quasi_static_target", scene.protocol.quasiStaticTarget},
-        {"slowest_indenter_speed_mm_per_s", response.slowestSpeed * 1e3},
+        {"loading_speed_to_peak_mm_per_s", response.loadingSpeed * 1e3},
         {"peak_load_normalised", response.peakLoadNormalised},
         {"delta_at_peak_normalised", response.deltaAtPeakNormalised},
         {"thickness_mm", response.thickness * 1e3},
