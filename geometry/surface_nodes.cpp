@@ -4,6 +4,7 @@
 #include "geometry/point_grid.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <queue>
@@ -22,22 +23,140 @@ constexpr double kCandidatesPerSpacing = 4.0;
 struct QuadraturePoint {
   Eigen::Vector3d position;
   double area;
+  double spacing;  ///< m, the local node spacing there (a lower bound over the sub-triangle)
 };
 
-// Calls visit(point) for the k^2 congruent sub-triangles of triangle t (k = ceil(longest edge /
-// h)): their centroids, each with area A / k^2, so the areas sum exactly to A.
-template <class Visit>
-void forEachQuadraturePoint(const TriangleMesh& mesh, int t, double h, Visit&& visit) {
-  const Eigen::Vector3d a = triangleCorner(mesh, t, 0), b = triangleCorner(mesh, t, 1), c = triangleCorner(mesh, t, 2);
-  const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-  const int k = std::max(1, static_cast<int>(std::ceil(longest / h)));
-  const double subArea = triangleArea(mesh, t) / (static_cast<double>(k) * k);
-  const Eigen::Vector3d du = (b - a) / k, dv = (c - a) / k;
-  for (int i = 0; i < k; ++i)
-    for (int j = 0; i + j < k; ++j) {
-      visit(QuadraturePoint{a + (i + 1.0 / 3.0) * du + (j + 1.0 / 3.0) * dv, subArea});  // upward
-      if (i + j < k - 1) visit(QuadraturePoint{a + (i + 2.0 / 3.0) * du + (j + 2.0 / 3.0) * dv, subArea});  // downward
+// The local node spacing l(x) = min(s, s_e + g d(x)): s_e at the sharp edges bounding x's patch,
+// growing with the distance d from them by the size gradient g up to the face spacing s (the
+// graded-mesh size function of mesh generators, e.g. Persson & Strang, SIAM Review 46(2), 2004).
+// Uniform (l = s everywhere, and no distance is computed) when s_e >= s or the mesh has no sharp
+// edge.
+class LocalSpacing {
+public:
+  LocalSpacing(const TriangleMesh& mesh, const MeshFeatures& features, const SurfaceNodeOptions& options)
+      : face_(options.spacing),
+        edge_(options.edgeSpacing > 0 ? std::min(options.edgeSpacing, options.spacing) : options.spacing),
+        gradient_(options.sizeGradient),
+        band_(uniform() ? 0.0 : (face_ - edge_) / gradient_),
+        grid_(uniform() ? 1.0 : band_) {
+    if (uniform()) return;
+    // The sharp edges in pieces no longer than the band, each filed under its midpoint.
+    for (const FeatureChain& chain : features.chains)
+      for (std::size_t i = 1; i < chain.vertices.size(); ++i) {
+        const Eigen::Vector3d a = mesh.vertices[chain.vertices[i - 1]], b = mesh.vertices[chain.vertices[i]];
+        const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / band_)));
+        for (int k = 0; k < n; ++k) {
+          const Piece piece{a + (b - a) * (static_cast<double>(k) / n), a + (b - a) * (static_cast<double>(k + 1) / n),
+                            &chain.patches};
+          grid_.insert(static_cast<int>(pieces_.size()), 0.5 * (piece.from + piece.to));
+          pieces_.push_back(piece);
+        }
+      }
+    if (pieces_.empty()) edge_ = face_;  // no sharp edge (a smooth mesh): uniform
+  }
+
+  bool uniform() const { return !(edge_ < face_); }
+  double face() const { return face_; }
+  double edge() const { return edge_; }
+
+  /// The edge pieces bounding patch p that come within the band of some point within `reach` of x.
+  std::vector<int> piecesNear(const Eigen::Vector3d& x, double reach, int p) const {
+    std::vector<int> found;
+    if (uniform()) return found;
+    grid_.forEachNear(x, band_ + reach + 0.5 * band_, [&](int i) {
+      const Piece& piece = pieces_[i];
+      if (std::find(piece.patches->begin(), piece.patches->end(), p) != piece.patches->end() &&
+          distance(piece, x) <= band_ + reach)
+        found.push_back(i);
+    });
+    return found;
+  }
+
+  /// The smallest l over a ball of `radius` about x, from the pieces near it (`pieces`, a superset
+  /// of those within the band of the ball); `kept` gets those that can matter to a ball centred
+  /// within it of at most twice the radius (a sub-triangle's: its corners lie in this triangle).
+  double at(const Eigen::Vector3d& x, double radius, const std::vector<int>& pieces, std::vector<int>& kept) const {
+    kept.clear();
+    if (uniform()) return face_;
+    double nearest = INFINITY;
+    for (int i : pieces) {
+      const double d = distance(pieces_[i], x);
+      nearest = std::min(nearest, d);
+      if (d <= band_ + 3 * radius) kept.push_back(i);
     }
+    return std::min(face_, edge_ + gradient_ * std::max(0.0, nearest - radius));
+  }
+
+private:
+  struct Piece {
+    Eigen::Vector3d from, to;
+    const std::vector<int>* patches;  ///< the patches meeting along it
+  };
+  static double distance(const Piece& piece, const Eigen::Vector3d& x) {
+    const Eigen::Vector3d along = piece.to - piece.from;
+    const double w = std::clamp((x - piece.from).dot(along) / along.squaredNorm(), 0.0, 1.0);
+    return (piece.from + w * along - x).norm();
+  }
+
+  double face_, edge_, gradient_, band_;
+  PointGrid grid_;
+  std::vector<Piece> pieces_;
+};
+
+// Calls visit(point) for the quadrature points of triangle t: small sub-triangles of longest edge
+// <= l / perSpacing, each as its centroid with its area, so the areas sum exactly to the
+// triangle's.
+//  - Uniform spacing: the k^2 congruent sub-triangles, k = ceil(longest edge / (s / perSpacing)).
+//  - Graded spacing: the triangle halved across its longest edge, recursively, until each piece is
+//    small enough for the local spacing over it. Bisection keeps the count near area / h^2 even
+//    for slivers, where k^2 pieces would be far more.
+template <class Visit>
+void forEachQuadraturePoint(const TriangleMesh& mesh, int t, int patch, const LocalSpacing& spacing, double perSpacing,
+                            Visit&& visit) {
+  const Eigen::Vector3d a = triangleCorner(mesh, t, 0), b = triangleCorner(mesh, t, 1), c = triangleCorner(mesh, t, 2);
+  if (spacing.uniform()) {
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int k = std::max(1, static_cast<int>(std::ceil(longest / (spacing.face() / perSpacing))));
+    const double subArea = triangleArea(mesh, t) / (static_cast<double>(k) * k);
+    const Eigen::Vector3d du = (b - a) / k, dv = (c - a) / k;
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; i + j < k; ++j) {
+        visit(QuadraturePoint{a + (i + 1.0 / 3.0) * du + (j + 1.0 / 3.0) * dv, subArea, spacing.face()});  // upward
+        if (i + j < k - 1)
+          visit(QuadraturePoint{a + (i + 2.0 / 3.0) * du + (j + 2.0 / 3.0) * dv, subArea, spacing.face()});  // downward
+      }
+    return;
+  }
+  // A piece with corners p[0..2] and area `area`, and the edge pieces that can reach it: kept, or halved.
+  const auto bisect = [&](auto&& self, const std::array<Eigen::Vector3d, 3>& p, double area,
+                          const std::vector<int>& pieces) -> void {
+    const Eigen::Vector3d centre = (p[0] + p[1] + p[2]) / 3.0;
+    const double reach = std::max({(p[0] - centre).norm(), (p[1] - centre).norm(), (p[2] - centre).norm()});
+    std::vector<int> kept;
+    const double l = spacing.at(centre, reach, pieces, kept);
+    // The longest edge p[longest] - p[longest + 1]; of edges equal to rounding the first, so that
+    // the pieces do not depend on the scale or orientation of the mesh.
+    int longest = 0;
+    double length = (p[1] - p[0]).norm();
+    for (int e = 1; e < 3; ++e) {
+      const double edge = (p[(e + 1) % 3] - p[e]).norm();
+      if (edge > length * (1 + 1e-9)) {
+        longest = e;
+        length = edge;
+      }
+    }
+    if (length <= l / perSpacing) {
+      visit(QuadraturePoint{centre, area, l});
+      return;
+    }
+    const Eigen::Vector3d &from = p[longest], &to = p[(longest + 1) % 3], &apex = p[(longest + 2) % 3];
+    const Eigen::Vector3d middle = 0.5 * (from + to);
+    self(self, std::array<Eigen::Vector3d, 3>{from, middle, apex}, area / 2, kept);
+    self(self, std::array<Eigen::Vector3d, 3>{middle, to, apex}, area / 2, kept);
+  };
+  const Eigen::Vector3d g = (a + b + c) / 3.0;
+  const double reach = std::max({(a - g).norm(), (b - g).norm(), (c - g).norm()});
+  bisect(bisect, std::array<Eigen::Vector3d, 3>{a, b, c}, triangleArea(mesh, t), spacing.piecesNear(g, reach, patch));
 }
 
 struct SeedNode {
@@ -72,9 +191,11 @@ struct PatchNodes {
 };
 
 // Farthest-point sampling of one patch over its candidate points, seeded with its edge and
-// corner nodes: repeatedly add the candidate farthest from all nodes, until every candidate is
-// within kCoverageRadius x spacing of a node.
-PatchNodes farthestPointSample(const std::vector<SeedNode>& seeds, const std::vector<Eigen::Vector3d>& candidates,
+// corner nodes: repeatedly add the candidate farthest from all nodes, distance measured in units
+// of the local spacing, until every candidate is within kCoverageRadius x its local spacing of a
+// node. Priorities are d s / l (s the face spacing, l the candidate's): with uniform spacing the
+// distances themselves.
+PatchNodes farthestPointSample(const std::vector<SeedNode>& seeds, const std::vector<QuadraturePoint>& candidates,
                                double spacing) {
   const int n = static_cast<int>(candidates.size());
   // distance[i]: from candidate i to its nearest node, capped at `cap`. The cap keeps every
@@ -82,34 +203,40 @@ PatchNodes farthestPointSample(const std::vector<SeedNode>& seeds, const std::ve
   // order, then farthest-point sampling proper refines the packing.
   const double cap = 2.0 * spacing;
   std::vector<double> distance(n, cap);
+  // In steps of 1e-9 s: candidates that tie up to rounding tie exactly, and the lower index wins
+  // at any scale and orientation of the mesh.
+  const auto priority = [&](int i) {
+    return std::round(distance[i] * (spacing / candidates[i].spacing) / (1e-9 * spacing));
+  };
   PointGrid grid(cap);
-  for (int i = 0; i < n; ++i) grid.insert(i, candidates[i]);
+  for (int i = 0; i < n; ++i) grid.insert(i, candidates[i].position);
 
   PatchNodes nodes;
-  // Max-heap of (distance, -index): the farthest candidate first, the lowest index among ties.
+  // Max-heap of (priority, -index): the farthest candidate first, the lowest index among ties.
   std::priority_queue<std::pair<double, int>> heap;
   const auto addNode = [&](const Eigen::Vector3d& x, NodeKind kind, double radius) {
     nodes.positions.push_back(x);
     nodes.kinds.push_back(kind);
     grid.forEachNear(x, radius, [&](int j) {
-      const double dj = (candidates[j] - x).norm();
+      const double dj = (candidates[j].position - x).norm();
       if (dj < distance[j]) {
         distance[j] = dj;
-        heap.push({dj, -j});
+        heap.push({priority(j), -j});
       }
     });
   };
   for (const SeedNode& seed : seeds) addNode(seed.position, seed.kind, cap);
   for (int i = 0; i < n; ++i)
-    if (distance[i] == cap) heap.push({cap, -i});
-  const double coverage = kCoverageRadius * spacing;
+    if (distance[i] == cap) heap.push({priority(i), -i});
+  const double coverage = kCoverageRadius / 1e-9;
   while (!heap.empty()) {
     const auto [d, negIndex] = heap.top();
     heap.pop();
     const int c = -negIndex;
-    if (d != distance[c]) continue;  // stale entry
+    if (d != priority(c)) continue;  // stale entry
     if (d < coverage) break;
-    addNode(candidates[c], NodeKind::Face, d);
+    // A candidate j can come closer only if distance[j] <= d 1e-9 s (priorities scale d s / l, l <= s).
+    addNode(candidates[c].position, NodeKind::Face, (d + 1) * 1e-9 * spacing);
   }
   return nodes;
 }
@@ -166,7 +293,9 @@ private:
 SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& features,
                                 const SurfaceNodeOptions& options) {
   if (!(options.spacing > 0.0)) throw InputError("node spacing must be positive");
+  if (!(options.sizeGradient > 0.0)) throw InputError("node size gradient must be positive");
   const double spacing = options.spacing;
+  const LocalSpacing local(mesh, features, options);
 
   // Seeds (corner and edge nodes) of each patch.
   std::vector<std::vector<SeedNode>> seeds(features.patchCount);
@@ -181,22 +310,24 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
     for (int p : patches) seeds[p].push_back({mesh.vertices[v], NodeKind::Corner});
   }
   for (const FeatureChain& chain : features.chains)
-    for (const Eigen::Vector3d& x : pointsAlongChain(mesh, chain, spacing))
+    for (const Eigen::Vector3d& x : pointsAlongChain(mesh, chain, local.edge()))
       for (int p : chain.patches) seeds[p].push_back({x, NodeKind::Edge});
 
   // Nodes of each patch by farthest-point sampling over candidate points.
-  std::vector<std::vector<Eigen::Vector3d>> candidates(features.patchCount);
-  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
-    forEachQuadraturePoint(mesh, t, spacing / kCandidatesPerSpacing,
-                           [&](const QuadraturePoint& q) { candidates[features.trianglePatch[t]].push_back(q.position); });
+  std::vector<std::vector<QuadraturePoint>> candidates(features.patchCount);
+  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
+    const int p = features.trianglePatch[t];
+    forEachQuadraturePoint(mesh, t, p, local, kCandidatesPerSpacing,
+                           [&](const QuadraturePoint& q) { candidates[p].push_back(q); });
+  }
   std::vector<PatchNodes> patchNodes(features.patchCount);
   for (int p = 0; p < features.patchCount; ++p) patchNodes[p] = farthestPointSample(seeds[p], candidates[p], spacing);
 
   // Area weights: a fine quadrature of each triangle, every point given to the nearest node of
   // its patch. Every candidate is within coverage of a node and every fine point within one
-  // candidate cell of a candidate, so the nearest node lies within `reach`.
+  // candidate cell of a candidate, so the nearest node lies within `reach` (l <= s).
   const double reach = (kCoverageRadius + 1.0 / kCandidatesPerSpacing) * spacing;
-  const double h = spacing / std::max(1, options.quadraturePerSpacing);
+  const double perSpacing = std::max(1, options.quadraturePerSpacing);
   std::vector<std::vector<double>> area(features.patchCount);
   std::vector<std::vector<Eigen::Vector3d>> normal(features.patchCount), centroid(features.patchCount);
   std::vector<NearestNode> nearest;
@@ -210,7 +341,7 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
   for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
     const int p = features.trianglePatch[t];
     const Eigen::Vector3d unitNormal = triangleAreaVector(mesh, t).normalized();
-    forEachQuadraturePoint(mesh, t, h, [&](const QuadraturePoint& q) {
+    forEachQuadraturePoint(mesh, t, p, local, perSpacing, [&](const QuadraturePoint& q) {
       const int node = nearest[p](q.position);
       area[p][node] += q.area;
       normal[p][node] += q.area * unitNormal;

@@ -9,8 +9,13 @@ namespace tessera {
 
 enum class NodeKind : std::uint8_t { Face = 0, Edge = 1, Corner = 2 };
 
+/// Node spacing, uniform or graded towards the sharp edges: the local spacing is
+/// l(x) = min(spacing, edgeSpacing + sizeGradient d(x)), d the distance from x to the nearest sharp
+/// edge bounding its patch. Blocks hinge on their edges, so the traction there varies fastest.
 struct SurfaceNodeOptions {
-  double spacing = 0.6e-3;         ///< m; target distance between neighbouring nodes
+  double spacing = 0.6e-3;         ///< m; target distance between neighbouring nodes on face interiors
+  double edgeSpacing = 0.0;        ///< m; spacing along sharp edges and at corners (0, or >= spacing: uniform)
+  double sizeGradient = 0.5;       ///< growth of the spacing per unit distance from a sharp edge
   double featureAngle = 0.5236;    ///< rad (30 deg); edges bending more than this are sharp
   int quadraturePerSpacing = 12;   ///< area quadrature points per spacing length (area accuracy)
 };
@@ -33,18 +38,18 @@ struct SurfaceNodes {
 
 /// Samples nodes on a validated, outward-oriented mesh:
 ///  - a node at every corner;
-///  - nodes along every sharp-edge chain, evenly at most `spacing` apart;
+///  - nodes along every sharp-edge chain, evenly at most the edge spacing apart;
 ///  - face nodes by farthest-point sampling of each patch over candidate points (centroids of
-///    sub-triangles of edge <= spacing / 4), seeded with the patch's edge and corner nodes and
-///    stopped when every candidate is within 0.9 x spacing of a node (this leaves neighbouring
-///    nodes about `spacing` apart);
-///  - cells: each triangle is cut into small quadrature triangles (edge <= spacing /
+///    sub-triangles of edge <= l / 4), seeded with the patch's edge and corner nodes and
+///    stopped when every candidate is within 0.9 l of a node (this leaves neighbouring nodes
+///    about l apart), distances measured in units of the local spacing l;
+///  - cells: each triangle is cut into small quadrature triangles (edge <= l /
 ///    quadraturePerSpacing), each given wholly to the nearest seed of the same patch (a discrete
 ///    Voronoi partition); a node's area is its cell's area (the weights sum to the area exactly up
 ///    to rounding) and its position the cell's centroid. Centroids make each node a midpoint rule
 ///    for its cell (exact for tractions linear over the cell), and keep nodes off the edges,
 ///    where the distance to a body whose face ends at the same edge would read zero.
-/// Throws InputError when spacing <= 0.
+/// Throws InputError when spacing <= 0 or sizeGradient <= 0.
 SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& features,
                                 const SurfaceNodeOptions& options);
 

@@ -267,6 +267,12 @@ double readDoubleAttribute(hid_t object, const std::string& name) {
   return value;
 }
 
+double readDoubleAttribute(hid_t object, const std::string& name, double absent) {
+  const htri_t exists = H5Aexists(object, name.c_str());
+  check(exists, "look for attribute " + name);
+  return exists > 0 ? readDoubleAttribute(object, name) : absent;
+}
+
 std::int64_t readIntAttribute(hid_t object, const std::string& name) {
   Handle attribute = openAttribute(object, name);
   std::int64_t value = 0;

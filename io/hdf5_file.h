@@ -61,6 +61,8 @@ void writeAttribute(hid_t object, const std::string& name, double value);
 void writeAttribute(hid_t object, const std::string& name, std::int64_t value);
 std::string readStringAttribute(hid_t object, const std::string& name);
 double readDoubleAttribute(hid_t object, const std::string& name);
+/// The attribute's value, or `absent` when the object has no attribute of that name.
+double readDoubleAttribute(hid_t object, const std::string& name, double absent);
 std::int64_t readIntAttribute(hid_t object, const std::string& name);
 
 }  // namespace tessera::h5

@@ -72,6 +72,8 @@ void writeShape(hid_t shapes, const Shape& s, std::int64_t index) {
   h5::writeAttribute(g.get(), "source_metres_per_unit", s.source.metresPerUnit);
   h5::writeAttribute(g.get(), "voxel_size", s.resolution.voxelSize);
   h5::writeAttribute(g.get(), "node_spacing", s.resolution.nodeSpacing);
+  h5::writeAttribute(g.get(), "edge_spacing_fraction", s.resolution.edgeSpacingFraction);
+  h5::writeAttribute(g.get(), "size_gradient", s.resolution.sizeGradient);
   h5::writeAttribute(g.get(), "feature_angle", s.resolution.featureAngle);
   h5::writeAttribute(g.get(), "exterior_band_voxels", static_cast<std::int64_t>(s.resolution.exteriorBandVoxels));
   h5::writeAttribute(g.get(), "volume", s.mass.volume);
@@ -153,6 +155,9 @@ Shape readShape(hid_t shapes, const std::string& name) {
   s.source.metresPerUnit = h5::readDoubleAttribute(g.get(), "source_metres_per_unit");
   s.resolution.voxelSize = h5::readDoubleAttribute(g.get(), "voxel_size");
   s.resolution.nodeSpacing = h5::readDoubleAttribute(g.get(), "node_spacing");
+  // Bundles written before graded nodes have uniform spacing.
+  s.resolution.edgeSpacingFraction = h5::readDoubleAttribute(g.get(), "edge_spacing_fraction", 1.0);
+  s.resolution.sizeGradient = h5::readDoubleAttribute(g.get(), "size_gradient", 0.5);
   s.resolution.featureAngle = h5::readDoubleAttribute(g.get(), "feature_angle");
   s.resolution.exteriorBandVoxels = static_cast<int>(h5::readIntAttribute(g.get(), "exterior_band_voxels"));
   s.mass.volume = h5::readDoubleAttribute(g.get(), "volume");

@@ -26,6 +26,10 @@ struct ShapeResolution {
   double nodeSpacing = 0.0;  ///< m, target surface node spacing (0: nodeSpacingRatio x t)
   double voxelRatio = 0.25e-3 / kPaperThickness;        ///< t / 12.7
   double nodeSpacingRatio = 0.6e-3 / kPaperThickness;   ///< t / 5.3
+  /// Node spacing at sharp edges and corners as a fraction of nodeSpacing, graded to nodeSpacing
+  /// on face interiors by sizeGradient (SurfaceNodeOptions); 1: uniform.
+  double edgeSpacingFraction = 0.25;
+  double sizeGradient = 0.5;     ///< growth of the node spacing per unit distance from a sharp edge
   double featureAngle = 0.5236;  ///< rad, edges bending more than this are sharp
   int exteriorBandVoxels = 3;    ///< exact distances (and grid padding) outside the surface, voxels
 

@@ -45,6 +45,12 @@ ShapeEstimate estimateShape(const Eigen::Vector3d& extents, double surfaceArea, 
     e.gridNodes *= static_cast<double>(e.grid[k]);
   }
   e.surfaceNodes = surfaceArea / (resolution.nodeSpacing * resolution.nodeSpacing);
+  // Graded nodes: along an edge of length L_e, on each of its two faces, the node density 1 / l^2
+  // with l = s_e + g d integrates over the band d < (s - s_e) / g to L_e (1/s_e - 1/s) / g, of
+  // which L_e (s - s_e) / (g s^2) is counted above. The sharp edges are taken to be those of the
+  // bounding box, 4 (a + b + c) (2 300 nodes estimated, 2 661 sampled on the paper's block).
+  const double s = resolution.nodeSpacing, edge = resolution.edgeSpacingFraction * s;
+  if (edge < s) e.surfaceNodes += 2 * 4 * extents.sum() / resolution.sizeGradient * (s - edge) * (s - edge) / (edge * s * s);
   // Measured with `tessera prep` (/usr/bin/time -v) on the default block at fine voxels and at fine
   // spacings, and on a 180 mm assembly part: 5-25 bytes and 0.4-2 us per grid node (the dense
   // copy, the OpenVDB grid, more for meshes of many triangles); 4.5 kB and 140 us per surface node
@@ -123,6 +129,8 @@ Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& 
   const MeshFeatures features = findFeatures(shape.mesh, resolution.featureAngle);
   SurfaceNodeOptions nodeOptions;
   nodeOptions.spacing = resolved.nodeSpacing;
+  nodeOptions.edgeSpacing = resolved.edgeSpacingFraction * resolved.nodeSpacing;
+  nodeOptions.sizeGradient = resolved.sizeGradient;
   nodeOptions.featureAngle = resolved.featureAngle;
   shape.nodes = sampleSurfaceNodes(shape.mesh, features, nodeOptions);
 

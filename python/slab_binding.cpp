@@ -22,13 +22,17 @@ namespace py = pybind11;
 
 namespace {
 
-ShapeResolution resolution(std::optional<double> voxel, std::optional<double> spacing) {
+ShapeResolution resolution(std::optional<double> voxel, std::optional<double> spacing, double edgeSpacing) {
   ShapeResolution r;
   for (const auto& [name, value] : {std::pair{"voxel", voxel}, std::pair{"spacing", spacing}})
     if (value && !(*value > 0 && std::isfinite(*value)))
       throw InputError(std::string(name) + " must be a positive length in m, got " + std::to_string(*value));
+  if (!(edgeSpacing >= 0.05 && edgeSpacing <= 1))
+    throw InputError("edge_spacing must be between 0.05 and 1, a fraction of the node spacing (1: uniform nodes), got " +
+                     std::to_string(edgeSpacing));
   if (voxel) r.voxelSize = *voxel;
   if (spacing) r.nodeSpacing = *spacing;
+  r.edgeSpacingFraction = edgeSpacing;
   return r;
 }
 
@@ -101,15 +105,17 @@ void bindSlabs(py::module_& m) {
   m.def(
       "prep",
       [](const std::string& mesh, const std::string& unit, const std::string& output, const std::string& name,
-         std::optional<double> voxel, std::optional<double> spacing, bool replace) {
+         std::optional<double> voxel, std::optional<double> spacing, double edgeSpacing, bool replace) {
         PrepLog log;
-        const Shape s = prepareIntoBundle({mesh, unit, name, resolution(voxel, spacing), ShapeLimits{}}, output, replace, log);
+        const Shape s = prepareIntoBundle({mesh, unit, name, resolution(voxel, spacing, edgeSpacing), ShapeLimits{}},
+                                          output, replace, log);
         py::dict d;
         d["name"] = s.name;
         d["volume"] = s.mass.volume;
         d["surface_area"] = s.mass.surfaceArea;
         d["nodes"] = s.nodes.size();
         d["node_spacing"] = s.resolution.nodeSpacing;
+        d["edge_node_spacing"] = s.resolution.edgeSpacingFraction * s.resolution.nodeSpacing;
         d["voxel"] = s.sdf.voxelSize;
         d["level_set"] = levelSetPath(s);
         d["notes"] = log.notes;
@@ -117,14 +123,16 @@ void bindSlabs(py::module_& m) {
         return d;
       },
       py::arg("mesh"), py::arg("unit"), py::arg("output"), py::arg("name") = "", py::arg("voxel") = py::none(),
-      py::arg("spacing") = py::none(), py::arg("replace") = false,
+      py::arg("spacing") = py::none(), py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction,
+      py::arg("replace") = false,
       "A block mesh (STL/OBJ, its length unit given) validated and prepared as a shape, added to the bundle "
-      "in `output` (as `tessera prep`); voxel and node spacing in m. Returns its volume (m^3), area (m^2), nodes.");
+      "in `output` (as `tessera prep`); voxel and node spacing in m, edge_spacing the node spacing along sharp edges "
+      "as a fraction of it (1: uniform). Returns its volume (m^3), area (m^2), nodes.");
   m.def(
       "tile",
       [](const std::string& block, const std::string& unit, const std::string& output, std::pair<int, int> grid,
          double pitch, double gap, bool alternate, bool fixPerimeter, std::optional<double> voxel,
-         std::optional<double> spacing, bool replace) {
+         std::optional<double> spacing, double edgeSpacing, bool replace) {
         if (grid.first < 1 || grid.second < 1 || static_cast<long>(grid.first) * grid.second > 10000)
           throw InputError("grid must be (columns, rows), each at least 1 and at most 10000 blocks in all");
         if (!(pitch > 0)) throw InputError("pitch must be a positive length in m (the centre-to-centre distance)");
@@ -135,19 +143,23 @@ void bindSlabs(py::module_& m) {
         options.gap = gap;
         options.alternate = alternate;
         options.fixPerimeter = fixPerimeter;
-        return tileAndWrite(gridSlabPlan(block, unit, options), output, resolution(voxel, spacing), gap, replace);
+        return tileAndWrite(gridSlabPlan(block, unit, options), output, resolution(voxel, spacing, edgeSpacing), gap,
+                            replace);
       },
       py::arg("block"), py::arg("unit"), py::arg("output"), py::arg("grid") = std::pair<int, int>{7, 7},
       py::arg("pitch"), py::arg("gap") = 0.0, py::arg("alternate") = true, py::arg("fix_perimeter") = true,
-      py::arg("voxel") = py::none(), py::arg("spacing") = py::none(), py::arg("replace") = false,
+      py::arg("voxel") = py::none(), py::arg("spacing") = py::none(),
+      py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false,
       "A slab bundle (as `tessera tile --block`): a square grid of one block mesh (its length unit given), "
       "pitch and gap in m; voxel and node spacing in m (default: relative to the block). Returns a summary.");
   m.def(
       "tile_layout",
       [](const std::string& layout, const std::string& output, std::optional<double> voxel, std::optional<double> spacing,
-         bool replace) { return tileAndWrite(layoutSlabPlan(layout, 10000), output, resolution(voxel, spacing), 0.0, replace); },
+         double edgeSpacing, bool replace) {
+        return tileAndWrite(layoutSlabPlan(layout, 10000), output, resolution(voxel, spacing, edgeSpacing), 0.0, replace);
+      },
       py::arg("layout"), py::arg("output"), py::arg("voxel") = py::none(), py::arg("spacing") = py::none(),
-      py::arg("replace") = false, "A slab bundle from a layout file (docs/tiling.md), as `tessera tile --layout`.");
+      py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false, "A slab bundle from a layout file (docs/tiling.md), as `tessera tile --layout`.");
   m.def("read_bundle", &bundleOf, py::arg("path"),
         "A bundle's bodies: names, shape, position (n, 3) m, orientation (n, 4) (w, x, y, z), fixed; its span.");
 }

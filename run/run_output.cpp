@@ -101,6 +101,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
                       {"level_set", levelSetPath(shape, scene.solver.exactConvexLevelSets, scene.solver.exactMeshLevelSets)},
                       {"voxel_mm", shape.resolution.voxelSize * 1e3},
                       {"node_spacing_mm", shape.resolution.nodeSpacing * 1e3},
+                      {"edge_node_spacing_mm", shape.resolution.edgeSpacingFraction * shape.resolution.nodeSpacing * 1e3},
                       {"nodes", shape.nodes.size()}});
   nlohmann::json drops = nlohmann::json::array();
   for (const LoadDrop& d : response.drops)

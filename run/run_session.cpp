@@ -71,6 +71,8 @@ Bundle loadRunBundle(const Scene& scene, const RunLog& log) {
         r.nodeSpacing = o.nodeSpacing;
         r.nodeSpacingRatio = o.nodeSpacingRatio;
       }
+      if (o.edgeSpacingFraction > 0) r.edgeSpacingFraction = o.edgeSpacingFraction;
+      if (o.sizeGradient > 0) r.sizeGradient = o.sizeGradient;
       if (o.voxelSize > 0 || o.voxelRatio > 0) {
         r.voxelSize = o.voxelSize;
         r.voxelRatio = o.voxelRatio;
@@ -84,8 +86,9 @@ Bundle loadRunBundle(const Scene& scene, const RunLog& log) {
     }
     if (log) {
       char line[160];
-      std::snprintf(line, sizeof line, "shapes re-prepared at node spacing %.4g mm, voxel %.4g mm",
-                    bundle.shapes[0].resolution.nodeSpacing * 1e3, bundle.shapes[0].resolution.voxelSize * 1e3);
+      const ShapeResolution& r = bundle.shapes[0].resolution;
+      std::snprintf(line, sizeof line, "shapes re-prepared at node spacing %.4g mm (%.4g mm at sharp edges), voxel %.4g mm",
+                    r.nodeSpacing * 1e3, r.edgeSpacingFraction * r.nodeSpacing * 1e3, r.voxelSize * 1e3);
       log(line);
     }
   }

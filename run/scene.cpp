@@ -215,6 +215,16 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   resolution.number("node_spacing_ratio", scene.resolution.nodeSpacingRatio, 0, 10,
                     "of each shape's thinnest extent; 0 = the bundle's");
   resolution.number("voxel_ratio", scene.resolution.voxelRatio, 0, 10, "of each shape's thinnest extent; 0 = the bundle's");
+  resolution.number("edge_spacing_fraction", scene.resolution.edgeSpacingFraction, 0, 1,
+                    "node spacing at sharp edges as a fraction of the node spacing; 1 = uniform; 0 = the bundle's");
+  resolution.number("size_gradient", scene.resolution.sizeGradient, 0, 100,
+                    "growth of the node spacing per unit distance from a sharp edge; 0 = the bundle's");
+  if (scene.resolution.edgeSpacingFraction > 0 && scene.resolution.edgeSpacingFraction < 0.05)
+    throw InputError(path + ": resolution.edge_spacing_fraction must be 0 (the bundle's) or between 0.05 and 1, got " +
+                     std::to_string(scene.resolution.edgeSpacingFraction) + "; 1 gives uniform nodes");
+  if (scene.resolution.sizeGradient > 0 && scene.resolution.sizeGradient < 0.05)
+    throw InputError(path + ": resolution.size_gradient must be 0 (the bundle's) or between 0.05 and 100, got " +
+                     std::to_string(scene.resolution.sizeGradient));
   resolution.finish();
 
   Table output(path, "output", root["output"].as_table());

@@ -82,7 +82,12 @@ struct ResolutionOverride {
   double voxelSize = 0.0;         ///< m
   double nodeSpacingRatio = 0.0;  ///< of each shape's thinnest extent (used when nodeSpacing is 0)
   double voxelRatio = 0.0;        ///< of each shape's thinnest extent (used when voxelSize is 0)
-  bool any() const { return nodeSpacing > 0 || voxelSize > 0 || nodeSpacingRatio > 0 || voxelRatio > 0; }
+  double edgeSpacingFraction = 0.0;  ///< node spacing at sharp edges, of the node spacing
+  double sizeGradient = 0.0;         ///< growth of the node spacing away from sharp edges
+  bool any() const {
+    return nodeSpacing > 0 || voxelSize > 0 || nodeSpacingRatio > 0 || voxelRatio > 0 || edgeSpacingFraction > 0 ||
+           sizeGradient > 0;
+  }
 };
 
 /// Everything a `tessera run` needs besides the bundle itself. Lengths in m, SI throughout.

@@ -27,9 +27,8 @@ struct AssembleArguments {
   bool fixOuterRing = false, replace = false;
   std::optional<double> spanLength;  // in --unit
   int spanInterfaces = 0;
-  std::optional<double> voxel, spacing, overlapTolerance;
-  double maxMemory = 4;
-  bool anySize = false;
+  std::optional<double> overlapTolerance;
+  ResolutionArguments resolution;
 };
 
 bool isMeshFile(const fs::path& p) {
@@ -74,8 +73,8 @@ void runAssemble(const AssembleArguments& a) {
   if (a.spanInterfaces < 0) throw InputError("--span-interfaces must be a positive whole number");
   if (a.spanLength) options.spanLength = *a.spanLength * unit.metres;
   options.spanInterfaces = a.spanInterfaces;
-  options.resolution = shapeResolution(a.voxel, a.spacing, unit.metres, "assemble");
-  options.limits = shapeLimits(a.maxMemory, a.anySize);
+  options.resolution = shapeResolution(a.resolution, unit.metres, "assemble");
+  options.limits = shapeLimits(a.resolution);
 
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "assemble: " << m << "\n"; };
@@ -117,7 +116,7 @@ void addAssembleCommand(CLI::App& app) {
   cmd->add_flag("--fix-outer-ring", args->fixOuterRing, "Fix the bodies on the assembly's outer ring (in plan)");
   cmd->add_option("--span-length", args->spanLength, "L of k_n = E M / L, in --unit [default: estimated, docs/tiling.md]");
   cmd->add_option("--span-interfaces", args->spanInterfaces, "M of k_n = E M / L [default: estimated]");
-  addResolutionOptions(*cmd, args->voxel, args->spacing, args->maxMemory, args->anySize);
+  addResolutionOptions(*cmd, args->resolution);
   cmd->add_option("--overlap-tolerance", args->overlapTolerance,
                   "Initial overlap accepted between bodies, in --unit [default: 0.1 voxel]");
   cmd->add_option("-o,--output", args->output, "Bundle directory to write")->required();

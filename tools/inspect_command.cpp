@@ -50,6 +50,8 @@ nlohmann::json describeShape(const Shape& s) {
        {{"count", s.nodes.size()},
         {"area_sum_m2", areaSum},
         {"requested_spacing_m", s.resolution.nodeSpacing},
+        {"edge_spacing_fraction", s.resolution.edgeSpacingFraction},
+        {"size_gradient", s.resolution.sizeGradient},
         {"nearest_spacing_m", {{"min", spacing.min}, {"mean", spacing.mean}, {"max", spacing.max}}}}},
       {"sdf",
        {{"voxel_size_m", s.sdf.voxelSize},
@@ -93,9 +95,11 @@ void printShapeText(const nlohmann::json& j, double unit, const std::string& uni
               vec(j["principal_moments_per_density_m5"], std::pow(unit, 5)).c_str(), unitName.c_str());
   std::printf("  nodes               %zu, area sum %.9g %s^2\n", n["count"].get<std::size_t>(),
               n["area_sum_m2"].get<double>() / (unit * unit), unitName.c_str());
-  std::printf("  nearest-node gap    min %.4g / mean %.4g / max %.4g %s within a face (requested %.4g)\n",
+  std::printf("  nearest-node gap    min %.4g / mean %.4g / max %.4g %s within a face (requested %.4g, %.4g at sharp "
+              "edges, size gradient %.3g)\n",
               len(n["nearest_spacing_m"]["min"]), len(n["nearest_spacing_m"]["mean"]), len(n["nearest_spacing_m"]["max"]),
-              unitName.c_str(), len(n["requested_spacing_m"]));
+              unitName.c_str(), len(n["requested_spacing_m"]),
+              len(n["requested_spacing_m"]) * n["edge_spacing_fraction"].get<double>(), n["size_gradient"].get<double>());
   std::printf("  grid                %d x %d x %d, voxel %.4g %s, band %d voxels, file %s\n", g["dims"][0].get<int>(),
               g["dims"][1].get<int>(), g["dims"][2].get<int>(), len(g["voxel_size_m"]), unitName.c_str(),
               g["exterior_band_voxels"].get<int>(), g["vdb_file"].get<std::string>().c_str());

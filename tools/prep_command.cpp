@@ -25,10 +25,7 @@ struct PrepArguments {
   std::string unit;
   std::string output;
   std::string name;
-  std::optional<double> voxel;    // in --unit; default relative to the shape
-  std::optional<double> spacing;  // in --unit; default relative to the shape
-  double maxMemory = 4;           // GB
-  bool anySize = false;
+  ResolutionArguments resolution;
   double featureAngle = 30;  // deg
   int band = 3;              // voxels
   bool replace = false;
@@ -37,12 +34,12 @@ struct PrepArguments {
 void runPrep(const PrepArguments& a) {
   const auto start = std::chrono::steady_clock::now();
   const LengthUnit unit = parseLengthUnit(a.unit);
-  ShapeResolution resolution = shapeResolution(a.voxel, a.spacing, unit.metres, a.mesh);
+  ShapeResolution resolution = shapeResolution(a.resolution, unit.metres, a.mesh);
   resolution.featureAngle = a.featureAngle * M_PI / 180.0;
   resolution.exteriorBandVoxels = a.band;
   if (!(a.featureAngle > 0 && a.featureAngle < 180)) throw InputError("--feature-angle must be between 0 and 180 degrees");
 
-  ShapeRequest request{a.mesh, a.unit, a.name, resolution, shapeLimits(a.maxMemory, a.anySize)};
+  ShapeRequest request{a.mesh, a.unit, a.name, resolution, shapeLimits(a.resolution)};
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "prep: " << m << "\n"; };
   std::cerr << "prep: reading " << a.mesh << " (unit " << unit.name << ")\n";
@@ -54,7 +51,8 @@ void runPrep(const PrepArguments& a) {
   std::printf("shape '%s' from %s\n", s.name.c_str(), a.mesh.c_str());
   std::printf("  volume        %.6g mm^3\n", s.mass.volume * 1e9);
   std::printf("  surface area  %.6g mm^2\n", s.mass.surfaceArea * 1e6);
-  std::printf("  nodes         %zu (spacing %.4g mm)\n", s.nodes.size(), s.resolution.nodeSpacing * 1e3);
+  std::printf("  nodes         %zu (spacing %.4g mm, %.4g mm at sharp edges)\n", s.nodes.size(),
+              s.resolution.nodeSpacing * 1e3, s.resolution.edgeSpacingFraction * s.resolution.nodeSpacing * 1e3);
   std::printf("  grid          %d x %d x %d (voxel %.4g mm)\n", s.sdf.dims[0], s.sdf.dims[1], s.sdf.dims[2],
               s.sdf.voxelSize * 1e3);
   std::printf("  level set     %s\n", levelSetPath(s).c_str());
@@ -71,7 +69,7 @@ void addPrepCommand(CLI::App& app) {
   cmd->add_option("--unit", args->unit, "Length unit of the mesh file: m, cm, mm, um, in, ft (files carry none)")
       ->required();
   cmd->add_option("-o,--output", args->output, "Bundle directory to create or add to (bundle.h5 + <name>.vdb)")->required();
-  addResolutionOptions(*cmd, args->voxel, args->spacing, args->maxMemory, args->anySize);
+  addResolutionOptions(*cmd, args->resolution);
   cmd->add_option("--feature-angle", args->featureAngle,
                   "Edges whose faces bend more than this are sharp and get edge nodes, degrees")
       ->capture_default_str();

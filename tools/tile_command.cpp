@@ -28,11 +28,8 @@ struct TileArguments {
   std::string fix = "perimeter";
   bool noAlternate = false;
   double gap = 0;
-  std::optional<double> voxel;
-  std::optional<double> spacing;
   std::optional<double> overlapTolerance;
-  double maxMemory = 4;  // GB per shape
-  bool anySize = false;
+  ResolutionArguments resolution;
   bool replace = false;
   std::string output;
   long maxBodies = 10000;
@@ -79,11 +76,11 @@ void runTile(const TileArguments& a) {
   for (const std::string& note : plan.notes) std::cerr << "tile: note: " << note << "\n";
   const std::string& unitName = plan.unit;
   const LengthUnit unit = parseLengthUnit(unitName);
-  const ShapeResolution resolution = shapeResolution(a.voxel, a.spacing, unit.metres, a.block.empty() ? a.layout : a.block);
+  const ShapeResolution resolution = shapeResolution(a.resolution, unit.metres, a.block.empty() ? a.layout : a.block);
 
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "tile: " << m << "\n"; };
-  Bundle bundle = tileAssembly(plan.shapes, plan.placements, unitName, resolution, log, shapeLimits(a.maxMemory, a.anySize));
+  Bundle bundle = tileAssembly(plan.shapes, plan.placements, unitName, resolution, log, shapeLimits(a.resolution));
   bundle.spanLength = plan.spanLength;
   bundle.spanInterfaces = plan.spanInterfaces;
 
@@ -116,7 +113,7 @@ void addTileCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-alternate", args->noAlternate, "Do not turn every other block by 90 degrees (checkerboard)");
   cmd->add_option("--gap", args->gap, "Clearance added between neighbouring blocks, in --unit")->capture_default_str();
-  addResolutionOptions(*cmd, args->voxel, args->spacing, args->maxMemory, args->anySize);
+  addResolutionOptions(*cmd, args->resolution);
   cmd->add_option("--overlap-tolerance", args->overlapTolerance,
                   "Initial overlap accepted between bodies, in --unit [default: 0.1 voxel]");
   cmd->add_option("-o,--output", args->output, "Bundle directory to write (bundle.h5 + one .vdb per shape)")->required();

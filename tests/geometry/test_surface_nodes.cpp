@@ -6,10 +6,12 @@
 #include "geometry/mesh_validation.h"
 #include "geometry/point_spacing.h"
 #include "geometry/surface_nodes.h"
+#include "io/input_error.h"
 #include "tests/fixtures/analytic_meshes.h"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -24,13 +26,29 @@ struct Sampled {
   SurfaceNodes nodes;
 };
 
-Sampled sample(TriangleMesh mesh, double spacing) {
+// Uniform nodes at `spacing`, or graded to `edgeSpacing` at the sharp edges when it is given.
+Sampled sample(TriangleMesh mesh, double spacing, double edgeSpacing = 0, double sizeGradient = 0.5) {
   validateSolidMesh(mesh, "fixture");
   Sampled s{mesh, findFeatures(mesh, 30 * M_PI / 180), {}};
   SurfaceNodeOptions options;
   options.spacing = spacing;
+  options.edgeSpacing = edgeSpacing;
+  options.sizeGradient = sizeGradient;
   s.nodes = sampleSurfaceNodes(s.mesh, s.features, options);
   return s;
+}
+
+// Distance from x to the nearest sharp edge of the mesh.
+double distanceToSharpEdge(const Sampled& s, const Eigen::Vector3d& x) {
+  double best = 1e300;
+  for (std::size_t e = 0; e < s.features.topology.edges.size(); ++e) {
+    if (!s.features.edgeIsSharp[e]) continue;
+    const auto& v = s.features.topology.edges[e].vertices;
+    const Eigen::Vector3d a = s.mesh.vertices[v[0]], ab = s.mesh.vertices[v[1]] - a;
+    const double w = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (a + w * ab - x).norm());
+  }
+  return best;
 }
 
 void requireAreaSums(const Sampled& s) {
@@ -53,8 +71,9 @@ void requireSpacing(const Sampled& s, double spacing) {
 }
 
 // Every point of every sharp edge is near an edge or corner node: within half a spacing along the
-// edge and about a quarter spacing in from it (nodes sit at their cells' centroids).
-void requireSharpEdgesCarryNodes(const Sampled& s, double spacing) {
+// edge and about a quarter spacing in from it (nodes sit at their cells' centroids), `reach`
+// spacings in all.
+void requireSharpEdgesCarryNodes(const Sampled& s, double spacing, double reach = 0.65) {
   std::vector<Eigen::Vector3d> featureNodes;
   for (std::size_t i = 0; i < s.nodes.size(); ++i)
     if (s.nodes.kinds[i] != NodeKind::Face) featureNodes.push_back(s.nodes.positions[i]);
@@ -68,7 +87,7 @@ void requireSharpEdgesCarryNodes(const Sampled& s, double spacing) {
       const Eigen::Vector3d x = (1 - w) * a + w * b;
       double best = 1e300;
       for (const auto& n : featureNodes) best = std::min(best, (n - x).norm());
-      REQUIRE(best <= 0.65 * spacing);
+      REQUIRE(best <= reach * spacing);
     }
   }
   REQUIRE(sharp > 0);
@@ -146,4 +165,66 @@ TEST_CASE("halving the spacing roughly quadruples the node count") {
   const double coarse = static_cast<double>(sample(block, 0.6e-3).nodes.size());
   const double fine = static_cast<double>(sample(block, 0.3e-3).nodes.size());
   REQUIRE(fine / coarse == Approx(4.0).epsilon(0.15));
+}
+
+TEST_CASE("graded nodes: exact areas, the edge spacing along the edges, the face spacing beyond the band") {
+  // l(d) = min(s, s_e + g d): s_e = 0.15 mm at the edges, s = 0.6 mm from d = 0.9 mm on.
+  const double spacing = 0.6e-3, edge = 0.15e-3, gradient = 0.5;
+  const Sampled s = sample(makePlanarBlock(10e-3, 3.18e-3, 5 * M_PI / 180), spacing, edge, gradient);
+  const Sampled uniform = sample(makePlanarBlock(10e-3, 3.18e-3, 5 * M_PI / 180), spacing);
+  requireAreaSums(s);
+  requireOutwardUnitNormals(s);
+  // Every point of an edge within 0.75 s_e of an edge node (measured 0.68): the cells along the
+  // edge reach farther in than with uniform nodes, and their centroids with them.
+  requireSharpEdgesCarryNodes(s, edge, 0.75);
+  REQUIRE(std::count(s.nodes.kinds.begin(), s.nodes.kinds.end(), NodeKind::Corner) == 24);
+  REQUIRE(s.nodes.size() > 2 * uniform.nodes.size());
+  // The nearest-node distance follows l(d): near s_e along the edges, near s beyond the band, and
+  // in between on the way (means over bins of d, within 25 %).
+  const std::vector<double> gaps = nearestNeighbourDistances(s.nodes.positions, s.nodes.patches);
+  const double band = (spacing - edge) / gradient;
+  for (const auto& [from, to] : std::vector<std::pair<double, double>>{{0, 0.1 * band}, {0.4 * band, 0.6 * band},
+                                                                       {1.2 * band, 1e9}}) {
+    double sum = 0, expected = 0;
+    int n = 0;
+    for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+      const double d = distanceToSharpEdge(s, s.nodes.positions[i]);
+      if (d < from || d >= to) continue;
+      sum += gaps[i];
+      expected += std::min(spacing, edge + gradient * d);
+      ++n;
+    }
+    INFO("d in [" << from << ", " << to << "): " << n << " nodes, mean gap " << sum / n << " against l(d) " << expected / n);
+    REQUIRE(n > 20);
+    REQUIRE(sum / n == Approx(expected / n).epsilon(0.25));
+  }
+}
+
+TEST_CASE("graded nodes on non-convex and smooth meshes: exact areas, and an edge spacing of 1 is uniform") {
+  requireAreaSums(sample(test::lPrism(1.0), 0.1, 0.025));
+  requireAreaSums(sample(makeWaveBlock(10e-3, 3.18e-3, 5 * M_PI / 180, 0.2e-3, 1, 24), 0.6e-3, 0.15e-3));
+  // No sharp edge: the same nodes as uniform.
+  REQUIRE(sample(test::icosphere(1.0, 3), 0.15, 0.05).nodes.positions == sample(test::icosphere(1.0, 3), 0.15).nodes.positions);
+  // An edge spacing at or above the spacing is uniform.
+  const TriangleMesh prism = test::lPrism(1.0);
+  REQUIRE(sample(prism, 0.1, 0.1).nodes.positions == sample(prism, 0.1).nodes.positions);
+  REQUIRE(sample(prism, 0.1, 0.3).nodes.positions == sample(prism, 0.1).nodes.positions);
+}
+
+TEST_CASE("graded nodes do not depend on the mesh's scale: a 100x larger block gets the same nodes, in proportion") {
+  const Sampled small = sample(makePlanarBlock(10e-3, 3.18e-3, 5 * M_PI / 180), 0.6e-3, 0.15e-3);
+  const Sampled large = sample(makePlanarBlock(1.0, 0.318, 5 * M_PI / 180), 0.06, 0.015);
+  REQUIRE(large.nodes.size() == small.nodes.size());
+  double areaSmall = 0, areaLarge = 0;
+  for (std::size_t i = 0; i < small.nodes.size(); ++i) {
+    areaSmall += small.nodes.areas[i];
+    areaLarge += large.nodes.areas[i];
+  }
+  REQUIRE(areaLarge == Approx(1e4 * areaSmall).epsilon(1e-9));
+}
+
+TEST_CASE("node options out of range are refused") {
+  const TriangleMesh block = makePlanarBlock(10e-3, 3.18e-3, 5 * M_PI / 180);
+  REQUIRE_THROWS_AS(sample(block, 0.0), InputError);
+  REQUIRE_THROWS_AS(sample(block, 0.6e-3, 0.15e-3, 0.0), InputError);
 }

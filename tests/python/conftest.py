@@ -12,10 +12,10 @@ SCENE = os.path.join(SOURCE, "assets", "scenes", "default.toml")
 
 @pytest.fixture(scope="session")
 def slab(tmp_path_factory):
-    """A 3 x 3 slab of the default block at 1 mm nodes, tiled through the Python module."""
+    """A 3 x 3 slab of the default block at 1 mm uniform nodes, tiled through the Python module."""
     import tessera
     folder = str(tmp_path_factory.mktemp("slab") / "slab")
-    tessera.tile(BLOCK, "mm", folder, grid=(3, 3), pitch=10e-3, spacing=1e-3)
+    tessera.tile(BLOCK, "mm", folder, grid=(3, 3), pitch=10e-3, spacing=1e-3, edge_spacing=1.0)
     return folder
 
 

@@ -76,9 +76,15 @@ def test_prep_adds_a_validated_shape(tmp_path):
     a, h, theta = 10e-3, 3.18e-3, np.radians(5)
     assert shape["volume"] == pytest.approx(a * a * h - h ** 3 * np.tan(theta) ** 2 / 3, rel=1e-9)
     assert shape["nodes"] > 100 and shape["level_set"].startswith("exact planes")
+    # Nodes graded to a quarter of the spacing along the sharp edges by default; 1 is uniform.
+    assert shape["edge_node_spacing"] == pytest.approx(0.25 * shape["node_spacing"])
+    uniform = tessera.prep(BLOCK, "mm", str(tmp_path / "u"), edge_spacing=1.0)
+    assert uniform["edge_node_spacing"] == uniform["node_spacing"] and uniform["nodes"] < shape["nodes"] / 2
     assert tessera.read_bundle(str(tmp_path / "b"))["shapes"] == ["planar_a10_h3.18_5deg"]
     with pytest.raises(ValueError, match="already holds a shape"):
         tessera.prep(BLOCK, "mm", str(tmp_path / "b"))
+    with pytest.raises(ValueError, match="edge_spacing must be between"):
+        tessera.prep(BLOCK, "mm", str(tmp_path / "c"), edge_spacing=2.0)
 
 
 def test_overrides_change_the_scene(slab):

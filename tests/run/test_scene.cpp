@@ -79,4 +79,12 @@ TEST_CASE("a scene can re-prepare the shapes at another resolution") {
   REQUIRE(s.resolution.nodeSpacing == 0.3e-3);
   REQUIRE(s.resolution.voxelSize == 0.125e-3);
   REQUIRE_THROWS_WITH(sceneFrom(dir, "bundle = \"b\"\n[resolution]\nnodes = 1\n"), Contains("unknown key 'resolution.nodes'"));
+  const Scene graded = sceneFrom(dir, "bundle = \"b\"\n[resolution]\nedge_spacing_fraction = 0.5\nsize_gradient = 1\n");
+  REQUIRE(graded.resolution.edgeSpacingFraction == 0.5);
+  REQUIRE(graded.resolution.sizeGradient == 1.0);
+  REQUIRE(graded.resolution.any());
+  REQUIRE_THROWS_WITH(sceneFrom(dir, "bundle = \"b\"\n[resolution]\nedge_spacing_fraction = 0.01\n"),
+                      Contains("edge_spacing_fraction must be 0 (the bundle's) or between 0.05 and 1"));
+  REQUIRE_THROWS_WITH(sceneFrom(dir, "bundle = \"b\"\n[resolution]\nedge_spacing_fraction = 2\n"),
+                      Contains("resolution.edge_spacing_fraction"));
 }

@@ -134,6 +134,8 @@ TEST_CASE("bad input: one clear line naming the file and the problem, exit 2, no
   const std::string good = meshFile(makeBox(1, 1, 1), "cube.stl");  // a 1 mm cube
   requireRefused(prep(good, "--unit mm --voxel 0"), "cube.stl", "--voxel must be positive", out);
   requireRefused(prep(good, "--unit mm --voxel 0.05 --spacing -0.1"), "cube.stl", "--spacing must be positive", out);
+  requireRefused(prep(good, "--unit mm --edge-spacing 2"), "cube.stl", "--edge-spacing must be between 0.05 and 1", out);
+  requireRefused(prep(good, "--unit mm --size-gradient 0"), "cube.stl", "--size-gradient must be between", out);
   requireRefused(prep(good, "--unit mm --voxel 0.5"), "cube.stl", "too coarse", out);
   requireRefused(prep(good, "--unit furlong"), "furlong", "unknown length unit", out);
 

@@ -21,7 +21,7 @@ namespace {
 
 // A 3 x 3 slab (one free block) at coarse nodes, indented fast to 0.3 mm.
 std::string smallRun(const test::TempDir& dir, const std::string& extra = "") {
-  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 3x3 --pitch 10 --spacing 1.0 -o " +
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 3x3 --pitch 10 --spacing 1.0 --edge-spacing 1 -o " +
                            quoted(dir / "slab"))
               .status == 0);
   test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[indenter]\nspeed = 0.05\n[protocol]\ndelta_max = 0.3e-3\n"
@@ -128,7 +128,7 @@ TEST_CASE("a scene's [resolution] re-prepares the shapes for the run") {
 
 TEST_CASE("sweep regression: P_max scales with E (gravity off) and a high-friction slab loses its central block") {
   test::TempDir dir;
-  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 5x5 --pitch 10 --spacing 1.0 -o " +
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 5x5 --pitch 10 --spacing 1.0 --edge-spacing 1 -o " +
                            quoted(dir / "slab"))
               .status == 0);
   test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[indenter]\nspeed = 0.05\n[protocol]\ndelta_max = 5e-3\n"
@@ -159,7 +159,7 @@ TEST_CASE("sweep regression: P_max scales with E (gravity off) and a high-fricti
   REQUIRE_THAT(again.err, Contains("case_000 already complete") && Contains("case_001 already complete"));
 
   // High friction on the paper's 7 x 7 slab (coarse nodes, fast but quasi-static loading).
-  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 7x7 --pitch 10 --spacing 1.2 -o " +
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 7x7 --pitch 10 --spacing 1.2 --edge-spacing 1 -o " +
                            quoted(dir / "slab7"))
               .status == 0);
   test::writeFile(dir / "grippy.toml", "bundle = \"slab7\"\n[material]\nfriction = 3.0\n[indenter]\nspeed = 0.1\n"
@@ -203,9 +203,9 @@ TEST_CASE("default run: the natural failure, after the loaded block has moved a 
 TEST_CASE("a 15 x 15 slab dishes past one thickness without failure: its loaded block still carries the load") {
   // The rule this replaces retired the loaded block once it had sunk h (at 3.21 mm here) while it
   // still carried about 70 % of P_max. Here nothing is out, and no failure is reported, while the
-  // loaded block is held by its neighbours (1.2 mm nodes, 60 mm/s, to 1.15 h).
+  // loaded block is held by its neighbours (1.2 mm uniform nodes, 60 mm/s, to 1.15 h).
   test::TempDir dir;
-  const auto response = runSlab(dir, "--grid 15x15 --spacing 1.2",
+  const auto response = runSlab(dir, "--grid 15x15 --spacing 1.2 --edge-spacing 1",
                                 "[indenter]\nradius = 2.5e-3\nspeed = 0.06\n[protocol]\ndelta_max_ratio = 1.15\n"
                                 "[damping]\nlocal = 0.3\n")["response"];
   REQUIRE(response["failure_mode"] == "no failure");
@@ -218,10 +218,10 @@ TEST_CASE("a 15 x 15 slab dishes past one thickness without failure: its loaded 
 }
 
 TEST_CASE("mu = 9 to 6 mm: the main drop, then a staircase of slips") {
-  // At the paper's resolution the loaded block wedges until it has moved about 1.2 h, then the load
+  // At the paper's resolution (uniform 0.6 mm nodes) the loaded block wedges until it has moved about 1.2 h, then the load
   // falls to about a third of P_max and steps down in slips to delta = 6 mm.
   test::TempDir dir;
-  const auto response = runSlab(dir, "--grid 7x7",
+  const auto response = runSlab(dir, "--grid 7x7 --edge-spacing 1",
                                 "[material]\nfriction = 9.0\n[indenter]\nradius = 2.5e-3\nspeed = 0.06\n"
                                 "[protocol]\ndelta_max = 6e-3\nstop_on_failure = false\n[damping]\nlocal = 0.3\n")["response"];
   const auto& drops = response["load_drops"];
@@ -258,7 +258,8 @@ TEST_CASE("run with a preset uses its keys, kept as OUT/scene.toml, and refuses 
   std::stringstream text;
   text << in.rdbuf();
   // Ratios (scale-aware): 1.2 mm / 3.18 mm of each shape's thinnest extent, 20 x the paper's speed ratio.
-  REQUIRE_THAT(text.str(), Contains("--preset fast") && Contains("speed_ratio = 0.0228") && Contains("node_spacing_ratio = 0.3773"));
+  REQUIRE_THAT(text.str(), Contains("--preset fast") && Contains("speed_ratio = 0.0228") && Contains("node_spacing_ratio = 0.3773") &&
+               Contains("edge_spacing_fraction = 1"));
   REQUIRE_THAT(text.str(), Contains("delta_max = 0.000299999"));  // the scene's own keys stay
 
   const test::CliResult bad = test::runTessera("run " + quoted(scene) + " --preset turbo -o " + quoted(dir / "none"));
