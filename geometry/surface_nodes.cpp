@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <queue>
 
@@ -19,6 +20,13 @@ namespace {
 constexpr double kCoverageRadius = 0.9;
 // Candidate points for farthest-point sampling: sub-triangles of edge <= spacing / 4.
 constexpr double kCandidatesPerSpacing = 4.0;
+
+// |a - b|^2 written out: these loops run millions of times, and unoptimized (sanitizer) builds
+// do not inline Eigen's expression templates.
+inline double squaredDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
+  return x * x + y * y + z * z;
+}
 
 struct QuadraturePoint {
   Eigen::Vector3d position;
@@ -127,12 +135,16 @@ void forEachQuadraturePoint(const TriangleMesh& mesh, int t, int patch, const Lo
       }
     return;
   }
-  // A piece with corners p[0..2] and area `area`, and the edge pieces that can reach it: kept, or halved.
+  // A piece with corners p[0..2] and area `area`, and the edge pieces that can reach it: kept, or
+  // halved. The pieces near a piece at each depth of the recursion go in one reused list (a deque:
+  // growing it keeps the shallower lists in place).
+  std::deque<std::vector<int>> keptAtDepth;
   const auto bisect = [&](auto&& self, const std::array<Eigen::Vector3d, 3>& p, double area,
-                          const std::vector<int>& pieces) -> void {
+                          const std::vector<int>& pieces, std::size_t depth) -> void {
     const Eigen::Vector3d centre = (p[0] + p[1] + p[2]) / 3.0;
     const double reach = std::max({(p[0] - centre).norm(), (p[1] - centre).norm(), (p[2] - centre).norm()});
-    std::vector<int> kept;
+    if (keptAtDepth.size() <= depth) keptAtDepth.resize(depth + 1);
+    std::vector<int>& kept = keptAtDepth[depth];
     const double l = spacing.at(centre, reach, pieces, kept);
     // The longest edge p[longest] - p[longest + 1]; of edges equal to rounding the first, so that
     // the pieces do not depend on the scale or orientation of the mesh.
@@ -151,12 +163,12 @@ void forEachQuadraturePoint(const TriangleMesh& mesh, int t, int patch, const Lo
     }
     const Eigen::Vector3d &from = p[longest], &to = p[(longest + 1) % 3], &apex = p[(longest + 2) % 3];
     const Eigen::Vector3d middle = 0.5 * (from + to);
-    self(self, std::array<Eigen::Vector3d, 3>{from, middle, apex}, area / 2, kept);
-    self(self, std::array<Eigen::Vector3d, 3>{middle, to, apex}, area / 2, kept);
+    self(self, std::array<Eigen::Vector3d, 3>{from, middle, apex}, area / 2, kept, depth + 1);
+    self(self, std::array<Eigen::Vector3d, 3>{middle, to, apex}, area / 2, kept, depth + 1);
   };
   const Eigen::Vector3d g = (a + b + c) / 3.0;
   const double reach = std::max({(a - g).norm(), (b - g).norm(), (c - g).norm()});
-  bisect(bisect, std::array<Eigen::Vector3d, 3>{a, b, c}, triangleArea(mesh, t), spacing.piecesNear(g, reach, patch));
+  bisect(bisect, std::array<Eigen::Vector3d, 3>{a, b, c}, triangleArea(mesh, t), spacing.piecesNear(g, reach, patch), 0);
 }
 
 struct SeedNode {
@@ -214,20 +226,25 @@ PatchNodes farthestPointSample(const std::vector<SeedNode>& seeds, const std::ve
   PatchNodes nodes;
   // Max-heap of (priority, -index): the farthest candidate first, the lowest index among ties.
   std::priority_queue<std::pair<double, int>> heap;
-  const auto addNode = [&](const Eigen::Vector3d& x, NodeKind kind, double radius) {
+  // A node at x: the candidates within `radius` updated, and re-queued when `queue` (the seeds
+  // come first, before the heap is built).
+  const auto addNode = [&](const Eigen::Vector3d& x, NodeKind kind, double radius, bool queue) {
     nodes.positions.push_back(x);
     nodes.kinds.push_back(kind);
     grid.forEachNear(x, radius, [&](int j) {
-      const double dj = (candidates[j].position - x).norm();
+      const double dj = std::sqrt(squaredDistance(candidates[j].position, x));
       if (dj < distance[j]) {
         distance[j] = dj;
-        heap.push({priority(j), -j});
+        if (queue) heap.push({priority(j), -j});
       }
     });
   };
-  for (const SeedNode& seed : seeds) addNode(seed.position, seed.kind, cap);
-  for (int i = 0; i < n; ++i)
-    if (distance[i] == cap) heap.push({priority(i), -i});
+  for (const SeedNode& seed : seeds) addNode(seed.position, seed.kind, cap, false);
+  {
+    std::vector<std::pair<double, int>> entries(n);
+    for (int i = 0; i < n; ++i) entries[i] = {priority(i), -i};
+    heap = std::priority_queue<std::pair<double, int>>(std::less<std::pair<double, int>>(), std::move(entries));
+  }
   const double coverage = kCoverageRadius / 1e-9;
   while (!heap.empty()) {
     const auto [d, negIndex] = heap.top();
@@ -236,7 +253,7 @@ PatchNodes farthestPointSample(const std::vector<SeedNode>& seeds, const std::ve
     if (d != priority(c)) continue;  // stale entry
     if (d < coverage) break;
     // A candidate j can come closer only if distance[j] <= d 1e-9 s (priorities scale d s / l, l <= s).
-    addNode(candidates[c].position, NodeKind::Face, (d + 1) * 1e-9 * spacing);
+    addNode(candidates[c].position, NodeKind::Face, (d + 1) * 1e-9 * spacing, true);
   }
   return nodes;
 }
@@ -261,7 +278,7 @@ public:
     int best = -1;
     double bestDistance = std::numeric_limits<double>::infinity();
     for (int i : near_) {
-      const double d = (nodes_[i] - x).squaredNorm();
+      const double d = squaredDistance(nodes_[i], x);
       if (d < bestDistance || (d == bestDistance && i < best)) {
         bestDistance = d;
         best = i;

@@ -1,6 +1,7 @@
 #pragma once
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -22,11 +23,20 @@ struct MeshSdf {
   /// One triangle: corners, unit face normal, and the pseudo-normals of its edges (corner k to
   /// k+1: the sum of the unit normals of the two faces sharing it) and of its corners
   /// (the angle-weighted sum of the unit normals of every face at the vertex).
+  ///
+  /// For the distance without branches (squaredDistance): the edges e_k = corner k+1 - corner k,
+  /// 1 / |e_k|^2 (0 for a degenerate edge), and the in-plane outward edge normals m_k = e_k x n.
   struct Triangle {
     std::array<Eigen::Vector3d, 3> corner;
     Eigen::Vector3d normal;
     std::array<Eigen::Vector3d, 3> edgeNormal;
     std::array<Eigen::Vector3d, 3> vertexNormal;
+    std::array<Eigen::Vector3d, 3> edge;
+    std::array<Eigen::Vector3d, 3> edgeOutward;
+    std::array<double, 3> inverseEdgeLength2{0, 0, 0};
+    /// The projection of p is on the face when max_k (p - corner_k) . m_k <= faceLimit: 0, or -1
+    /// for a degenerate triangle (no face, only its edges).
+    double faceLimit = 0.0;
   };
   std::vector<Triangle> triangles;
   Eigen::Vector3d origin{0, 0, 0};        ///< m, lower corner of cell (0, 0, 0)
@@ -53,28 +63,41 @@ struct MeshSdf {
     // less |x - c| exceeds the best distance so far, neither it nor any later one can be closer.
     const Eigen::Vector3d centre = origin + cellSize * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
     const double offCentre = (x - centre).norm();
+    // The nearest triangle by squaredDistance (no branches), then its closest point and feature.
     double best = INFINITY;
-    Eigen::Vector3d closest = x, pseudoNormal = Eigen::Vector3d::UnitZ();
+    std::uint32_t nearest = cellTriangles[begin];
     for (std::uint32_t n = begin; n < end; ++n) {
       const double bound = centreDistance[n] - offCentre;
       if (bound > 0 && bound * bound > best) break;
-      const Triangle& t = triangles[cellTriangles[n]];
-      Eigen::Vector3d q;
-      const Eigen::Vector3d* feature = nullptr;
-      closestPoint(x, t, q, feature);
-      const double d2 = (x - q).squaredNorm();
-      if (d2 < best) {
-        best = d2;
-        closest = q;
-        pseudoNormal = *feature;
-      }
+      const double d2 = squaredDistance(x, triangles[cellTriangles[n]]);
+      nearest = d2 < best ? cellTriangles[n] : nearest;
+      best = std::min(best, d2);
     }
+    Eigen::Vector3d closest;
+    const Eigen::Vector3d* feature = nullptr;
+    closestPoint(x, triangles[nearest], closest, feature);
+    const Eigen::Vector3d& pseudoNormal = *feature;
     const Eigen::Vector3d away = x - closest;
-    const double distance = std::sqrt(best);
+    const double distance = away.norm();
     const double sign = away.dot(pseudoNormal) < 0 ? -1.0 : 1.0;
     phi = sign * distance;
     gradient = distance > 0 ? Eigen::Vector3d(sign * away / distance) : Eigen::Vector3d(pseudoNormal.normalized());
     return true;
+  }
+
+  /// |p - q|^2 for the closest point q of triangle t, without branches: the distance to the face's
+  /// plane when p projects onto the face, else the least distance to its three edges (segments:
+  /// the closest point of a triangle whose plane projection misses it is on its boundary).
+  static double squaredDistance(const Eigen::Vector3d& p, const Triangle& t) {
+    double edges = INFINITY, outward = -INFINITY;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d from = p - t.corner[k];
+      const double along = std::clamp(from.dot(t.edge[k]) * t.inverseEdgeLength2[k], 0.0, 1.0);
+      edges = std::min(edges, (from - along * t.edge[k]).squaredNorm());
+      outward = std::max(outward, from.dot(t.edgeOutward[k]));
+    }
+    const double plane = (p - t.corner[0]).dot(t.normal);
+    return outward <= t.faceLimit ? plane * plane : edges;
   }
 
   /// The closest point q of triangle t to p and the pseudo-normal of the feature holding it

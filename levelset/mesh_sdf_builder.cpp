@@ -17,10 +17,7 @@ double boxDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Ei
 }
 
 double triangleDistance(const Eigen::Vector3d& p, const MeshSdf::Triangle& t) {
-  Eigen::Vector3d q;
-  const Eigen::Vector3d* feature = nullptr;
-  MeshSdf::closestPoint(p, t, q, feature);
-  return (p - q).norm();
+  return std::sqrt(MeshSdf::squaredDistance(p, t));
 }
 
 // Unit face normals and the pseudo-normals of edges and vertices (Baerentzen & Aanaes 2005).
@@ -52,6 +49,13 @@ std::vector<MeshSdf::Triangle> pseudoNormalTriangles(const TriangleMesh& mesh) {
       r.edgeNormal[k] = edge.triangles.size() == 2 ? Eigen::Vector3d(faceNormal[edge.triangles[0]] + faceNormal[edge.triangles[1]])
                                                    : faceNormal[t];
     }
+    for (int k = 0; k < 3; ++k) {
+      r.edge[k] = r.corner[(k + 1) % 3] - r.corner[k];
+      const double length2 = r.edge[k].squaredNorm();
+      r.inverseEdgeLength2[k] = length2 > 0 ? 1.0 / length2 : 0.0;
+      r.edgeOutward[k] = r.edge[k].cross(r.normal);
+    }
+    r.faceLimit = r.normal.squaredNorm() > 0 ? 0.0 : -1.0;
   }
   return triangles;
 }

@@ -42,6 +42,12 @@ struct ShapeResolution {
   }
 };
 
+/// The accepted grading parameters, one rule for prep, tile, assemble, the scene and Python (each
+/// names its own option in the error): an edge spacing of 0.05 to 1 of the node spacing (1:
+/// uniform), a size gradient of 0.05 to 100.
+inline bool validEdgeSpacingFraction(double f) { return f >= 0.05 && f <= 1; }
+inline bool validSizeGradient(double g) { return g >= 0.05 && g <= 100; }
+
 /// One distinct block shape, solver-ready. Everything but `mass` is in the body frame: the
 /// principal frame with its origin at the centroid. A point x_mesh of the source mesh (in metres)
 /// is x_body = R^T (x_mesh - c) with c = mass.centroid, R = mass.principalAxes.

@@ -7,6 +7,7 @@
 #include "levelset/assembly_checks.h"
 #include "levelset/bundle.h"
 #include "levelset/bundle_edit.h"
+#include "levelset/shape.h"
 #include "levelset/slab_plan.h"
 #include "levelset/tiler.h"
 
@@ -27,7 +28,7 @@ ShapeResolution resolution(std::optional<double> voxel, std::optional<double> sp
   for (const auto& [name, value] : {std::pair{"voxel", voxel}, std::pair{"spacing", spacing}})
     if (value && !(*value > 0 && std::isfinite(*value)))
       throw InputError(std::string(name) + " must be a positive length in m, got " + std::to_string(*value));
-  if (!(edgeSpacing >= 0.05 && edgeSpacing <= 1))
+  if (!validEdgeSpacingFraction(edgeSpacing))
     throw InputError("edge_spacing must be between 0.05 and 1, a fraction of the node spacing (1: uniform nodes), got " +
                      std::to_string(edgeSpacing));
   if (voxel) r.voxelSize = *voxel;

@@ -2,6 +2,7 @@
 #include "run/scene.h"
 
 #include "io/input_error.h"
+#include "levelset/shape.h"
 
 #include <toml++/toml.h>
 
@@ -219,10 +220,10 @@ Scene readSceneText(const std::string& text, const std::string& path) {
                     "node spacing at sharp edges as a fraction of the node spacing; 1 = uniform; 0 = the bundle's");
   resolution.number("size_gradient", scene.resolution.sizeGradient, 0, 100,
                     "growth of the node spacing per unit distance from a sharp edge; 0 = the bundle's");
-  if (scene.resolution.edgeSpacingFraction > 0 && scene.resolution.edgeSpacingFraction < 0.05)
+  if (scene.resolution.edgeSpacingFraction != 0 && !validEdgeSpacingFraction(scene.resolution.edgeSpacingFraction))
     throw InputError(path + ": resolution.edge_spacing_fraction must be 0 (the bundle's) or between 0.05 and 1, got " +
                      std::to_string(scene.resolution.edgeSpacingFraction) + "; 1 gives uniform nodes");
-  if (scene.resolution.sizeGradient > 0 && scene.resolution.sizeGradient < 0.05)
+  if (scene.resolution.sizeGradient != 0 && !validSizeGradient(scene.resolution.sizeGradient))
     throw InputError(path + ": resolution.size_gradient must be 0 (the bundle's) or between 0.05 and 100, got " +
                      std::to_string(scene.resolution.sizeGradient));
   resolution.finish();

@@ -40,10 +40,10 @@ ShapeResolution shapeResolution(const ResolutionArguments& a, double metresPerUn
     positive("--spacing", *a.spacing);
     r.nodeSpacing = *a.spacing * metresPerUnit;
   }
-  if (!(a.edgeSpacing >= 0.05 && a.edgeSpacing <= 1))
+  if (!validEdgeSpacingFraction(a.edgeSpacing))
     throw InputError(label + ": --edge-spacing must be between 0.05 and 1, a fraction of --spacing (got " +
                      std::to_string(a.edgeSpacing) + "); 1 gives uniform nodes");
-  if (!(a.sizeGradient >= 0.05 && a.sizeGradient <= 100))
+  if (!validSizeGradient(a.sizeGradient))
     throw InputError(label + ": --size-gradient must be between 0.05 and 100 (got " + std::to_string(a.sizeGradient) + ")");
   r.edgeSpacingFraction = a.edgeSpacing;
   r.sizeGradient = a.sizeGradient;
