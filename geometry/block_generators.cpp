@@ -73,6 +73,42 @@ TriangleMesh makeWaveBlock(double a, double h, double theta, double amplitude, i
   return stackedRectangles(levels, h, [&](double z) { return 0.5 * a + f(z); }, [&](double z) { return 0.5 * a - f(z); });
 }
 
+TriangleMesh makeOsteomorphicBlock(double a, double b, double h, double amplitude, int halfWaveSegments) {
+  require(a > 0 && b > 0 && h > 0, "osteomorphic block: sides and thickness must be positive");
+  require(std::abs(amplitude) < 0.5 * a, "osteomorphic block: the amplitude must be below half the side");
+  require(halfWaveSegments >= 2 && halfWaveSegments <= 1000, "osteomorphic block: --levels must be from 2 to 1000");
+  const int ny = 2 * halfWaveSegments, nz = halfWaveSegments;
+  // Vertex (side s, j, k) of the x-face grid: s = 0 at x = -a/2, 1 at +a/2; y_j, z_k evenly spaced.
+  const auto index = [&](int s, int j, int k) { return (s * (ny + 1) + j) * (nz + 1) + k; };
+  TriangleMesh mesh;
+  for (int s = 0; s < 2; ++s)
+    for (int j = 0; j <= ny; ++j)
+      for (int k = 0; k <= nz; ++k) {
+        const double y = -0.5 * b + b * j / ny, z = -0.5 * h + h * k / nz;
+        const bool edge = j == 0 || j == ny || k == 0 || k == nz;  // g = 0 exactly: flat y- and z-faces
+        const double g = edge ? 0.0 : amplitude * std::sin(2 * M_PI * y / b) * std::cos(M_PI * z / h);
+        mesh.vertices.emplace_back((s == 0 ? -0.5 : 0.5) * a + g, y, z);
+      }
+  const auto quad = [&](int p, int q, int r, int t) {  // counter-clockwise seen from outside; diagonal p-r
+    mesh.triangles.push_back({p, q, r});
+    mesh.triangles.push_back({p, r, t});
+  };
+  for (int j = 0; j < ny; ++j)
+    for (int k = 0; k < nz; ++k) {  // the same diagonal on both x-faces: one is the other moved by a
+      quad(index(1, j, k), index(1, j + 1, k), index(1, j + 1, k + 1), index(1, j, k + 1));  // x+
+      quad(index(0, j, k), index(0, j, k + 1), index(0, j + 1, k + 1), index(0, j + 1, k));  // x-
+    }
+  for (int j = 0; j < ny; ++j) {
+    quad(index(0, j, nz), index(1, j, nz), index(1, j + 1, nz), index(0, j + 1, nz));  // top, z+
+    quad(index(0, j, 0), index(0, j + 1, 0), index(1, j + 1, 0), index(1, j, 0));      // bottom, z-
+  }
+  for (int k = 0; k < nz; ++k) {
+    quad(index(1, ny, k), index(0, ny, k), index(0, ny, k + 1), index(1, ny, k + 1));  // y+
+    quad(index(1, 0, k), index(1, 0, k + 1), index(0, 0, k + 1), index(0, 0, k));      // y-
+  }
+  return mesh;
+}
+
 TriangleMesh makeHexBlock(double r, double h, double theta) {
   require(r > 0 && h > 0, "hex block: inradius and thickness must be positive");
   const double slope = std::tan(theta);

@@ -26,6 +26,16 @@ TriangleMesh makePlanarBlock(double a, double h, double theta);
 /// smooth-surface volume a^2 h - 4 integral f^2 dz. Requires |f| < a/2.
 TriangleMesh makeWaveBlock(double a, double h, double theta, double amplitude, int waves, int levels);
 
+/// The osteomorphic-type block (after Dyskin et al., Adv. Eng. Mater. 5, 2003): a box a (x) by b (y)
+/// by h (z) whose two x-faces are the same curved surface, with a convex and a concave part,
+///   x = ±a/2 + g(y, z),  g(y, z) = A sin(2 pi y / b) cos(pi z / h),
+/// so copies in the same orientation, a apart along x, match face to face: each bulge sits in its
+/// neighbour's dimple, which holds the pair against sliding in z (both ways) and in y. The y- and
+/// z-faces are flat rectangles (g = 0 on their edges). `halfWaveSegments` flat quads per half-wave
+/// resolve the surface (one half-wave across h, two along b). Every chord x = const meets the solid
+/// over length a, so its volume is a b h exactly, mesh or smooth. Requires |A| < a / 2.
+TriangleMesh makeOsteomorphicBlock(double a, double b, double h, double amplitude, int halfWaveSegments);
+
 /// The hexagonal TIS block: a hexagonal prism of mid-height inradius r whose six lateral faces
 /// lean alternately outward and inward by theta: face k (outward normal at 60k degrees) is the plane
 /// n_k . x = r + (-1)^k z tan(theta). Copies in the same orientation tile the plane (centres 2r

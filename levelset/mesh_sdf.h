@@ -27,20 +27,22 @@ struct MeshSdf {
   /// For the distance without branches (squaredDistance): the edges e_k = corner k+1 - corner k,
   /// 1 / |e_k|^2 (0 for a degenerate edge), and the in-plane outward edge normals m_k = e_k x n.
   struct Triangle {
+    // What squaredDistance reads first, together (272 bytes), then the pseudo-normals.
     std::array<Eigen::Vector3d, 3> corner;
     Eigen::Vector3d normal;
-    std::array<Eigen::Vector3d, 3> edgeNormal;
-    std::array<Eigen::Vector3d, 3> vertexNormal;
     std::array<Eigen::Vector3d, 3> edge;
     std::array<Eigen::Vector3d, 3> edgeOutward;
     std::array<double, 3> inverseEdgeLength2{0, 0, 0};
     /// The projection of p is on the face when max_k (p - corner_k) . m_k <= faceLimit: 0, or -1
     /// for a degenerate triangle (no face, only its edges).
     double faceLimit = 0.0;
+    std::array<Eigen::Vector3d, 3> edgeNormal;
+    std::array<Eigen::Vector3d, 3> vertexNormal;
   };
   std::vector<Triangle> triangles;
   Eigen::Vector3d origin{0, 0, 0};        ///< m, lower corner of cell (0, 0, 0)
   double cellSize = 0.0;                   ///< m
+  double inverseCellSize = 0.0;            ///< 1/m, 1 / cellSize
   std::array<int, 3> cells{0, 0, 0};       ///< cells along x, y, z
   double band = 0.0;                       ///< m, every point within this distance of the surface has a list
   std::vector<std::uint32_t> cellStart;    ///< cell c's triangles: cellTriangles[cellStart[c] .. cellStart[c + 1])
@@ -52,7 +54,7 @@ struct MeshSdf {
   /// The exact phi (m, negative inside) and its unit gradient at x (body frame); false when x's
   /// cell has no triangles (x outside the grid or farther than `band` from the surface).
   bool evaluate(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& gradient) const {
-    const Eigen::Vector3d u = (x - origin) / cellSize;
+    const Eigen::Vector3d u = (x - origin) * inverseCellSize;
     // Compared as doubles first: NaN and far points never reach the integer conversion.
     if (!(u.minCoeff() >= 0) || !(u[0] < cells[0] && u[1] < cells[1] && u[2] < cells[2])) return false;
     const int i = static_cast<int>(u[0]), j = static_cast<int>(u[1]), k = static_cast<int>(u[2]);
@@ -73,9 +75,17 @@ struct MeshSdf {
       nearest = d2 < best ? cellTriangles[n] : nearest;
       best = std::min(best, d2);
     }
+    // Most points near the surface project onto the face of their nearest triangle: then
+    // q = x - ((x - a) . n) n, the feature is the face, phi = (x - a) . n and grad phi = n.
+    const Triangle& t = triangles[nearest];
+    if (onFace(x, t)) {
+      phi = (x - t.corner[0]).dot(t.normal);
+      gradient = t.normal;
+      return true;
+    }
     Eigen::Vector3d closest;
     const Eigen::Vector3d* feature = nullptr;
-    closestPoint(x, triangles[nearest], closest, feature);
+    closestPoint(x, t, closest, feature);
     const Eigen::Vector3d& pseudoNormal = *feature;
     const Eigen::Vector3d away = x - closest;
     const double distance = away.norm();
@@ -83,6 +93,13 @@ struct MeshSdf {
     phi = sign * distance;
     gradient = distance > 0 ? Eigen::Vector3d(sign * away / distance) : Eigen::Vector3d(pseudoNormal.normalized());
     return true;
+  }
+
+  /// Whether p projects onto the face of t (inside or on its edges; never for a degenerate t).
+  static bool onFace(const Eigen::Vector3d& p, const Triangle& t) {
+    double outward = -INFINITY;
+    for (int k = 0; k < 3; ++k) outward = std::max(outward, (p - t.corner[k]).dot(t.edgeOutward[k]));
+    return outward <= t.faceLimit;
   }
 
   /// |p - q|^2 for the closest point q of triangle t, without branches: the distance to the face's

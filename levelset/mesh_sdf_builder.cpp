@@ -70,6 +70,7 @@ MeshSdf buildMeshSdf(const TriangleMesh& mesh, const DenseSdf& grid, double band
   // cache misses; bench/bench_level_set).
   m.origin = grid.origin;
   m.cellSize = grid.voxelSize;
+  m.inverseCellSize = 1.0 / grid.voxelSize;
   m.band = band;
   for (int a = 0; a < 3; ++a) m.cells[a] = grid.dims[a] - 1;
   const int triangleCount = static_cast<int>(m.triangles.size());

@@ -19,13 +19,13 @@ struct BlockArguments {
   std::string family;
   std::string unit;
   std::string output;
-  double size = 10;         // in --unit: side a (planar, wave, box) or inradius r (hex)
-  double width = -1;        // in --unit: box side b [default: size]
+  double size = 10;         // in --unit: side a (planar, wave, box, osteomorphic) or inradius r (hex)
+  double width = -1;        // in --unit: side b of box and osteomorphic [default: size]
   double thickness = 3.18;  // in --unit
   double angle = 5;         // degrees
-  double amplitude = 0.2;   // in --unit (wave)
+  double amplitude = 0.2;   // in --unit (wave, osteomorphic)
   int waves = 1;            // wave
-  int levels = 24;          // wave
+  int levels = 0;           // 0: the family's default, wave 24, osteomorphic 12
   bool ascii = false;
 };
 
@@ -35,9 +35,13 @@ void runBlock(const BlockArguments& a) {
   TriangleMesh mesh;
   if (a.family == "planar") mesh = makePlanarBlock(a.size * m, a.thickness * m, theta);
   else if (a.family == "box") mesh = makeBox(a.size * m, (a.width > 0 ? a.width : a.size) * m, a.thickness * m);
-  else if (a.family == "wave") mesh = makeWaveBlock(a.size * m, a.thickness * m, theta, a.amplitude * m, a.waves, a.levels);
+  else if (a.family == "wave")
+    mesh = makeWaveBlock(a.size * m, a.thickness * m, theta, a.amplitude * m, a.waves, a.levels != 0 ? a.levels : 24);
+  else if (a.family == "osteomorphic")
+    mesh = makeOsteomorphicBlock(a.size * m, (a.width > 0 ? a.width : a.size) * m, a.thickness * m, a.amplitude * m,
+                                 a.levels != 0 ? a.levels : 12);
   else if (a.family == "hex") mesh = makeHexBlock(a.size * m, a.thickness * m, theta);
-  else throw InputError("unknown block family '" + a.family + "'; use planar, box, wave or hex");
+  else throw InputError("unknown block family '" + a.family + "'; use planar, box, wave, osteomorphic or hex");
 
   validateSolidMesh(mesh, a.family + " block");  // generators must give valid solids; refuse loudly if not
   MeshFileFormat format = meshFormatFromPath(a.output);
@@ -59,22 +63,23 @@ void addBlockCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("block", "Write a parametric block mesh (closed, outward-oriented) as OBJ or STL.");
   cmd->add_option("family", args->family,
                   "planar: TIS block with faces at +-angle; box; wave: planar block with corrugated faces; "
-                  "hex: hexagonal TIS block")
+                  "osteomorphic: box with matching curved x-faces (tile with --no-alternate); hex: hexagonal TIS block")
       ->required()
-      ->check(CLI::IsMember({"planar", "box", "wave", "hex"}));
+      ->check(CLI::IsMember({"planar", "box", "wave", "osteomorphic", "hex"}));
   cmd->add_option("--unit", args->unit, "Length unit of the lengths given and of the file written: m, cm, mm, um, in, ft")
       ->required();
   cmd->add_option("-o,--output", args->output, "Mesh file to write: .obj or .stl (binary unless --ascii)")->required();
-  cmd->add_option("--size", args->size, "Side a of the square mid-section (planar, wave, box), or inradius r (hex), in --unit")
+  cmd->add_option("--size", args->size, "Side a of the square mid-section (planar, wave), side along x (box, osteomorphic), or inradius r (hex), in --unit")
       ->capture_default_str();
-  cmd->add_option("--width", args->width, "box only: side b along y, in --unit [default: --size]");
+  cmd->add_option("--width", args->width, "box and osteomorphic: side b along y, in --unit [default: --size]");
   cmd->add_option("--thickness", args->thickness, "Thickness h, in --unit")->capture_default_str();
   cmd->add_option("--angle", args->angle, "Inclination theta of the lateral faces, degrees")->capture_default_str();
-  cmd->add_option("--amplitude", args->amplitude, "wave only: amplitude A of the corrugation, in --unit")
+  cmd->add_option("--amplitude", args->amplitude, "wave and osteomorphic: amplitude A of the curved faces, in --unit")
       ->capture_default_str();
   cmd->add_option("--waves", args->waves, "wave only: full waves n across the thickness")->capture_default_str();
-  cmd->add_option("--levels", args->levels, "wave only: flat segments across the thickness (mesh resolution)")
-      ->capture_default_str();
+  cmd->add_option("--levels", args->levels, "Mesh resolution. wave: flat segments across the thickness [24]; osteomorphic: segments per "
+                  "half-wave [12]")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--ascii", args->ascii, "Write ASCII STL instead of binary");
   cmd->footer("Example: tessera block planar --size 10 --thickness 3.18 --angle 5 --unit mm -o planar.obj");
   cmd->callback([args] { runBlock(*args); });

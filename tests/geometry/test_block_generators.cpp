@@ -127,3 +127,36 @@ TEST_CASE("wave block: valid, exact polyhedron volume, converges to the smooth v
   REQUIRE_THROWS_AS(makeWaveBlock(a, h, theta, 6.0, 1, 24), InputError);
   REQUIRE_THROWS_AS(makeWaveBlock(a, h, theta, 0.2, 2, 4), InputError);
 }
+
+TEST_CASE("osteomorphic block: valid, volume a b h exactly, x-faces that match a copy moved by a") {
+  const double a = 10, b = 8, h = 3.18, amplitude = 0.8;
+  const int segments = 12;
+  TriangleMesh block = makeOsteomorphicBlock(a, b, h, amplitude, segments);
+  REQUIRE_FALSE(validateSolidMesh(block, "osteomorphic").reoriented);
+  // Every chord along x is a long: the volume is a b h whatever the surface.
+  REQUIRE(signedVolume(block) == Approx(a * b * h).epsilon(1e-12));
+  // The bulge peaks at y = b/4, z = 0 (a grid point: 2 x 12 segments along y, 12 along z).
+  const Eigen::AlignedBox3d box = boundingBox(block.vertices);
+  REQUIRE(box.max().x() == Approx(0.5 * a + amplitude).epsilon(1e-12));
+  REQUIRE(box.min().x() == Approx(-0.5 * a - amplitude).epsilon(1e-12));
+  REQUIRE(box.sizes().y() == Approx(b).epsilon(1e-12));
+  REQUIRE(box.sizes().z() == Approx(h).epsilon(1e-12));
+  // The copy moved by a along x touches face to face: each x+ vertex is an x- vertex moved by a,
+  // and each vertex off the x-faces lies on a flat face (|y| = b/2 or |z| = h/2).
+  std::vector<Eigen::Vector3d> left, right;
+  for (const Eigen::Vector3d& v : block.vertices) {
+    const bool flat = std::abs(std::abs(v.y()) - 0.5 * b) < 1e-12 || std::abs(std::abs(v.z()) - 0.5 * h) < 1e-12;
+    if (!flat) (v.x() > 0 ? right : left).push_back(v);
+    if (flat) REQUIRE(std::abs(std::abs(v.x()) - 0.5 * a) < 1e-12);
+  }
+  REQUIRE(left.size() == right.size());
+  REQUIRE(left.size() == static_cast<std::size_t>((2 * segments - 1) * (segments - 1)));
+  for (const Eigen::Vector3d& v : left) {
+    const Eigen::Vector3d moved = v + Eigen::Vector3d(a, 0, 0);
+    REQUIRE(std::any_of(right.begin(), right.end(), [&](const Eigen::Vector3d& w) { return (w - moved).norm() < 1e-12; }));
+  }
+  // Amplitude 0 is the box.
+  REQUIRE(signedVolume(makeOsteomorphicBlock(a, b, h, 0.0, 2)) == Approx(signedVolume(makeBox(a, b, h))).epsilon(1e-12));
+  REQUIRE_THROWS_AS(makeOsteomorphicBlock(a, b, h, 5.0, 12), InputError);
+  REQUIRE_THROWS_AS(makeOsteomorphicBlock(a, b, h, 0.8, 1), InputError);
+}

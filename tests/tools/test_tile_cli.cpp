@@ -27,19 +27,31 @@ TEST_CASE("block writes valid meshes of every family in the stated unit") {
   mm.metresPerUnit = 1e-3;
   const double volume = computeMassProperties(importMesh(dir / "p.obj", mm).mesh).volume;
   REQUIRE(volume == Approx(1e-4 * 3.18e-3 - std::pow(3.18e-3, 3) * std::pow(std::tan(5 * M_PI / 180), 2) / 3).epsilon(1e-6));
-  for (const std::string family : {"box", "wave", "hex"}) {
+  for (const std::string family : {"box", "wave", "hex", "osteomorphic"}) {
     const test::CliResult r = test::runTessera("block " + family + " --unit cm --size 1 --thickness 0.318 --amplitude 0.02 -o " +
                                                quoted(dir / (family + ".stl")));
     INFO(family << ": " << r.err);
     REQUIRE(r.status == 0);
     REQUIRE(test::runTessera("prep " + quoted(dir / (family + ".stl")) + " --unit cm -o " + quoted(dir / "b")).status == 0);
   }
-  REQUIRE(readBundle(dir / "b").shapes.size() == 3);
+  REQUIRE(readBundle(dir / "b").shapes.size() == 4);
 
   const test::CliResult bad = test::runTessera("block planar --size 1 --thickness 5 --angle 80 --unit mm -o " + quoted(dir / "x.obj"));
   REQUIRE(bad.status == 2);
   REQUIRE_THAT(bad.err, Contains("inclined faces meet"));
   REQUIRE_FALSE(fs::exists(dir / "x.obj"));
+}
+
+TEST_CASE("osteomorphic blocks tiled unturned touch face to face and hold the free block both ways") {
+  test::TempDir dir;
+  REQUIRE(test::runTessera("block osteomorphic --size 10 --thickness 3.18 --amplitude 0.5 --unit mm -o " +
+                           quoted(dir / "o.obj")).status == 0);
+  const test::CliResult r = test::runTessera("tile --block " + quoted(dir / "o.obj") +
+                                             " --unit mm --grid 3x3 --pitch 10 --no-alternate --fix perimeter -o " +
+                                             quoted(dir / "slab"));
+  INFO(r.err);
+  REQUIRE(r.status == 0);  // no overlap deeper than the tolerance: the curved x-faces coincide
+  REQUIRE_THAT(r.out, Contains("1 of 1 free bodies held both up and down"));
 }
 
 TEST_CASE("tile builds the paper's slab in one command, and inspect lists its bodies") {
