@@ -10,6 +10,8 @@ import glob
 import os
 import sys
 
+from sweep_csv import sweep_rows
+
 METRICS = [("peak_load_N", "P_max N"), ("stiffness_N_per_mm", "K N/mm"), ("loading_energy_to_end_mJ", "W mJ")]
 BASE = {"resolution.node_spacing": 0.6e-3, "resolution.edge_spacing_fraction": 0.25, "resolution.voxel": 0.25e-3}
 
@@ -25,18 +27,9 @@ def label(group, s):
 
 def read_block(directory):
     cases = []
-    for path in sorted(glob.glob(os.path.join(directory, "*", "sweep.csv"))):
-        group = os.path.basename(os.path.dirname(path))
-        with open(path) as f:
-            for row in csv.DictReader(f):
-                if not row.get("peak_load_N"):
-                    continue  # a case that did not finish
-                s = dict(BASE)
-                for key in BASE:
-                    if key in row:
-                        s[key] = float(row[key])
-                cases.append({"group": group, "label": label(group, s), "wall": float(row["wall_seconds"]),
-                              **{m: float(row[m]) for m, _ in METRICS}})
+    for group, s, row in sweep_rows(directory, BASE):
+        cases.append({"group": group, "label": label(group, s), "wall": float(row["wall_seconds"]),
+                      **{m: float(row[m]) for m, _ in METRICS}})
     return cases
 
 

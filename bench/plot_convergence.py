@@ -5,7 +5,6 @@ Usage: /usr/bin/python3 bench/plot_convergence.py OUT_DIR PNG
 Reads OUT_DIR/*/sweep.csv; writes PNG and OUT_DIR/convergence.csv, prints a markdown table.
 """
 import csv
-import glob
 import os
 import sys
 
@@ -13,6 +12,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+
+from sweep_csv import sweep_rows
 
 # The base scene's settings (assets/scenes/default.toml + the bundle's resolution).
 BASE = {"resolution.node_spacing": 0.6e-3, "resolution.edge_spacing_fraction": 0.25, "resolution.voxel": 0.25e-3,
@@ -32,20 +33,11 @@ def label(s):
 
 def read_cases(out):
     cases = []
-    for path in sorted(glob.glob(os.path.join(out, "*", "sweep.csv"))):
-        group = os.path.basename(os.path.dirname(path))
-        with open(path) as f:
-            for row in csv.DictReader(f):
-                if not row.get("peak_load_N"):
-                    continue  # a case that did not finish
-                s = dict(BASE)
-                if group == "voxel":
-                    s["level_set"] = "grid"
-                for key in BASE:
-                    if key in row:
-                        s[key] = float(row[key])
-                cases.append({"group": group, "settings": s, "label": label(s), "wall": float(row["wall_seconds"]),
-                              **{m: float(row[m]) for m, _ in METRICS}})
+    for group, s, row in sweep_rows(out, BASE):
+        if group == "voxel":
+            s["level_set"] = "grid"
+        cases.append({"group": group, "settings": s, "label": label(s), "wall": float(row["wall_seconds"]),
+                      **{m: float(row[m]) for m, _ in METRICS}})
     return cases
 
 
