@@ -79,7 +79,7 @@ void addBlockCommand(CLI::App& app) {
   cmd->add_option("--waves", args->waves, "wave only: full waves n across the thickness")->capture_default_str();
   cmd->add_option("--levels", args->levels, "Mesh resolution. wave: flat segments across the thickness [24]; osteomorphic: segments per "
                   "half-wave [12]")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 10000));
   cmd->add_flag("--ascii", args->ascii, "Write ASCII STL instead of binary");
   cmd->footer("Example: tessera block planar --size 10 --thickness 3.18 --angle 5 --unit mm -o planar.obj");
   cmd->callback([args] { runBlock(*args); });
