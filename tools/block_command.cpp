@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 namespace tessera::tools {
 
@@ -79,7 +80,7 @@ void addBlockCommand(CLI::App& app) {
   cmd->add_option("--waves", args->waves, "wave only: full waves n across the thickness")->capture_default_str();
   cmd->add_option("--levels", args->levels, "Mesh resolution. wave: flat segments across the thickness [24]; osteomorphic: segments per "
                   "half-wave [12]")
-      ->check(CLI::Range(1, 10000));
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));  // the upper limits: the generators
   cmd->add_flag("--ascii", args->ascii, "Write ASCII STL instead of binary");
   cmd->footer("Example: tessera block planar --size 10 --thickness 3.18 --angle 5 --unit mm -o planar.obj");
   cmd->callback([args] { runBlock(*args); });
