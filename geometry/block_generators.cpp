@@ -2,6 +2,7 @@
 
 #include "io/input_error.h"
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -73,38 +74,64 @@ TriangleMesh makeWaveBlock(double a, double h, double theta, double amplitude, i
   return stackedRectangles(levels, h, [&](double z) { return 0.5 * a + f(z); }, [&](double z) { return 0.5 * a - f(z); });
 }
 
-TriangleMesh makeOsteomorphicBlock(double a, double b, double h, double amplitude, int halfWaveSegments) {
+TriangleMesh makeOsteomorphicBlock(double a, double b, double h, double amplitude, double amplitudeY,
+                                   int halfWaveSegments) {
   require(a > 0 && b > 0 && h > 0, "osteomorphic block: sides and thickness must be positive");
-  require(std::abs(amplitude) < 0.5 * a, "osteomorphic block: the amplitude must be below half the side");
+  require(std::abs(amplitude) < 0.5 * a && std::abs(amplitudeY) < 0.5 * b,
+          "osteomorphic block: each amplitude must be below half the side it bends");
+  // At a vertical corner edge the x- and y-faces meet at slopes c_x = 2 pi A_x / b and
+  // c_y = 2 pi A_y / a; the faces cross there unless c_x c_y < 1.
+  require(4 * M_PI * M_PI * std::abs(amplitude * amplitudeY) < a * b,
+          "osteomorphic block: the x- and y-faces cross at the corners (need 4 pi^2 |A A_y| < a b)");
   require(halfWaveSegments >= 2 && halfWaveSegments <= 1000, "osteomorphic block: --levels must be from 2 to 1000");
-  const int ny = 2 * halfWaveSegments, nz = halfWaveSegments;
-  // Vertex (side s, j, k) of the x-face grid: s = 0 at x = -a/2, 1 at +a/2; y_j, z_k evenly spaced.
-  const auto index = [&](int s, int j, int k) { return (s * (ny + 1) + j) * (nz + 1) + k; };
+  const int m = halfWaveSegments;
+  const std::array<int, 3> n{amplitudeY != 0 ? 2 * m : 1, 2 * m, m};  // segments along x, y, z
+  const std::array<double, 3> side{a, b, h};
+  // The box's surface grid points, each made once, displaced off the x- and y-faces' interiors
+  // only (exactly 0 on their edges: the z-faces and the corner edges stay flat and straight).
+  std::vector<int> vertexAt(static_cast<std::size_t>(n[0] + 1) * (n[1] + 1) * (n[2] + 1), -1);
   TriangleMesh mesh;
-  for (int s = 0; s < 2; ++s)
-    for (int j = 0; j <= ny; ++j)
-      for (int k = 0; k <= nz; ++k) {
-        const double y = -0.5 * b + b * j / ny, z = -0.5 * h + h * k / nz;
-        const bool edge = j == 0 || j == ny || k == 0 || k == nz;  // g = 0 exactly: flat y- and z-faces
-        const double g = edge ? 0.0 : amplitude * std::sin(2 * M_PI * y / b) * std::cos(M_PI * z / h);
-        mesh.vertices.emplace_back((s == 0 ? -0.5 : 0.5) * a + g, y, z);
-      }
-  const auto quad = [&](int p, int q, int r, int t) {  // counter-clockwise seen from outside; diagonal p-r
-    mesh.triangles.push_back({p, q, r});
-    mesh.triangles.push_back({p, r, t});
-  };
-  for (int j = 0; j < ny; ++j)
-    for (int k = 0; k < nz; ++k) {  // the same diagonal on both x-faces: one is the other moved by a
-      quad(index(1, j, k), index(1, j + 1, k), index(1, j + 1, k + 1), index(1, j, k + 1));  // x+
-      quad(index(0, j, k), index(0, j, k + 1), index(0, j + 1, k + 1), index(0, j + 1, k));  // x-
+  const auto vertex = [&](const std::array<int, 3>& g) {
+    int& v = vertexAt[(static_cast<std::size_t>(g[0]) * (n[1] + 1) + g[1]) * (n[2] + 1) + g[2]];
+    if (v >= 0) return v;
+    Eigen::Vector3d p;
+    std::array<bool, 3> boundary{};
+    for (int d = 0; d < 3; ++d) {
+      p[d] = -0.5 * side[d] + side[d] * g[d] / n[d];
+      boundary[d] = g[d] == 0 || g[d] == n[d];
     }
-  for (int j = 0; j < ny; ++j) {
-    quad(index(0, j, nz), index(1, j, nz), index(1, j + 1, nz), index(0, j + 1, nz));  // top, z+
-    quad(index(0, j, 0), index(0, j + 1, 0), index(1, j + 1, 0), index(1, j, 0));      // bottom, z-
-  }
-  for (int k = 0; k < nz; ++k) {
-    quad(index(1, ny, k), index(0, ny, k), index(0, ny, k + 1), index(1, ny, k + 1));  // y+
-    quad(index(1, 0, k), index(1, 0, k + 1), index(0, 0, k + 1), index(0, 0, k));      // y-
+    if (boundary[0] && !boundary[1] && !boundary[2])
+      p.x() += amplitude * std::sin(2 * M_PI * p.y() / b) * std::cos(M_PI * p.z() / h);
+    if (boundary[1] && !boundary[0] && !boundary[2])
+      p.y() += amplitudeY * std::sin(2 * M_PI * p.x() / a) * std::cos(M_PI * p.z() / h);
+    v = static_cast<int>(mesh.vertices.size());
+    mesh.vertices.push_back(p);
+    return v;
+  };
+  // Each face as quads over its two in-plane axes u, w (cyclic after the normal's axis, so that
+  // e_u x e_w is the outward normal of the + face), split on the same diagonal on both faces of a
+  // pair: one is the other moved by the side.
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    for (int s = 0; s < 2; ++s)
+      for (int i = 0; i < n[u]; ++i)
+        for (int j = 0; j < n[w]; ++j) {
+          const auto at = [&](int di, int dj) {
+            std::array<int, 3> g{};
+            g[axis] = s * n[axis];
+            g[u] = i + di;
+            g[w] = j + dj;
+            return vertex(g);
+          };
+          const int p = at(0, 0), q = at(1, 0), r = at(1, 1), t = at(0, 1);
+          if (s == 1) {
+            mesh.triangles.push_back({p, q, r});
+            mesh.triangles.push_back({p, r, t});
+          } else {
+            mesh.triangles.push_back({p, t, r});
+            mesh.triangles.push_back({p, r, q});
+          }
+        }
   }
   return mesh;
 }

@@ -30,11 +30,16 @@ TriangleMesh makeWaveBlock(double a, double h, double theta, double amplitude, i
 /// by h (z) whose two x-faces are the same curved surface, with a convex and a concave part,
 ///   x = ±a/2 + g(y, z),  g(y, z) = A sin(2 pi y / b) cos(pi z / h),
 /// so copies in the same orientation, a apart along x, match face to face: each bulge sits in its
-/// neighbour's dimple, which holds the pair against sliding in z (both ways) and in y. The y- and
-/// z-faces are flat rectangles (g = 0 on their edges). `halfWaveSegments` flat quads per half-wave
-/// resolve the surface (one half-wave across h, two along b). Every chord x = const meets the solid
-/// over length a, so its volume is a b h exactly, mesh or smooth. Requires |A| < a / 2.
-TriangleMesh makeOsteomorphicBlock(double a, double b, double h, double amplitude, int halfWaveSegments);
+/// neighbour's dimple, which holds the pair against sliding in z (both ways) and in y. With
+/// A_y != 0 the y-faces are curved the same way, y = ±b/2 + A_y sin(2 pi x / a) cos(pi z / h), and
+/// the block interlocks with all four neighbours; with A_y = 0 they are flat. The z-faces are flat
+/// and the corner edges straight (the displacements vanish on the faces' edges). `halfWaveSegments`
+/// flat quads per half-wave resolve the surfaces. Every chord x = const meets the solid over length
+/// a, and the y-faces are each other's translates, so the volume is a b h exactly, mesh or smooth
+/// (divergence theorem with the field (x, 0, 0)). Requires |A| < a / 2, |A_y| < b / 2 and
+/// 4 pi^2 |A A_y| < a b (the faces meet at the corner edges without crossing).
+TriangleMesh makeOsteomorphicBlock(double a, double b, double h, double amplitude, double amplitudeY,
+                                   int halfWaveSegments);
 
 /// The hexagonal TIS block: a hexagonal prism of mid-height inradius r whose six lateral faces
 /// lean alternately outward and inward by theta: face k (outward normal at 60k degrees) is the plane

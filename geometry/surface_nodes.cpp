@@ -1,6 +1,7 @@
 #include "geometry/surface_nodes.h"
 
 #include "io/input_error.h"
+#include "geometry/closest_point_on_triangle.h"
 #include "geometry/point_grid.h"
 
 #include <algorithm>
@@ -305,6 +306,28 @@ private:
   std::vector<int> near_;
 };
 
+// The node of a cell: its centroid moved onto the cell's surface (the closest point of the cell's
+// triangles). On a planar cell the centroid is on the surface and stays, bit for bit; on a curved
+// one it lies off the surface by the sagitta, about kappa l^2 / 8 (outside a concave cell, inside
+// a convex one), which would read as overlap or gap against a neighbour matching the face.
+Eigen::Vector3d onCell(const TriangleMesh& mesh, const std::vector<int>& triangles, const Eigen::Vector3d& centroid,
+                       double spacing) {
+  Eigen::Vector3d best = centroid;
+  double bestDistance = INFINITY;
+  for (int t : triangles) {
+    const Eigen::Vector3d q =
+        closestPointOnTriangle(centroid, triangleCorner(mesh, t, 0), triangleCorner(mesh, t, 1), triangleCorner(mesh, t, 2))
+            .point;
+    const double d = squaredDistance(q, centroid);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = q;
+    }
+  }
+  constexpr double kOnSurface = 1e-9;  // in units of the spacing: rounding, not curvature
+  return bestDistance <= (kOnSurface * spacing) * (kOnSurface * spacing) ? centroid : best;
+}
+
 }  // namespace
 
 SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& features,
@@ -347,6 +370,7 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
   const double perSpacing = std::max(1, options.quadraturePerSpacing);
   std::vector<std::vector<double>> area(features.patchCount);
   std::vector<std::vector<Eigen::Vector3d>> normal(features.patchCount), centroid(features.patchCount);
+  std::vector<std::vector<std::vector<int>>> cellTriangles(features.patchCount);  // the triangles each cell covers
   std::vector<NearestNode> nearest;
   nearest.reserve(features.patchCount);
   for (int p = 0; p < features.patchCount; ++p) {
@@ -354,6 +378,7 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
     area[p].assign(patchNodes[p].positions.size(), 0.0);
     normal[p].assign(patchNodes[p].positions.size(), Eigen::Vector3d::Zero());
     centroid[p].assign(patchNodes[p].positions.size(), Eigen::Vector3d::Zero());
+    cellTriangles[p].resize(patchNodes[p].positions.size());
   }
   for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
     const int p = features.trianglePatch[t];
@@ -363,6 +388,7 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
       area[p][node] += q.area;
       normal[p][node] += q.area * unitNormal;
       centroid[p][node] += q.area * q.position;
+      if (cellTriangles[p][node].empty() || cellTriangles[p][node].back() != t) cellTriangles[p][node].push_back(t);
     });
   }
 
@@ -370,8 +396,7 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
   for (int p = 0; p < features.patchCount; ++p)
     for (std::size_t k = 0; k < patchNodes[p].positions.size(); ++k) {
       if (area[p][k] <= 0.0) continue;  // a seed that owns no quadrature point carries no load
-      // The node is the quadrature point of its cell: at the cell's centroid (see the header).
-      out.positions.push_back(centroid[p][k] / area[p][k]);
+      out.positions.push_back(onCell(mesh, cellTriangles[p][k], centroid[p][k] / area[p][k], spacing));
       out.normals.push_back(normal[p][k].normalized());
       out.areas.push_back(area[p][k]);
       out.patches.push_back(p);

@@ -22,7 +22,8 @@ struct SurfaceNodeOptions {
 
 /// Surface nodes of a solid with area weights, as arrays (one entry per node).
 /// Every node is the quadrature point of one cell of one patch (a face region between sharp
-/// edges): it carries the cell's area, the patch's outward normal and sits at the cell's centroid.
+/// edges): it carries the cell's area, the cell's mean outward normal and sits on the surface at
+/// the cell's centroid.
 /// Cells are seeded on every corner and along every sharp edge, once per patch meeting there, so
 /// each patch's weights sum to the patch area, every node's normal is a face normal (never an
 /// average across an edge), and edges are lined with nodes a quarter spacing inside each face.
@@ -46,9 +47,13 @@ struct SurfaceNodes {
 ///  - cells: each triangle is cut into small quadrature triangles (edge <= l /
 ///    quadraturePerSpacing), each given wholly to the nearest seed of the same patch (a discrete
 ///    Voronoi partition); a node's area is its cell's area (the weights sum to the area exactly up
-///    to rounding) and its position the cell's centroid. Centroids make each node a midpoint rule
-///    for its cell (exact for tractions linear over the cell), and keep nodes off the edges,
-///    where the distance to a body whose face ends at the same edge would read zero.
+///    to rounding) and its position the cell's centroid moved onto the cell's surface (the
+///    closest point of the cell's triangles; on a planar cell, the centroid itself). Centroids
+///    make each node a midpoint rule for its cell (exact for tractions linear over the cell), and
+///    keep nodes off the edges, where the distance to a body whose face ends at the same edge
+///    would read zero; the move onto the surface keeps a node on a curved face from sitting off it
+///    by the sagitta of its cell (about kappa l^2 / 8), which a matching neighbour would read as
+///    overlap.
 /// Throws InputError when spacing <= 0 or sizeGradient <= 0.
 SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& features,
                                 const SurfaceNodeOptions& options);

@@ -1,4 +1,6 @@
 #pragma once
+#include "geometry/closest_point_on_triangle.h"
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -117,56 +119,20 @@ struct MeshSdf {
     return outward <= t.faceLimit ? plane * plane : edges;
   }
 
-  /// The closest point q of triangle t to p and the pseudo-normal of the feature holding it
-  /// (Ericson, Real-Time Collision Detection, 2005, section 5.1.5: the Voronoi regions of the
-  /// vertices, then of the edges, else the face).
+  /// The closest point q of triangle t to p and the pseudo-normal of the feature holding it.
   static void closestPoint(const Eigen::Vector3d& p, const Triangle& t, Eigen::Vector3d& q,
                            const Eigen::Vector3d*& feature) {
-    const Eigen::Vector3d& a = t.corner[0];
-    const Eigen::Vector3d& b = t.corner[1];
-    const Eigen::Vector3d& c = t.corner[2];
-    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) {
-      q = a;
-      feature = &t.vertexNormal[0];
-      return;
+    const ClosestPointOnTriangle closest = closestPointOnTriangle(p, t.corner[0], t.corner[1], t.corner[2]);
+    q = closest.point;
+    switch (closest.feature) {
+      case TriangleFeature::CornerA: feature = &t.vertexNormal[0]; break;
+      case TriangleFeature::CornerB: feature = &t.vertexNormal[1]; break;
+      case TriangleFeature::CornerC: feature = &t.vertexNormal[2]; break;
+      case TriangleFeature::EdgeAB: feature = &t.edgeNormal[0]; break;
+      case TriangleFeature::EdgeBC: feature = &t.edgeNormal[1]; break;
+      case TriangleFeature::EdgeCA: feature = &t.edgeNormal[2]; break;
+      case TriangleFeature::Face: feature = &t.normal; break;
     }
-    const Eigen::Vector3d bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) {
-      q = b;
-      feature = &t.vertexNormal[1];
-      return;
-    }
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-      q = a + (d1 / (d1 - d3)) * ab;
-      feature = &t.edgeNormal[0];  // edge a-b
-      return;
-    }
-    const Eigen::Vector3d cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) {
-      q = c;
-      feature = &t.vertexNormal[2];
-      return;
-    }
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-      q = a + (d2 / (d2 - d6)) * ac;
-      feature = &t.edgeNormal[2];  // edge c-a
-      return;
-    }
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-      q = b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-      feature = &t.edgeNormal[1];  // edge b-c
-      return;
-    }
-    const double denominator = 1.0 / (va + vb + vc);
-    q = a + ab * (vb * denominator) + ac * (vc * denominator);
-    feature = &t.normal;
   }
 };
 

@@ -11,10 +11,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
 namespace tessera::tools {
 
 namespace {
+
+// The default amplitude of curved faces, as a fraction of --size (0.2 mm on a 10 mm block): a
+// default that scales with the block.
+constexpr double kAmplitudePerSize = 0.02;
 
 struct BlockArguments {
   std::string family;
@@ -24,7 +29,8 @@ struct BlockArguments {
   double width = -1;        // in --unit: side b of box and osteomorphic [default: size]
   double thickness = 3.18;  // in --unit
   double angle = 5;         // degrees
-  double amplitude = 0.2;   // in --unit (wave, osteomorphic)
+  std::optional<double> amplitude;  // in --unit (wave, osteomorphic) [default: kAmplitudePerSize x size]
+  double amplitudeY = 0;    // in --unit (osteomorphic)
   int waves = 1;            // wave
   int levels = 0;           // 0: the family's default, wave 24, osteomorphic 12
   bool ascii = false;
@@ -33,14 +39,15 @@ struct BlockArguments {
 void runBlock(const BlockArguments& a) {
   const LengthUnit unit = parseLengthUnit(a.unit);
   const double m = unit.metres, theta = a.angle * M_PI / 180;
+  const double amplitude = a.amplitude ? *a.amplitude : kAmplitudePerSize * a.size;
   TriangleMesh mesh;
   if (a.family == "planar") mesh = makePlanarBlock(a.size * m, a.thickness * m, theta);
   else if (a.family == "box") mesh = makeBox(a.size * m, (a.width > 0 ? a.width : a.size) * m, a.thickness * m);
   else if (a.family == "wave")
-    mesh = makeWaveBlock(a.size * m, a.thickness * m, theta, a.amplitude * m, a.waves, a.levels != 0 ? a.levels : 24);
+    mesh = makeWaveBlock(a.size * m, a.thickness * m, theta, amplitude * m, a.waves, a.levels != 0 ? a.levels : 24);
   else if (a.family == "osteomorphic")
-    mesh = makeOsteomorphicBlock(a.size * m, (a.width > 0 ? a.width : a.size) * m, a.thickness * m, a.amplitude * m,
-                                 a.levels != 0 ? a.levels : 12);
+    mesh = makeOsteomorphicBlock(a.size * m, (a.width > 0 ? a.width : a.size) * m, a.thickness * m, amplitude * m,
+                                 a.amplitudeY * m, a.levels != 0 ? a.levels : 12);
   else if (a.family == "hex") mesh = makeHexBlock(a.size * m, a.thickness * m, theta);
   else throw InputError("unknown block family '" + a.family + "'; use planar, box, wave, osteomorphic or hex");
 
@@ -75,8 +82,12 @@ void addBlockCommand(CLI::App& app) {
   cmd->add_option("--width", args->width, "box and osteomorphic: side b along y, in --unit [default: --size]");
   cmd->add_option("--thickness", args->thickness, "Thickness h, in --unit")->capture_default_str();
   cmd->add_option("--angle", args->angle, "Inclination theta of the lateral faces, degrees")->capture_default_str();
-  cmd->add_option("--amplitude", args->amplitude, "wave and osteomorphic: amplitude A of the curved faces, in --unit")
-      ->capture_default_str();
+  cmd->add_option("--amplitude", args->amplitude,
+                  "wave and osteomorphic: amplitude A of the curved faces (osteomorphic: the x-faces), in --unit "
+                  "[default: 0.02 x --size]");
+  cmd->add_option("--y-amplitude", args->amplitudeY,
+                  "osteomorphic: amplitude of the y-faces, curved like the x-faces so that the block interlocks with "
+                  "all four neighbours, in --unit [default: 0, flat y-faces]");
   cmd->add_option("--waves", args->waves, "wave only: full waves n across the thickness")->capture_default_str();
   cmd->add_option("--levels", args->levels, "Mesh resolution. wave: flat segments across the thickness [24]; osteomorphic: segments per "
                   "half-wave [12]")

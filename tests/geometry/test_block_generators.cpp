@@ -131,7 +131,7 @@ TEST_CASE("wave block: valid, exact polyhedron volume, converges to the smooth v
 TEST_CASE("osteomorphic block: valid, volume a b h exactly, x-faces that match a copy moved by a") {
   const double a = 10, b = 8, h = 3.18, amplitude = 0.8;
   const int segments = 12;
-  TriangleMesh block = makeOsteomorphicBlock(a, b, h, amplitude, segments);
+  TriangleMesh block = makeOsteomorphicBlock(a, b, h, amplitude, 0.0, segments);
   REQUIRE_FALSE(validateSolidMesh(block, "osteomorphic").reoriented);
   // Every chord along x is a long: the volume is a b h whatever the surface.
   REQUIRE(signedVolume(block) == Approx(a * b * h).epsilon(1e-12));
@@ -156,7 +156,33 @@ TEST_CASE("osteomorphic block: valid, volume a b h exactly, x-faces that match a
     REQUIRE(std::any_of(right.begin(), right.end(), [&](const Eigen::Vector3d& w) { return (w - moved).norm() < 1e-12; }));
   }
   // Amplitude 0 is the box.
-  REQUIRE(signedVolume(makeOsteomorphicBlock(a, b, h, 0.0, 2)) == Approx(signedVolume(makeBox(a, b, h))).epsilon(1e-12));
-  REQUIRE_THROWS_AS(makeOsteomorphicBlock(a, b, h, 5.0, 12), InputError);
-  REQUIRE_THROWS_AS(makeOsteomorphicBlock(a, b, h, 0.8, 1), InputError);
+  REQUIRE(signedVolume(makeOsteomorphicBlock(a, b, h, 0.0, 0.0, 2)) == Approx(signedVolume(makeBox(a, b, h))).epsilon(1e-12));
+  REQUIRE_THROWS_AS(makeOsteomorphicBlock(a, b, h, 5.0, 0.0, 12), InputError);
+  REQUIRE_THROWS_AS(makeOsteomorphicBlock(a, b, h, 0.8, 0.0, 1), InputError);
+}
+
+TEST_CASE("osteomorphic block curved both ways: valid, volume a b h exactly, y-faces that match a copy moved by b") {
+  const double a = 10, b = 8, h = 3.18, amplitude = 0.8, amplitudeY = -0.5;
+  const int segments = 6;
+  TriangleMesh block = makeOsteomorphicBlock(a, b, h, amplitude, amplitudeY, segments);
+  REQUIRE_FALSE(validateSolidMesh(block, "osteomorphic").reoriented);
+  REQUIRE(signedVolume(block) == Approx(a * b * h).epsilon(1e-12));
+  const Eigen::AlignedBox3d box = boundingBox(block.vertices);
+  REQUIRE(box.sizes().x() == Approx(a + 2 * amplitude).epsilon(1e-12));
+  REQUIRE(box.sizes().y() == Approx(b + 2 * std::abs(amplitudeY)).epsilon(1e-12));
+  REQUIRE(box.sizes().z() == Approx(h).epsilon(1e-12));
+  // Each vertex of the y+ face's interior is one of the y- face's moved by b.
+  std::vector<Eigen::Vector3d> front, back;
+  for (const Eigen::Vector3d& v : block.vertices)
+    if (std::abs(v.y()) >= 0.5 * b - std::abs(amplitudeY) - 1e-9 && std::abs(std::abs(v.x()) - 0.5 * a) > 1e-9 &&
+        std::abs(std::abs(v.z()) - 0.5 * h) > 1e-9)
+      (v.y() > 0 ? back : front).push_back(v);
+  REQUIRE(front.size() == static_cast<std::size_t>((2 * segments - 1) * (segments - 1)));
+  REQUIRE(back.size() == front.size());
+  for (const Eigen::Vector3d& v : front) {
+    const Eigen::Vector3d moved = v + Eigen::Vector3d(0, b, 0);
+    REQUIRE(std::any_of(back.begin(), back.end(), [&](const Eigen::Vector3d& w) { return (w - moved).norm() < 1e-12; }));
+  }
+  // Faces steep enough to cross at the corner edges are refused: (2 pi A / b)(2 pi A_y / a) >= 1.
+  REQUIRE_THROWS_AS(makeOsteomorphicBlock(a, b, h, 2.0, 1.5, segments), InputError);
 }
