@@ -61,6 +61,26 @@ struct DenseSdf {
     return phi + (x - clamped).norm();
   }
 
+  /// A positive lower bound of phi(x) proven by a node of x's cell, or 0 when none proves x outside:
+  /// phi is 1-Lipschitz, so phi(x) >= phi_i - |x - c_i| for each corner c_i, and a node's value is
+  /// its exact distance (to float rounding, covered by a margin of 1e-6 voxel; in the background,
+  /// less than it). The first corner whose value exceeds its distance from x (compared squared)
+  /// gives the bound. 0 outside the grid.
+  double provenOutside(const Eigen::Vector3d& x) const {
+    if (!contains(x)) return 0.0;
+    int i0[3];
+    double w[3];
+    locate(x, i0, w);
+    const double margin = 1e-6 * voxelSize;
+    for (int c = 0; c < 8; ++c) {
+      const int di = c >> 2, dj = (c >> 1) & 1, dk = c & 1;
+      const double v = at(i0[0] + di, i0[1] + dj, i0[2] + dk) - margin;
+      const double d2 = (voxelSize * voxelSize) * ((w[0] - di) * (w[0] - di) + (w[1] - dj) * (w[1] - dj) + (w[2] - dk) * (w[2] - dk));
+      if (v > 0 && v * v > d2) return v - std::sqrt(d2);
+    }
+    return 0.0;
+  }
+
   /// Trilinear interpolation of the node values and its exact gradient.
   /// Outside the grid: the value at the nearest grid point plus the distance to it (positive,
   /// continuous, growing away from the grid), with the gradient pointing away from the grid.

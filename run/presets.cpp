@@ -31,12 +31,12 @@ const std::vector<Preset>& presets() {
       {"fast", "uniform nodes t/2.65, 20x the paper's speed (1.2 mm, 120 mm/s on its slab): P_max -3 %, K +12 %, W +9 %; 7 s on one thread",
        keys(1.2, 1.0, 20)},
       {"default", "nodes t/5.3 graded to t/21 at sharp edges, 5x the paper's speed (0.6 mm, 0.15 mm, 30 mm/s on its slab): "
-       "P_max +2 %, K -5 %, W +3 %; 43 s on two threads",
+       "P_max +3 %, K -2 %, W +12 %; 51 s on two threads",
        keys(0.6, 0.25, 5)},
       {"paper", "the paper's uniform nodes t/5.3 at its speed (0.6 mm, 6 mm/s): P_max +8 %, K +5 %, W +9 %; 100 s on two threads",
        keys(0.6, 1.0, 1)},
       {"fine", "nodes t/7.1 graded to t/28 at sharp edges, 5x the paper's speed (0.45 mm, 0.11 mm, 30 mm/s): "
-       "P_max -1 %, K +1 %, W +0.2 %; 80 s on two threads",
+       "P_max +0.1 %, K -3 %, W +2 %; 94 s on one thread",
        keys(0.45, 0.25, 5)},
   };
   return all;

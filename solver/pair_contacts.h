@@ -38,6 +38,9 @@ struct ShapeModel {
     if (!exactMesh.empty()) {
       const double outside = gridValue;
       if (outside > 0.8660254037844386 * sdf.voxelSize) return outside;
+      // Nearer, a node of x's cell often still proves x outside, for far less than the exact search.
+      const double lowerBound = sdf.provenOutside(x);
+      if (lowerBound > 0) return std::max(outside, lowerBound);
       double phi;
       Eigen::Vector3d gradient;
       if (exactMesh.evaluate(x, phi, gradient)) {

@@ -160,3 +160,22 @@ TEST_CASE("the grid's trilinear value exceeds the exact phi by at most (sqrt 3 /
   CHECK(worst <= std::sqrt(3.0) / 2 * voxel * (1 + 1e-9));
   CHECK(worst > 0.05 * voxel);  // the bound is not vacuous: the grid does overestimate near edges
 }
+
+TEST_CASE("a grid node proves a point outside only where it is, and often near the surface") {
+  // The shortcut ShapeModel::meshLevelSet takes before the exact search: phi(x) >= v_i - |x - c_i|.
+  const double voxel = 0.25e-3;
+  const ExactMesh e(makeWaveBlock(10e-3, 3.18e-3, 5.0 * M_PI / 180, 0.2e-3, 1, 24), voxel);
+  int near = 0, proven = 0;
+  for (const Eigen::Vector3d& x : pointsNearSurface(e, 2000, std::sqrt(3.0) / 2 * voxel, 12)) {
+    const double exact = test::signedDistance(e.mesh, x), bound = e.grid.provenOutside(x);
+    INFO("x = " << x.transpose() << ", exact phi " << exact << ", bound " << bound);
+    REQUIRE(bound >= 0);
+    if (bound > 0) REQUIRE(bound <= exact);
+    if (exact > 0.1 * voxel) {
+      ++near;
+      proven += bound > 0;
+    }
+  }
+  INFO(proven << " of " << near << " points farther than 0.1 voxel outside proven outside");
+  CHECK(proven > 0.5 * near);
+}
