@@ -1,6 +1,7 @@
 """The tables of bench/convergence_nonconvex.sh: for each block, every case's P_max, K and W and
 their error against the block's reference, with wall time: the node reference (exact mesh, 0.3 mm
-graded nodes) when it ran, else the level-set reference (exact mesh at 0.0625 mm voxels).
+graded nodes) when it ran, else the level-set reference (exact mesh at 0.0625 mm voxels), else the
+exact mesh at 0.25 mm voxels with graded 0.6 mm nodes.
 
 Usage: /usr/bin/python3 bench/nonconvex_table.py OUT_DIR
 Reads OUT_DIR/BLOCK/*/sweep.csv; writes OUT_DIR/nonconvex.csv and prints markdown tables.
@@ -39,7 +40,8 @@ def main():
     for directory in sorted(glob.glob(os.path.join(out, "*", ""))):
         block = os.path.basename(os.path.dirname(directory))
         cases = read_block(directory)
-        reference = [c for c in cases if c["group"] == "reference"] or [c for c in cases if c["group"] == "voxel"]
+        reference = ([c for c in cases if c["group"] == "reference"] or [c for c in cases if c["group"] == "voxel"] or
+                     [c for c in cases if c["group"] == "nodes" and "graded" in c["label"]])
         if not reference:
             continue
         ref = reference[0]
