@@ -70,10 +70,16 @@ struct MeshSdf {
     // The nearest triangle by squaredDistance (no branches), then its closest point and feature.
     double best = INFINITY;
     std::uint32_t nearest = cellTriangles[begin];
+    // A triangle whose plane is already no nearer than the best cannot be nearer itself (the
+    // distance to a plane bounds the distance to any triangle in it): on a curved face, the
+    // neighbours of the nearest triangle are skipped for one dot product.
     for (std::uint32_t n = begin; n < end; ++n) {
       const double bound = centreDistance[n] - offCentre;
       if (bound > 0 && bound * bound > best) break;
-      const double d2 = squaredDistance(x, triangles[cellTriangles[n]]);
+      const Triangle& t = triangles[cellTriangles[n]];
+      const double plane = (x - t.corner[0]).dot(t.normal);
+      if (plane * plane >= best) continue;
+      const double d2 = squaredDistance(x, t);
       nearest = d2 < best ? cellTriangles[n] : nearest;
       best = std::min(best, d2);
     }
