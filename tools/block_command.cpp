@@ -40,6 +40,8 @@ void runBlock(const BlockArguments& a) {
   const LengthUnit unit = parseLengthUnit(a.unit);
   const double m = unit.metres, theta = a.angle * M_PI / 180;
   const double amplitude = a.amplitude ? *a.amplitude : kAmplitudePerSize * a.size;
+  if (a.amplitudeY != 0 && a.family != "osteomorphic")
+    throw InputError("--y-amplitude applies to the osteomorphic family only; leave it out for " + a.family);
   TriangleMesh mesh;
   if (a.family == "planar") mesh = makePlanarBlock(a.size * m, a.thickness * m, theta);
   else if (a.family == "box") mesh = makeBox(a.size * m, (a.width > 0 ? a.width : a.size) * m, a.thickness * m);

@@ -40,6 +40,10 @@ TEST_CASE("block writes valid meshes of every family in the stated unit") {
   REQUIRE(bad.status == 2);
   REQUIRE_THAT(bad.err, Contains("inclined faces meet"));
   REQUIRE_FALSE(fs::exists(dir / "x.obj"));
+  const test::CliResult misplaced = test::runTessera("block wave --y-amplitude 0.3 --unit mm -o " + quoted(dir / "y.obj"));
+  REQUIRE(misplaced.status == 2);
+  REQUIRE_THAT(misplaced.err, Contains("--y-amplitude applies to the osteomorphic family only"));
+  REQUIRE_FALSE(fs::exists(dir / "y.obj"));
 }
 
 TEST_CASE("osteomorphic blocks tiled unturned touch face to face and hold the free block both ways") {
