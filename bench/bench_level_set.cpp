@@ -21,6 +21,8 @@ struct Block {
   ShapeModel model;
   std::vector<Eigen::Vector3d> points;
   double meanList = 0;  // triangles listed per cell, over the cells the points fall in
+  double exactKiB = 0;  // memory of the exact mesh level set: triangles, cell index and lists
+  double gridKiB = 0;   // memory of the grid's values
 };
 
 Block makeBlock(bool wave) {
@@ -41,6 +43,9 @@ Block makeBlock(bool wave) {
     if (std::abs(shape.sdf.value(x)) < 2 * shape.sdf.voxelSize) b.points.push_back(x);
   }
   const MeshSdf& m = shape.exactMesh;
+  b.exactKiB = (m.triangles.size() * sizeof(MeshSdf::Triangle) + m.cellStart.size() * sizeof(std::uint32_t) +
+                m.cellTriangles.size() * sizeof(std::uint32_t) + m.centreDistance.size() * sizeof(float)) / 1024.0;
+  b.gridKiB = shape.sdf.values.size() * sizeof(float) / 1024.0;
   for (const Eigen::Vector3d& x : b.points) {
     const Eigen::Vector3i c = ((x - m.origin) / m.cellSize).cast<int>();
     const std::size_t cell = (static_cast<std::size_t>(c[0]) * m.cells[1] + c[1]) * m.cells[2] + c[2];
@@ -80,6 +85,8 @@ void LevelSetEvaluation(benchmark::State& state) {
     benchmark::DoNotOptimize(sum);
   }
   state.counters["triangles_per_cell"] = b.meanList;
+  state.counters["exact_mesh_KiB"] = b.exactKiB;
+  state.counters["grid_KiB"] = b.gridKiB;
   state.SetItemsProcessed(state.iterations());
 }
 
