@@ -205,7 +205,7 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   if (!(scene.solver.gravity.norm() <= 1000))  // 100 g; also NaN
     throw InputError(path + ": solver.gravity must be at most 1000 m/s^2 (100 g) in size, e.g. [0, 0, -9.81]; 0 turns it off");
   solver.number("max_penetration", scene.solver.maxPenetration, 0, 1, "m; 0 = a quarter of the thinnest block");
-  solver.number("broad_phase_margin", scene.solver.broadPhaseMargin, 0, 1, "m; 0 = 0.157 x the thinnest block");
+  solver.number("broad_phase_margin", scene.solver.broadPhaseMargin, 0, 1, "m; 0 = 0.0063 x the thinnest block");
   solver.boolean("exact_convex_level_sets", scene.solver.exactConvexLevelSets);
   solver.boolean("exact_mesh_level_sets", scene.solver.exactMeshLevelSets);
   solver.finish();

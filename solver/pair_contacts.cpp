@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <utility>
 
 namespace tessera {
@@ -32,6 +33,7 @@ Motion motionOf(const RigidBodies& bodies, int i) {
 }
 
 constexpr std::uint32_t kRankMask = (1u << 31) - 1;
+constexpr double kSqrt3 = 1.7320508075688772;
 
 // The node contacts of a pair being collected, in key order (side 0, a's nodes in b, then side 1),
 // for the contact law: its inputs and outputs but the springs and energies (which are the pair's
@@ -492,20 +494,34 @@ void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const NodeBins
   }
 }
 
+// The other side's world pose: body b's; an obstacle's centre or point, unturned.
+std::pair<Eigen::Vector3d, Eigen::Quaterniond> otherPose(const ContactScene& scene, const PairContacts& pair) {
+  switch (pair.kind) {
+    case PairKind::Bodies: return {scene.bodies->position[pair.b], scene.bodies->orientation[pair.b]};
+    case PairKind::Sphere: return {(*scene.spheres)[-1 - pair.b].center, Eigen::Quaterniond::Identity()};
+    case PairKind::Plane: break;
+  }
+  return {(*scene.planes)[-1 - pair.b - static_cast<int>(scene.spheres->size())].point, Eigen::Quaterniond::Identity()};
+}
+
 // Clears the pair's last evaluation (its contacts become the history) and says whether its
-// candidate nodes are to be rebuilt.
-bool beginEvaluation(PairContacts& pair) {
+// candidate nodes are to be rebuilt: when they are not valid, or the sides have moved too far
+// relative to each other since they were built (ContactScene::candidateBand).
+bool beginEvaluation(const ContactScene& scene, PairContacts& pair) {
   std::swap(pair.contacts, pair.previous);
   pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = pair.normalForceA = pair.forcePoint = Eigen::Vector3d::Zero();
   pair.tally = ContactTally{};
   pair.maxDepth = 0.0;
   pair.evaluations = 0;
-  const bool rebuild = !pair.candidatesValid;
+  const bool rebuild = !pair.candidatesValid || kSqrt3 * candidateMotion(scene, pair) >= scene.candidateBand;
   if (rebuild) {
     pair.candidates.clear();
     pair.candidateX.clear();
     pair.candidateY.clear();
     pair.candidateZ.clear();
+    pair.builtPositionA = scene.bodies->position[pair.a];
+    pair.builtOrientationA = scene.bodies->orientation[pair.a];
+    std::tie(pair.builtPositionB, pair.builtOrientationB) = otherPose(scene, pair);
   }
   pair.candidatesValid = true;
   return rebuild;
@@ -536,6 +552,18 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
 
 }  // namespace
 
+double candidateMotion(const ContactScene& scene, const PairContacts& pair) {
+  const RigidBodies& bodies = *scene.bodies;
+  const auto& shapes = *scene.shapes;
+  const auto moved = [](const Eigen::Vector3d& p, const Eigen::Quaterniond& q, const Eigen::Vector3d& p0,
+                        const Eigen::Quaterniond& q0, double radius) { return (p - p0).norm() + q.angularDistance(q0) * radius; };
+  const auto [position, orientation] = otherPose(scene, pair);
+  return moved(bodies.position[pair.a], bodies.orientation[pair.a], pair.builtPositionA, pair.builtOrientationA,
+               shapes[bodies.shape[pair.a]].radius) +
+         moved(position, orientation, pair.builtPositionB, pair.builtOrientationB,
+               pair.kind == PairKind::Bodies ? shapes[bodies.shape[pair.b]].radius : 0.0);
+}
+
 void evaluatePair(const ContactScene& scene, PairContacts& pair) {
   switch (pair.kind) {
     case PairKind::Bodies: return evaluateBodyPair(scene, pair);
@@ -545,7 +573,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
 }
 
 void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
-  const bool rebuild = beginEvaluation(pair);
+  const bool rebuild = beginEvaluation(scene, pair);
   Scratch& scratch = threadScratch;
   Accumulator acc{scene, pair, scene.bodies->position[pair.a], scene.kn, scene.kt, scratch.batch};
   const RigidBodies& bodies = *scene.bodies;
@@ -561,7 +589,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
     // Only nodes inside the other body's box (and band) can be inside the other body.
     Eigen::AlignedBox3d region;
     if (rebuild) {
-      region = regionInFrame(so.nodes.box, bodies.orientation[o], other.position, bodies.orientation[m], node.position);
+      region = regionInFrame(so.box, bodies.orientation[o], other.position, bodies.orientation[m], node.position);
       region.min().array() -= scene.candidateBand;
       region.max().array() += scene.candidateBand;
     }
@@ -585,8 +613,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
       if (rebuild)
         visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
           ++pair.evaluations;
-          Eigen::Vector3d normalO;
-          return so.meshLevelSet(toO * sm.nodes.position[key & kRankMask] + shift, normalO);
+          return so.candidateValue(toO * sm.nodes.position[key & kRankMask] + shift);
         });
       levelSetSideContacts(pair, side, sm.nodes, so, toO, shift, RM, RO, other.position - node.position, acc, scratch);
     }
@@ -596,7 +623,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
 }
 
 void evaluateSpherePair(const ContactScene& scene, PairContacts& pair) {
-  const bool rebuild = beginEvaluation(pair);
+  const bool rebuild = beginEvaluation(scene, pair);
   const SphereObstacle& sphere = (*scene.spheres)[-1 - pair.b];
   Accumulator acc{scene, pair, scene.bodies->position[pair.a],
                   scene.kn * sphere.stiffnessFactor, scene.kt * sphere.stiffnessFactor, threadScratch.batch};
@@ -613,7 +640,7 @@ void evaluateSpherePair(const ContactScene& scene, PairContacts& pair) {
 }
 
 void evaluatePlanePair(const ContactScene& scene, PairContacts& pair) {
-  const bool rebuild = beginEvaluation(pair);
+  const bool rebuild = beginEvaluation(scene, pair);
   const PlaneObstacle& plane = (*scene.planes)[-1 - pair.b - static_cast<int>(scene.spheres->size())];
   Accumulator acc{scene, pair, scene.bodies->position[pair.a], scene.kn, scene.kt, threadScratch.batch};
   const ShapeModel& sm = (*scene.shapes)[scene.bodies->shape[pair.a]];

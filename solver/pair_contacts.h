@@ -22,7 +22,12 @@ struct ShapeModel {
   DenseSdf sdf;
   std::vector<FacePlane> planes;  ///< body frame; empty: use the grid
   MeshSdf exactMesh;              ///< body frame; empty: the grid near the surface too
-  double radius = 0.0;            ///< m, largest |node| (bounding sphere about the centroid)
+  /// Body frame, m: the box around the whole shape (its mesh's vertices and its nodes; the nodes'
+  /// own box, nodes.box, can be smaller by up to half a node spacing).
+  Eigen::AlignedBox3d box;
+  /// m, the farthest point of the shape from its centroid (its mesh's vertices, its nodes): no
+  /// point inside it is farther.
+  double radius = 0.0;
 
   /// The level set of a shape without planes at a body-frame point, as gridLevelSet: the exact
   /// mesh level set where the grid's value is within its interpolation error of the surface or
@@ -51,6 +56,24 @@ struct ShapeModel {
     return gridLevelSet(x, gridValue, normal);
   }
   double gridValueBound() const { return exactMesh.empty() ? 0.0 : 0.8660254037844386 * sdf.voxelSize; }
+
+  /// What the candidates of a pair are chosen by, at a body-frame point x of a shape without planes:
+  /// a value c(x) such that the level set the solver tests (the grid's, or the exact mesh's where
+  /// it has one) is at least c(x) - sqrt(3) |x' - x| at any x'. The grid's trilinear value is
+  /// sqrt(3)-Lipschitz (the interpolant of 1-Lipschitz nodes: each partial derivative is at most
+  /// 1), and is the value itself; with an exact mesh, a lower bound of the exact phi (1-Lipschitz):
+  /// the grid's value less its interpolation error, a corner's proof, or phi.
+  double candidateValue(const Eigen::Vector3d& x) const {
+    Eigen::Vector3d normal;
+    const double gridValue = sdf.value(x);
+    if (exactMesh.empty()) return gridLevelSet(x, gridValue, normal);
+    if (gridValue > gridValueBound()) return gridValue - gridValueBound();
+    const double proven = sdf.provenOutside(x);
+    if (proven > 0) return proven;
+    double phi;
+    if (exactMesh.evaluate(x, phi, normal)) return phi;
+    return gridLevelSet(x, gridValue, normal);  // no triangles listed here: the solver takes the grid too
+  }
 
   /// The grid's level set at a body-frame point: phi (m, < 0 inside; positive outside, also
   /// beyond the grid), and when phi < 0 its unit gradient in `normal`. About 1-Lipschitz (to the
@@ -82,11 +105,16 @@ struct PairContacts {
   PairKind kind = PairKind::Bodies;  ///< pairKind(b, spheres)
   NodeContacts contacts, previous;  ///< of the last evaluation, and of the one before (its history)
   /// Keys (as in NodeContact) of the nodes within the candidate band of the other side when the
-  /// broad phase was last built; only these can touch until it is built again. Sorted.
+  /// candidates were last built; only these can touch until the two sides have moved by
+  /// candidateMotion() >= band / sqrt(3) relative to each other (then they are built again). Sorted.
   std::vector<std::uint32_t> candidates;
   /// m: each candidate node's position in its own body's frame (so that a step reads them in order).
   std::vector<double> candidateX, candidateY, candidateZ;
   bool candidatesValid = false;  ///< false: the next evaluation visits every node in range and rebuilds them
+  /// World poses when the candidates were built: body a's centroid and orientation, and the other
+  /// side's (body b's; a sphere's centre; a plane's point), for candidateMotion().
+  Eigen::Vector3d builtPositionA{0, 0, 0}, builtPositionB{0, 0, 0};
+  Eigen::Quaterniond builtOrientationA = Eigen::Quaterniond::Identity(), builtOrientationB = Eigen::Quaterniond::Identity();
   Eigen::Vector3d forceA{0, 0, 0}, torqueA{0, 0, 0}, forceB{0, 0, 0}, torqueB{0, 0, 0};
   Eigen::Vector3d normalForceA{0, 0, 0};  ///< N, the part of forceA along the contact normals (forceA minus it: friction)
   Eigen::Vector3d forcePoint{0, 0, 0};  ///< m, world: contact points weighted by normal force (force chains)
@@ -104,8 +132,10 @@ struct ContactScene {
   ContactParameters parameters;
   double kn = 0.0, kt = 0.0;  ///< N/m^3
   double dt = 0.0;            ///< s
-  /// m: a node farther than this outside the other side's level set when the candidates are built
-  /// cannot reach it before the broad phase is built again (World::candidateBand).
+  /// m: a node farther than this outside the other side's level set when the pair's candidates
+  /// are built is not a candidate; they are built again before the sides have moved 1 / sqrt(3) of
+  /// it relative to each other (candidateMotion; every level set here is at most sqrt(3)-Lipschitz),
+  /// so no other node can reach contact.
   double candidateBand = 0.0;
 };
 
@@ -113,6 +143,13 @@ struct ContactScene {
 inline PairKind pairKind(int b, int spheres) {
   return b >= 0 ? PairKind::Bodies : -1 - b < spheres ? PairKind::Sphere : PairKind::Plane;
 }
+
+/// m, an upper bound on how far any node of either side of the pair has moved, in the other
+/// side's frame, since its candidates were built: a rigid motion moves a point x of body M by at
+/// most |dp_M| + theta_M |x - c_M| (theta_M the angle M turned), and a point near O in O's frame
+/// by at most |dp_O| + theta_O r_O, so the bound is the sum of |dp| + theta r over both sides (r:
+/// ShapeModel::radius; an obstacle does not turn).
+double candidateMotion(const ContactScene& scene, const PairContacts& pair);
 
 /// Evaluates one pair, by its kind. Each keeps the springs of nodes still in contact and drops
 /// the others, and visits only the pair's candidate nodes, rebuilding them first when they are

@@ -22,10 +22,13 @@ struct SolverSettings {
   double localDamping = 0.0;                    ///< alpha in [0, 1): Cundall's local non-viscous damping
   double viscousDamping = 0.0;                  ///< c, 1/s: global viscous damping F -= c m v, tau -= c I omega
   int threads = 0;                              ///< 0 = all cores
-  /// m: bounding boxes are enlarged by this; rebuilt when a body moves 0.4 of it.
-  /// 0 = broadPhaseMarginRatio x the thinnest block (0.5 mm on the paper's block).
+  /// m: bounding boxes are enlarged by this and the pairs found again when a body moves 0.4 of
+  /// it; a pair's node candidates are the nodes within 1.25 of it of the other side, found again
+  /// when the pair's sides have moved 1.25 / sqrt(3) of it relative to each other. Changes cost,
+  /// never results. 0 = broadPhaseMarginRatio x the thinnest block (0.02 mm on the paper's block:
+  /// the default test ran fastest at 0.01-0.02 mm, 0.74 x its time at 0.5 mm; docs/performance.md).
   double broadPhaseMargin = 0.0;
-  double broadPhaseMarginRatio = 0.5e-3 / kPaperThickness;
+  double broadPhaseMarginRatio = 0.02e-3 / kPaperThickness;
   double maxPenetration = 0.0;                  ///< m; 0 = a quarter of the thinnest block. Deeper stops the run
   double energyGrowthLimit = 10.0;              ///< stop when kinetic energy exceeds this x the energy supplied
   /// Convex polyhedral shapes (the planar and hex TIS blocks) use their face planes as an exact,

@@ -26,7 +26,11 @@ ShapeModel makeShapeModel(const Shape& shape, bool exactConvex, bool exactMesh) 
   m.sdf = shape.sdf;
   if (exactConvex && shape.convex) m.planes = shape.convex->planes;
   if (exactMesh && m.planes.empty()) m.exactMesh = shape.exactMesh;
-  for (const auto& x : shape.nodes.positions) m.radius = std::max(m.radius, x.norm());
+  for (const auto* points : {&shape.nodes.positions, &shape.mesh.vertices})
+    for (const Eigen::Vector3d& x : *points) {
+      m.box.extend(x);
+      m.radius = std::max(m.radius, x.norm());
+    }
   return m;
 }
 
@@ -182,10 +186,10 @@ void World::retireBody(int i) {
 World::~World() = default;
 
 Eigen::AlignedBox3d World::bodyBox(int i, double margin) const {
-  return worldBox(shapes_[state_.bodies.shape[i]].nodes.box, state_.bodies.orientation[i], state_.bodies.position[i], margin);
+  return worldBox(shapes_[state_.bodies.shape[i]].box, state_.bodies.orientation[i], state_.bodies.position[i], margin);
 }
 
-double World::bodySize(int i) const { return shapes_[state_.bodies.shape[i]].nodes.box.sizes().minCoeff(); }
+double World::bodySize(int i) const { return shapes_[state_.bodies.shape[i]].box.sizes().minCoeff(); }
 
 int World::addSphere(const SphereObstacle& sphere) {
   state_.spheres.push_back(sphere);
@@ -202,11 +206,9 @@ int World::addPlane(const PlaneObstacle& plane) {
 }
 
 // Candidate pairs from boxes enlarged by the margin m, rebuilt only when a body (or sphere) has
-// moved or turned (angle x radius) by more than 0.4 m since the last build; contact states carry
-// over by pair key. Between builds any two bodies move by at most 0.8 m relative to each other, so
-// a node more than candidateBand() = 1.25 m outside the other side when the pair's node
-// candidates are built (in its next evaluation) cannot touch it before the next build, even where
-// the grid's level set is 1.5-Lipschitz rather than 1.
+// moved or turned (angle x radius) by more than 0.4 m since the last build; contact states, and
+// node candidates, carry over by pair key. Each pair builds its node candidates again on its own,
+// when its two sides have moved relative to each other by band / sqrt(3) (evaluatePair).
 double World::candidateBand() const { return 1.25 * settings_.broadPhaseMargin; }
 
 void World::updatePairs() {
@@ -226,7 +228,7 @@ void World::updatePairs() {
   std::vector<Eigen::AlignedBox3d> boxes;
   for (std::size_t i = 0; i < state_.bodies.size(); ++i)
     boxes.push_back(state_.retired[i] ? Eigen::AlignedBox3d()  // empty: intersects nothing
-                                : worldBox(shapes_[state_.bodies.shape[i]].nodes.box, state_.bodies.orientation[i], state_.bodies.position[i], margin));
+                                : worldBox(shapes_[state_.bodies.shape[i]].box, state_.bodies.orientation[i], state_.bodies.position[i], margin));
   std::vector<std::pair<int, int>> wanted = sweepPairs(boxes, state_.bodies.fixed);
   const int sphereCount = static_cast<int>(state_.spheres.size());
   for (int k = 0; k < sphereCount; ++k) {
@@ -267,7 +269,6 @@ void World::updatePairs() {
     }
   }
   state_.pairs = std::move(next);
-  for (PairContacts& pair : state_.pairs) pair.candidatesValid = false;
   state_.builtPosition = state_.bodies.position;
   state_.builtOrientation = state_.bodies.orientation;
   state_.builtSphereCentre.clear();

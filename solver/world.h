@@ -100,7 +100,7 @@ public:
   bool isRetired(int i) const { return state_.retired[i] != 0; }
   /// A support of the assembly: fixed from the start (not retired).
   bool isSupport(int i) const { return state_.bodies.fixed[i] && !state_.retired[i]; }
-  /// World-aligned box around body i's surface nodes, enlarged by `margin` (m).
+  /// World-aligned box around body i's shape (ShapeModel::box), enlarged by `margin` (m).
   Eigen::AlignedBox3d bodyBox(int i, double margin) const;
   /// Each body's position when the World was made, m.
   const std::vector<Eigen::Vector3d>& startPositions() const { return state_.startPosition; }

@@ -40,7 +40,7 @@ PathResult runWith(const test::TempDir& dir, const std::string& name, const std:
 
 }  // namespace
 
-TEST_CASE("level-set paths: the default block through its exact mesh level set gives its exact planes' answer; the grid softens it") {
+TEST_CASE("level-set paths: the default block through its exact mesh level set gives its exact planes' answer, the grid softens it") {
   test::TempDir dir;
   writeBundle(dir / "slab", test::smallSlab(3, 0.25e-3, 1.0e-3));
   const PathResult planes = runWith(dir, "planes", "");

@@ -14,7 +14,7 @@
 
 using namespace tessera;
 
-TEST_CASE("loading rate: above the target the speed drops, at most 4x a sample and never under the slowest; far below it, over the recent samples, it rises to the protocol's") {
+TEST_CASE("loading rate: above the target the speed drops, at most 4x a sample and never under the slowest, far below it, over the recent samples, it rises to the protocol's") {
   const double v = 0.1, slowest = 0.01, fastest = 0.2, target = 1e-3;
   // KE goes as v^2: v sqrt(target / q) would meet the target; the rule goes to 0.8 of that.
   CHECK(adaptedIndenterSpeed(v, 4 * target, 4 * target, target, slowest, fastest) == Approx(0.8 * v * 0.5));

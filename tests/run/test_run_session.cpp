@@ -81,7 +81,7 @@ TEST_CASE("checkpoint round trip: a run stopped mid-loading and resumed in proce
   }
 }
 
-TEST_CASE("sample hook: a run it does not steer is the protocol's run; a hold does no work and keeps delta") {
+TEST_CASE("sample hook: a run it does not steer is the protocol's run, a hold does no work and keeps delta") {
   SmallTest t;
   auto plain = RunSession::start(t.request(), {});
   plain->run({});

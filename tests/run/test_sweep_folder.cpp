@@ -79,7 +79,7 @@ TEST_CASE("a case's state is read from its files: missing, failed, interrupted, 
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Complete);
 }
 
-TEST_CASE("a sweep folder's cases are read from its manifest; a folder that is not one is refused") {
+TEST_CASE("a sweep folder's cases are read from its manifest, a folder that is not one is refused") {
   test::TempDir folder;
   CHECK_THROWS_AS(readSweepFolder((folder.path() / "none").string()), InputError);
   CHECK_THROWS_AS(readSweepFolder(folder.path().string()), InputError);

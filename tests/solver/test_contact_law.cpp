@@ -32,7 +32,7 @@ constexpr double kn = 5e11, kt = 5e11, dt = 1e-6;  // N/m^3, s
 
 }  // namespace
 
-TEST_CASE("contact law: sticking, f_n = k_n a d and f_t = -k_t a u with u = v_t dt; stored energy is their half products") {
+TEST_CASE("contact law: sticking, f_n = k_n a d and f_t = -k_t a u with u = v_t dt, stored energy is their half products") {
   ContactParameters p;
   Contacts c(1);
   const double a = 1e-7, d = 1e-7, vt = 2e-3;

@@ -91,34 +91,71 @@ TEST_CASE("grazing contact: a block balanced edge-down across another's edge com
   REQUIRE(world.bodies().velocity[1].norm() < 1e-5);
 }
 
-TEST_CASE("candidate node lists: a band four times wider visits more nodes and gives the same forces to the last bit") {
-  // Nodes beyond the band when the candidates are built cannot touch before the next build; a
-  // wider band (and margin) only adds nodes that never touch, so every force is identical.
+TEST_CASE("candidate node lists: the forces are those of candidates built afresh every step, to the last bit, and a wider band keeps more nodes") {
+  // Nodes beyond the band when a pair's candidates are built cannot touch before the pair's sides
+  // have moved band / sqrt(3) relative to each other, when they are built again; a wider band
+  // only adds nodes that never touch. A margin of 1e-9 of the default rebuilds the pairs and their
+  // candidates at every step: the reference.
   Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
-  SolverSettings s;
-  s.localDamping = 0.3;
-  s.threads = 1;
-  SolverSettings wide = s;
-  wide.broadPhaseMarginRatio = 4 * s.broadPhaseMarginRatio;
-  World narrow(slab, ContactParameters{}, s), broad(slab, ContactParameters{}, wide);
-  for (World* w : {&narrow, &broad}) {
-    SphereObstacle indenter;
-    indenter.center = Eigen::Vector3d(0, 0, kH / 2 + indenter.radius - 5e-6);
-    indenter.velocity = Eigen::Vector3d(0, 0, -0.5);  // 0.3 mm in the run: several rebuilds
-    w->addSphere(indenter);
+  for (bool exact : {true, false}) {
+    INFO((exact ? "exact planes" : "grid level sets"));
+    SolverSettings s;
+    s.localDamping = 0.3;
+    s.threads = 1;
+    s.exactConvexLevelSets = exact;
+    SolverSettings wide = s, fresh = s;
+    wide.broadPhaseMarginRatio = 4 * s.broadPhaseMarginRatio;
+    fresh.broadPhaseMarginRatio = 1e-9 * s.broadPhaseMarginRatio;
+    World narrow(slab, ContactParameters{}, s), broad(slab, ContactParameters{}, wide), every(slab, ContactParameters{}, fresh);
+    for (World* w : {&narrow, &broad, &every}) {
+      SphereObstacle indenter;
+      indenter.center = Eigen::Vector3d(0, 0, kH / 2 + indenter.radius - 5e-6);
+      indenter.velocity = Eigen::Vector3d(0, 0, -0.5);  // 0.3 mm in the run: many rebuilds
+      w->addSphere(indenter);
+    }
+    for (int i = 0; i < 600; ++i)
+      for (World* w : {&narrow, &broad, &every}) w->step();
+    for (std::size_t b = 0; b < slab.bodies.size(); ++b) {
+      INFO("body " << slab.bodies[b].name);
+      REQUIRE(narrow.contactForces()[b] == every.contactForces()[b]);
+      REQUIRE(narrow.bodies().position[b] == every.bodies().position[b]);
+      REQUIRE(narrow.bodies().orientation[b].coeffs() == every.bodies().orientation[b].coeffs());
+      REQUIRE(broad.contactForces()[b] == every.contactForces()[b]);
+    }
+    REQUIRE(narrow.sphereReaction(0).z() > 1.0);  // loaded: over a newton on the indenter
+    std::size_t narrowCandidates = 0, broadCandidates = 0;
+    for (const PairContacts& pair : narrow.pairs()) narrowCandidates += pair.candidates.size();
+    for (const PairContacts& pair : broad.pairs()) broadCandidates += pair.candidates.size();
+    REQUIRE(narrowCandidates < broadCandidates);
   }
-  long narrowEvaluations = 0, broadEvaluations = 0;
-  for (int i = 0; i < 600; ++i) {
-    narrow.step();
-    broad.step();
-    for (const PairContacts& pair : narrow.pairs()) narrowEvaluations += pair.evaluations;
-    for (const PairContacts& pair : broad.pairs()) broadEvaluations += pair.evaluations;
-  }
-  for (std::size_t b = 0; b < slab.bodies.size(); ++b) {
-    INFO("body " << slab.bodies[b].name);
-    REQUIRE(narrow.contactForces()[b] == broad.contactForces()[b]);
-    REQUIRE(narrow.bodies().position[b] == broad.bodies().position[b]);
-  }
-  REQUIRE(narrow.sphereReaction(0).z() > 1.0);  // loaded: over a newton on the indenter
-  REQUIRE(narrowEvaluations < broadEvaluations);
+}
+
+TEST_CASE("candidate motion: |dp| + theta r of each side since the candidates were built") {
+  // Two bodies of a shape whose farthest point is 5 mm from its centroid, and a sphere.
+  std::vector<ShapeModel> shapes(1);
+  shapes[0].radius = 5e-3;
+  RigidBodies bodies;
+  bodies.position = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10e-3, 0, 0)};
+  bodies.orientation = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond::Identity()};
+  bodies.shape = {0, 0};
+  std::vector<SphereObstacle> spheres(1);
+  std::vector<PlaneObstacle> planes;
+  const ContactScene scene{&bodies, &shapes, &spheres, &planes, ContactParameters{}, 0, 0, 0, 0};
+  PairContacts pair;
+  pair.a = 0;
+  pair.b = 1;
+  pair.builtPositionB = bodies.position[1];
+  REQUIRE(candidateMotion(scene, pair) == 0.0);
+  bodies.position[1] += Eigen::Vector3d(3e-6, -4e-6, 0);  // 5 um
+  REQUIRE(candidateMotion(scene, pair) == Approx(5e-6).epsilon(1e-12));
+  bodies.orientation[0] = Eigen::Quaterniond(Eigen::AngleAxisd(1e-3, Eigen::Vector3d(0.6, 0, 0.8)));
+  REQUIRE(candidateMotion(scene, pair) == Approx(5e-6 + 1e-3 * 5e-3).epsilon(1e-9));
+  // A sphere moves, and does not turn: only its centre counts.
+  PairContacts touch;
+  touch.a = 1;
+  touch.b = -1;
+  touch.kind = PairKind::Sphere;
+  touch.builtPositionA = bodies.position[1];
+  spheres[0].center = Eigen::Vector3d(0, 0, 2e-6);
+  REQUIRE(candidateMotion(scene, touch) == Approx(2e-6).epsilon(1e-12));
 }
