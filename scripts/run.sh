@@ -2,7 +2,7 @@
 # Set-up + main job: installs what is missing, builds, builds the bundled default slab of the paper
 # (7 x 7 planar-faced TIS blocks, 10 x 10 x 3.18 mm, faces at 5 deg, pitch 10 mm, outer ring fixed)
 # at the paper's resolution (0.25 mm voxels, 0.6 mm nodes) into out/default_slab, and runs the
-# indentation test of assets/scenes/default.toml on it into out/default_run (about 50 s on 2
+# indentation test of assets/scenes/default.toml on it into out/default_run (1–1.5 min on 2
 # cores; a previous out/default_run is replaced). Prints the response parameters and where the files are.
 # Usage: scripts/run.sh [OUTDIR]      (default OUTDIR: out)
 set -euo pipefail
