@@ -26,8 +26,9 @@ struct MeshSdf {
   /// k+1: the sum of the unit normals of the two faces sharing it) and of its corners
   /// (the angle-weighted sum of the unit normals of every face at the vertex).
   ///
-  /// For the distance without branches (squaredDistance): the edges e_k = corner k+1 - corner k,
-  /// 1 / |e_k|^2 (0 for a degenerate edge), and the in-plane outward edge normals m_k = e_k x n.
+  /// For the distance (squaredDistance): the edges e_k = corner k+1 - corner k, 1 / |e_k|^2 (0 for
+  /// a degenerate edge), and the unit in-plane outward edge normals m_k = e_k x n / |e_k| (0 for a
+  /// degenerate triangle), so that (p - corner_k) . m_k is p's distance beyond edge line k.
   struct Triangle {
     // What squaredDistance reads first, together (272 bytes), then the pseudo-normals.
     std::array<Eigen::Vector3d, 3> corner;
@@ -67,26 +68,36 @@ struct MeshSdf {
     // less |x - c| exceeds the best distance so far, neither it nor any later one can be closer.
     const Eigen::Vector3d centre = origin + cellSize * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
     const double offCentre = (x - centre).norm();
-    // The nearest triangle by squaredDistance (no branches), then its closest point and feature.
+    // The nearest triangle, then its closest point and feature. Each listed triangle is first
+    // bounded below by its plane and, in the plane, the edge line x's projection is farthest
+    // beyond: |x - q|^2 >= ((x - a) . n)^2 + max(0, max_k (x - a_k) . m_k)^2, exact when x
+    // projects onto its face (then the bound is the distance). Only a triangle that bound does not
+    // rule out, with x beyond one of its edges, takes the distance to its edges.
     double best = INFINITY;
     std::uint32_t nearest = cellTriangles[begin];
-    // A triangle whose plane is already no nearer than the best cannot be nearer itself (the
-    // distance to a plane bounds the distance to any triangle in it): on a curved face, the
-    // neighbours of the nearest triangle are skipped for one dot product.
+    bool nearestOnFace = false;
     for (std::uint32_t n = begin; n < end; ++n) {
       const double bound = centreDistance[n] - offCentre;
       if (bound > 0 && bound * bound > best) break;
       const Triangle& t = triangles[cellTriangles[n]];
-      const double plane = (x - t.corner[0]).dot(t.normal);
-      if (plane * plane >= best) continue;
-      const double d2 = squaredDistance(x, t);
-      nearest = d2 < best ? cellTriangles[n] : nearest;
-      best = std::min(best, d2);
+      const Eigen::Vector3d fromA = x - t.corner[0];  // corner 0 is on edges 0 and 2
+      const double plane = fromA.dot(t.normal);
+      const double outward = std::max({fromA.dot(t.edgeOutward[0]), fromA.dot(t.edgeOutward[2]),
+                                       (x - t.corner[1]).dot(t.edgeOutward[1])});
+      const double beyond = std::max(outward, 0.0);
+      if (plane * plane + beyond * beyond >= best) continue;
+      const bool face = outward <= t.faceLimit;
+      const double d2 = face ? plane * plane : edgeSquaredDistance(x, t);
+      if (d2 < best) {
+        best = d2;
+        nearest = cellTriangles[n];
+        nearestOnFace = face;
+      }
     }
     // Most points near the surface project onto the face of their nearest triangle: then
     // q = x - ((x - a) . n) n, the feature is the face, phi = (x - a) . n and grad phi = n.
     const Triangle& t = triangles[nearest];
-    if (onFace(x, t)) {
+    if (nearestOnFace) {
       phi = (x - t.corner[0]).dot(t.normal);
       gradient = t.normal;
       return true;
@@ -110,19 +121,24 @@ struct MeshSdf {
     return outward <= t.faceLimit;
   }
 
-  /// |p - q|^2 for the closest point q of triangle t, without branches: the distance to the face's
-  /// plane when p projects onto the face, else the least distance to its three edges (segments:
-  /// the closest point of a triangle whose plane projection misses it is on its boundary).
+  /// |p - q|^2 for the closest point q of triangle t: the distance to the face's plane when p
+  /// projects onto the face, else the least distance to its three edges (segments: the closest
+  /// point of a triangle whose plane projection misses it is on its boundary).
   static double squaredDistance(const Eigen::Vector3d& p, const Triangle& t) {
-    double edges = INFINITY, outward = -INFINITY;
+    if (!onFace(p, t)) return edgeSquaredDistance(p, t);
+    const double plane = (p - t.corner[0]).dot(t.normal);
+    return plane * plane;
+  }
+
+  /// The least |p - q|^2 over the three edges (segments) of t.
+  static double edgeSquaredDistance(const Eigen::Vector3d& p, const Triangle& t) {
+    double edges = INFINITY;
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d from = p - t.corner[k];
       const double along = std::clamp(from.dot(t.edge[k]) * t.inverseEdgeLength2[k], 0.0, 1.0);
       edges = std::min(edges, (from - along * t.edge[k]).squaredNorm());
-      outward = std::max(outward, from.dot(t.edgeOutward[k]));
     }
-    const double plane = (p - t.corner[0]).dot(t.normal);
-    return outward <= t.faceLimit ? plane * plane : edges;
+    return edges;
   }
 
   /// The closest point q of triangle t to p and the pseudo-normal of the feature holding it.

@@ -53,7 +53,7 @@ std::vector<MeshSdf::Triangle> pseudoNormalTriangles(const TriangleMesh& mesh) {
       r.edge[k] = r.corner[(k + 1) % 3] - r.corner[k];
       const double length2 = r.edge[k].squaredNorm();
       r.inverseEdgeLength2[k] = length2 > 0 ? 1.0 / length2 : 0.0;
-      r.edgeOutward[k] = r.edge[k].cross(r.normal);
+      r.edgeOutward[k] = length2 > 0 ? Eigen::Vector3d(r.edge[k].cross(r.normal) / std::sqrt(length2)) : Eigen::Vector3d::Zero();
     }
     r.faceLimit = r.normal.squaredNorm() > 0 ? 0.0 : -1.0;
   }

@@ -43,9 +43,9 @@ struct ShapeModel {
     if (!exactMesh.empty()) {
       const double outside = gridValue;
       if (outside > 0.8660254037844386 * sdf.voxelSize) return outside;
-      // Nearer, a node of x's cell often still proves x outside, for far less than the exact search.
-      const double lowerBound = sdf.provenOutside(x);
-      if (lowerBound > 0) return std::max(outside, lowerBound);
+      // (A node of x's cell can prove x outside for less than the search, DenseSdf::provenOutside;
+      // the candidates' band has already left out most points it proves, so here it costs more
+      // than it saves: 0.94x the wave slab's step without it. candidateValue keeps it.)
       double phi;
       Eigen::Vector3d gradient;
       if (exactMesh.evaluate(x, phi, gradient)) {

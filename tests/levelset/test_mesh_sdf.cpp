@@ -162,7 +162,7 @@ TEST_CASE("the grid's trilinear value exceeds the exact phi by at most (sqrt 3 /
 }
 
 TEST_CASE("a grid node proves a point outside only where it is, and often near the surface") {
-  // The shortcut ShapeModel::meshLevelSet takes before the exact search: phi(x) >= v_i - |x - c_i|.
+  // The shortcut ShapeModel::candidateValue takes before the exact search: phi(x) >= v_i - |x - c_i|.
   const double voxel = 0.25e-3;
   const ExactMesh e(makeWaveBlock(10e-3, 3.18e-3, 5.0 * M_PI / 180, 0.2e-3, 1, 24), voxel);
   int near = 0, proven = 0;
