@@ -76,6 +76,7 @@ struct MeshSdf {
     double best = INFINITY;
     std::uint32_t nearest = cellTriangles[begin];
     bool nearestOnFace = false;
+    double nearestPlane = 0.0;
     for (std::uint32_t n = begin; n < end; ++n) {
       const double bound = centreDistance[n] - offCentre;
       if (bound > 0 && bound * bound > best) break;
@@ -92,13 +93,14 @@ struct MeshSdf {
         best = d2;
         nearest = cellTriangles[n];
         nearestOnFace = face;
+        nearestPlane = plane;
       }
     }
     // Most points near the surface project onto the face of their nearest triangle: then
     // q = x - ((x - a) . n) n, the feature is the face, phi = (x - a) . n and grad phi = n.
     const Triangle& t = triangles[nearest];
     if (nearestOnFace) {
-      phi = (x - t.corner[0]).dot(t.normal);
+      phi = nearestPlane;
       gradient = t.normal;
       return true;
     }
