@@ -1,5 +1,7 @@
 #include "levelset/assembly.h"
 
+#include "levelset/mesh_sdf_builder.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -36,27 +38,57 @@ double boundingRadius(const Shape& shape) {
   return r;
 }
 
+// Each shape's level set as a run reads it by default (BodyPair): its face planes when convex, else
+// its exact mesh level set where it lists triangles (the shape's own, or derived here), else the grid.
+class ShapeLevelSets {
+public:
+  explicit ShapeLevelSets(const Bundle& bundle) : shapes_(bundle.shapes), derived_(bundle.shapes.size()) {
+    for (std::size_t s = 0; s < shapes_.size(); ++s)
+      if (!shapes_[s].convex && shapes_[s].exactMesh.empty() && !shapes_[s].mesh.triangles.empty())
+        derived_[s] = buildMeshSdf(shapes_[s].mesh, shapes_[s].sdf, kExactMeshBandVoxels * shapes_[s].sdf.voxelSize);
+  }
+  double phi(int s, const Eigen::Vector3d& x) const {
+    const Shape& shape = shapes_[s];
+    if (shape.convex) {
+      double phi = -std::numeric_limits<double>::infinity();
+      for (const FacePlane& f : shape.convex->planes) phi = std::max(phi, f.normal.dot(x) - f.offset);
+      return phi;
+    }
+    const MeshSdf& exact = shape.exactMesh.empty() ? derived_[s] : shape.exactMesh;
+    double phi;
+    Eigen::Vector3d gradient;
+    if (!exact.empty() && exact.evaluate(x, phi, gradient)) return phi;
+    return shape.sdf.sample(x).phi;
+  }
+
+private:
+  const std::vector<Shape>& shapes_;
+  std::vector<MeshSdf> derived_;
+};
+
 // Smallest level-set value of b's shape at the nodes of a (a moved by `shift`).
-double nodesInLevelSet(const Bundle& bundle, int a, int b, const Eigen::Vector3d& shift) {
+double nodesInLevelSet(const Bundle& bundle, const ShapeLevelSets& levelSets, int a, int b, const Eigen::Vector3d& shift) {
   const Body &A = bundle.bodies[a], &B = bundle.bodies[b];
-  const Shape &shapeA = bundle.shapes[A.shape], &shapeB = bundle.shapes[B.shape];
+  const Shape& shapeA = bundle.shapes[A.shape];
   // x_B = qB^-1 (qA x_A + pA + shift - pB)
   const Eigen::Matrix3d rotation = (B.orientation.conjugate() * A.orientation).toRotationMatrix();
   const Eigen::Vector3d offset = B.orientation.conjugate() * (A.position + shift - B.position);
   // A's centroid too, when it lies inside A: two bodies that coincide have every surface node on
   // the other's surface (phi = 0), but each centroid deep inside the other. (A ring-shaped frame's
   // centroid lies outside it, in whatever the ring surrounds.)
-  double smallest = shapeA.sdf.sample(Eigen::Vector3d::Zero()).phi < 0 ? shapeB.sdf.sample(offset).phi
-                                                                         : std::numeric_limits<double>::infinity();
-  for (const auto& x : shapeA.nodes.positions) smallest = std::min(smallest, shapeB.sdf.sample(rotation * x + offset).phi);
+  double smallest = levelSets.phi(A.shape, Eigen::Vector3d::Zero()) < 0 ? levelSets.phi(B.shape, offset)
+                                                                        : std::numeric_limits<double>::infinity();
+  for (const auto& x : shapeA.nodes.positions) smallest = std::min(smallest, levelSets.phi(B.shape, rotation * x + offset));
   return smallest;
 }
 
-}  // namespace
-
-double separation(const Bundle& bundle, int a, int b, const Eigen::Vector3d& shiftA) {
-  return std::min(nodesInLevelSet(bundle, a, b, shiftA), nodesInLevelSet(bundle, b, a, -shiftA));
+// The signed separation of bodies a and b (BodyPair), a moved by `shiftA` (world, m).
+double separation(const Bundle& bundle, const ShapeLevelSets& levelSets, int a, int b,
+                  const Eigen::Vector3d& shiftA = Eigen::Vector3d::Zero()) {
+  return std::min(nodesInLevelSet(bundle, levelSets, a, b, shiftA), nodesInLevelSet(bundle, levelSets, b, a, -shiftA));
 }
+
+}  // namespace
 
 std::vector<std::pair<int, int>> nearbyPairs(const Bundle& bundle, double reach) {
   // All pairs by bounding spheres: O(n^2), fine for slabs of thousands of blocks at set-up.
@@ -73,9 +105,10 @@ std::vector<std::pair<int, int>> nearbyPairs(const Bundle& bundle, double reach)
 
 AssemblyCheck checkAssembly(const Bundle& bundle, double overlapTolerance, double touchDistance) {
   AssemblyCheck check;
+  const ShapeLevelSets levelSets(bundle);
   std::vector<char> touches(bundle.bodies.size(), 0);
   for (const auto& [a, b] : nearbyPairs(bundle, touchDistance)) {
-    const double s = separation(bundle, a, b);
+    const double s = separation(bundle, levelSets, a, b);
     if (s <= touchDistance) {
       check.contacts.push_back({a, b, s});
       touches[a] = touches[b] = 1;
@@ -91,6 +124,7 @@ AssemblyCheck checkAssembly(const Bundle& bundle, double overlapTolerance, doubl
 
 std::vector<VerticalLock> verticalLocks(const Bundle& bundle, double shift) {
   const auto pairs = nearbyPairs(bundle, 2 * shift);
+  const ShapeLevelSets levelSets(bundle);
   std::vector<VerticalLock> locks;
   for (int i = 0; i < static_cast<int>(bundle.bodies.size()); ++i) {
     if (bundle.bodies[i].fixed) continue;
@@ -99,8 +133,8 @@ std::vector<VerticalLock> verticalLocks(const Bundle& bundle, double shift) {
     for (const auto& [a, b] : pairs) {
       if (a != i && b != i) continue;
       const int other = a == i ? b : a;
-      lock.upDepth = std::max(lock.upDepth, -separation(bundle, i, other, Eigen::Vector3d(0, 0, shift)));
-      lock.downDepth = std::max(lock.downDepth, -separation(bundle, i, other, Eigen::Vector3d(0, 0, -shift)));
+      lock.upDepth = std::max(lock.upDepth, -separation(bundle, levelSets, i, other, Eigen::Vector3d(0, 0, shift)));
+      lock.downDepth = std::max(lock.downDepth, -separation(bundle, levelSets, i, other, Eigen::Vector3d(0, 0, -shift)));
     }
     locks.push_back(lock);
   }

@@ -15,14 +15,14 @@ Body placeBody(const Shape& shape, int shapeIndex, const Placement& placement);
 /// The inverse of placeBody: the mesh-frame placement of a body.
 Placement placementOf(const Body& body, const Shape& shape);
 
-/// Signed separation of two bodies (m): the smallest level-set value of any surface node (or the
-/// centroid) of one body in the other's level set, both ways; negative = overlap by that depth.
-/// `shiftA` translates body a (world, m) before measuring.
-double separation(const Bundle& bundle, int a, int b, const Eigen::Vector3d& shiftA = Eigen::Vector3d::Zero());
-
 /// Pairs whose bounding spheres come within `reach` (m) of each other, a < b, fixed-fixed included.
 std::vector<std::pair<int, int>> nearbyPairs(const Bundle& bundle, double reach);
 
+/// Two bodies and their signed separation (m): the smallest level-set value of any surface node
+/// (or the centroid) of one body in the other's level set, both ways; negative = overlap by that
+/// depth. The level set is the one a run takes by default: a convex shape's face planes, else its
+/// exact mesh level set near the surface (derived for the check when the shape has none yet), and
+/// the grid beyond it; so faces that match exactly read 0, not the grid's rounding.
 struct BodyPair {
   int a = -1, b = -1;
   double separation = 0.0;  ///< m, negative = overlap depth
