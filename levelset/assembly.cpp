@@ -38,36 +38,8 @@ double boundingRadius(const Shape& shape) {
   return r;
 }
 
-// Each shape's level set as a run reads it by default (BodyPair): its face planes when convex, else
-// its exact mesh level set where it lists triangles (the shape's own, or derived here), else the grid.
-class ShapeLevelSets {
-public:
-  explicit ShapeLevelSets(const Bundle& bundle) : shapes_(bundle.shapes), derived_(bundle.shapes.size()) {
-    for (std::size_t s = 0; s < shapes_.size(); ++s)
-      if (!shapes_[s].convex && shapes_[s].exactMesh.empty() && !shapes_[s].mesh.triangles.empty())
-        derived_[s] = buildMeshSdf(shapes_[s].mesh, shapes_[s].sdf, kExactMeshBandVoxels * shapes_[s].sdf.voxelSize);
-  }
-  double phi(int s, const Eigen::Vector3d& x) const {
-    const Shape& shape = shapes_[s];
-    if (shape.convex) {
-      double phi = -std::numeric_limits<double>::infinity();
-      for (const FacePlane& f : shape.convex->planes) phi = std::max(phi, f.normal.dot(x) - f.offset);
-      return phi;
-    }
-    const MeshSdf& exact = shape.exactMesh.empty() ? derived_[s] : shape.exactMesh;
-    double phi;
-    Eigen::Vector3d gradient;
-    if (!exact.empty() && exact.evaluate(x, phi, gradient)) return phi;
-    return shape.sdf.sample(x).phi;
-  }
-
-private:
-  const std::vector<Shape>& shapes_;
-  std::vector<MeshSdf> derived_;
-};
-
 // Smallest level-set value of b's shape at the nodes of a (a moved by `shift`).
-double nodesInLevelSet(const Bundle& bundle, const ShapeLevelSets& levelSets, int a, int b, const Eigen::Vector3d& shift) {
+double nodesInLevelSet(const Bundle& bundle, const AssemblyLevelSets& levelSets, int a, int b, const Eigen::Vector3d& shift) {
   const Body &A = bundle.bodies[a], &B = bundle.bodies[b];
   const Shape& shapeA = bundle.shapes[A.shape];
   // x_B = qB^-1 (qA x_A + pA + shift - pB)
@@ -83,12 +55,32 @@ double nodesInLevelSet(const Bundle& bundle, const ShapeLevelSets& levelSets, in
 }
 
 // The signed separation of bodies a and b (BodyPair), a moved by `shiftA` (world, m).
-double separation(const Bundle& bundle, const ShapeLevelSets& levelSets, int a, int b,
+double separation(const Bundle& bundle, const AssemblyLevelSets& levelSets, int a, int b,
                   const Eigen::Vector3d& shiftA = Eigen::Vector3d::Zero()) {
   return std::min(nodesInLevelSet(bundle, levelSets, a, b, shiftA), nodesInLevelSet(bundle, levelSets, b, a, -shiftA));
 }
 
 }  // namespace
+
+AssemblyLevelSets::AssemblyLevelSets(const Bundle& bundle) : shapes_(bundle.shapes), derived_(bundle.shapes.size()) {
+  for (std::size_t s = 0; s < shapes_.size(); ++s)
+    if (!shapes_[s].convex && shapes_[s].exactMesh.empty() && !shapes_[s].mesh.triangles.empty())
+      derived_[s] = buildMeshSdf(shapes_[s].mesh, shapes_[s].sdf, kExactMeshBandVoxels * shapes_[s].sdf.voxelSize);
+}
+
+double AssemblyLevelSets::phi(int s, const Eigen::Vector3d& x) const {
+  const Shape& shape = shapes_[s];
+  if (shape.convex) {
+    double phi = -std::numeric_limits<double>::infinity();
+    for (const FacePlane& f : shape.convex->planes) phi = std::max(phi, f.normal.dot(x) - f.offset);
+    return phi;
+  }
+  const MeshSdf& exact = shape.exactMesh.empty() ? derived_[s] : shape.exactMesh;
+  double phi;
+  Eigen::Vector3d gradient;
+  if (!exact.empty() && exact.evaluate(x, phi, gradient)) return phi;
+  return shape.sdf.sample(x).phi;
+}
 
 std::vector<std::pair<int, int>> nearbyPairs(const Bundle& bundle, double reach) {
   // All pairs by bounding spheres: O(n^2), fine for slabs of thousands of blocks at set-up.
@@ -104,8 +96,12 @@ std::vector<std::pair<int, int>> nearbyPairs(const Bundle& bundle, double reach)
 }
 
 AssemblyCheck checkAssembly(const Bundle& bundle, double overlapTolerance, double touchDistance) {
+  return checkAssembly(bundle, AssemblyLevelSets(bundle), overlapTolerance, touchDistance);
+}
+
+AssemblyCheck checkAssembly(const Bundle& bundle, const AssemblyLevelSets& levelSets, double overlapTolerance,
+                            double touchDistance) {
   AssemblyCheck check;
-  const ShapeLevelSets levelSets(bundle);
   std::vector<char> touches(bundle.bodies.size(), 0);
   for (const auto& [a, b] : nearbyPairs(bundle, touchDistance)) {
     const double s = separation(bundle, levelSets, a, b);
@@ -123,8 +119,11 @@ AssemblyCheck checkAssembly(const Bundle& bundle, double overlapTolerance, doubl
 }
 
 std::vector<VerticalLock> verticalLocks(const Bundle& bundle, double shift) {
+  return verticalLocks(bundle, AssemblyLevelSets(bundle), shift);
+}
+
+std::vector<VerticalLock> verticalLocks(const Bundle& bundle, const AssemblyLevelSets& levelSets, double shift) {
   const auto pairs = nearbyPairs(bundle, 2 * shift);
-  const ShapeLevelSets levelSets(bundle);
   std::vector<VerticalLock> locks;
   for (int i = 0; i < static_cast<int>(bundle.bodies.size()); ++i) {
     if (bundle.bodies[i].fixed) continue;

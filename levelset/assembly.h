@@ -28,6 +28,19 @@ struct BodyPair {
   double separation = 0.0;  ///< m, negative = overlap depth
 };
 
+/// The level set of each shape of a bundle as BodyPair reads it; built once for a bundle's checks
+/// (deriving an exact mesh level set costs more than the checks).
+class AssemblyLevelSets {
+public:
+  explicit AssemblyLevelSets(const Bundle& bundle);
+  /// Shape s's level set at a body-frame point, m.
+  double phi(int s, const Eigen::Vector3d& x) const;
+
+private:
+  const std::vector<Shape>& shapes_;
+  std::vector<MeshSdf> derived_;  ///< for shapes without planes or an exact mesh of their own
+};
+
 struct AssemblyCheck {
   std::vector<BodyPair> overlaps;   ///< pairs overlapping by more than the tolerance, deepest first
   std::vector<int> isolated;        ///< bodies within `touchDistance` of no other body
@@ -37,6 +50,8 @@ struct AssemblyCheck {
 /// Checks the initial assembly: overlaps deeper than `overlapTolerance` (m) and bodies that touch
 /// nothing (no other body within `touchDistance`, m).
 AssemblyCheck checkAssembly(const Bundle& bundle, double overlapTolerance, double touchDistance);
+AssemblyCheck checkAssembly(const Bundle& bundle, const AssemblyLevelSets& levelSets, double overlapTolerance,
+                            double touchDistance);
 
 struct VerticalLock {
   int body = -1;
@@ -48,5 +63,6 @@ struct VerticalLock {
 /// `shift` (m) with everything else in place. A body is interlocked when both depths are well
 /// above zero (blocked both ways); a small fraction of the shift is a good threshold.
 std::vector<VerticalLock> verticalLocks(const Bundle& bundle, double shift);
+std::vector<VerticalLock> verticalLocks(const Bundle& bundle, const AssemblyLevelSets& levelSets, double shift);
 
 }  // namespace tessera

@@ -40,13 +40,14 @@ AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<d
   const double tolerance = overlapTolerance ? *overlapTolerance : 0.1 * voxel;
   const double touch = gap + 0.5 * voxel;
   AssemblySummary summary;
-  summary.check = checkAssembly(bundle, tolerance, touch);
+  const AssemblyLevelSets levelSets(bundle);
+  summary.check = checkAssembly(bundle, levelSets, tolerance, touch);
   refuseOverlaps(bundle, summary.check, tolerance, "", fix);
   for (int i : summary.check.isolated)
     summary.warnings.push_back("body '" + bundle.bodies[i].name + "' touches no other body (nothing within " +
                                formatMillimetres(touch) + ")");
   const double threshold = 0.01 * 0.5 * voxel;
-  for (const VerticalLock& l : verticalLocks(bundle, 0.5 * voxel)) {
+  for (const VerticalLock& l : verticalLocks(bundle, levelSets, 0.5 * voxel)) {
     ++summary.free;
     if (l.upDepth > threshold && l.downDepth > threshold) ++summary.locked;
     else

@@ -92,13 +92,14 @@ Bundle loadRunBundle(const Scene& scene, const RunLog& log) {
       log(line);
     }
   }
+  for (Shape& shape : bundle.shapes)  // the exact mesh level sets of the shapes that will use them
+    if (scene.solver.exactMeshLevelSets && !(shape.convex && scene.solver.exactConvexLevelSets)) deriveExactMesh(shape);
   // The bodies as the bundle places them may not overlap (a bundle edited by hand, or two bodies
-  // placed on one another): the same check as tile and assemble, before any work.
+  // placed on one another): the same check as tile and assemble (reading the exact meshes just
+  // derived), before any work.
   const double tolerance = 0.1 * finestVoxel(bundle);
   refuseOverlaps(bundle, checkAssembly(bundle, tolerance, 0.5 * finestVoxel(bundle)), tolerance, scene.bundle + ": ",
                  "rebuild the bundle with tessera tile or assemble");
-  for (Shape& shape : bundle.shapes)  // the exact mesh level sets of the shapes that will use them
-    if (scene.solver.exactMeshLevelSets && !(shape.convex && scene.solver.exactConvexLevelSets)) deriveExactMesh(shape);
   return bundle;
 }
 
