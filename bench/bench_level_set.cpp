@@ -74,8 +74,7 @@ void LevelSetEvaluation(benchmark::State& state) {
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     double phi;
     if (path == 0) {
-      phi = -INFINITY;
-      for (const FacePlane& f : b.model.planes) phi = std::max(phi, f.normal.dot(x) - f.offset);
+      phi = planesLevelSet(b.model.planes, x);
     } else if (path == 1) {
       phi = b.model.meshLevelSet(x, normal);
     } else {

@@ -1,6 +1,8 @@
 #pragma once
 #include "geometry/triangle_mesh.h"
 
+#include <algorithm>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -36,5 +38,12 @@ struct ConvexFit {
 /// distance of the fitted polyhedron inside and a positive lower bound of it outside: an analytic
 /// level set.
 std::optional<ConvexFit> fitConvexPolyhedron(const TriangleMesh& mesh, const ConvexFitOptions& options = {});
+
+/// phi(x) = max_f (n_f . x - d_f), the planes' level set at x (m; see fitConvexPolyhedron).
+inline double planesLevelSet(const std::vector<FacePlane>& planes, const Eigen::Vector3d& x) {
+  double phi = -std::numeric_limits<double>::infinity();
+  for (const FacePlane& f : planes) phi = std::max(phi, f.normal.dot(x) - f.offset);
+  return phi;
+}
 
 }  // namespace tessera

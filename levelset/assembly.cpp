@@ -1,7 +1,5 @@
 #include "levelset/assembly.h"
 
-#include "levelset/mesh_sdf_builder.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -65,16 +63,12 @@ double separation(const Bundle& bundle, const AssemblyLevelSets& levelSets, int 
 AssemblyLevelSets::AssemblyLevelSets(const Bundle& bundle) : shapes_(bundle.shapes), derived_(bundle.shapes.size()) {
   for (std::size_t s = 0; s < shapes_.size(); ++s)
     if (!shapes_[s].convex && shapes_[s].exactMesh.empty() && !shapes_[s].mesh.triangles.empty())
-      derived_[s] = buildMeshSdf(shapes_[s].mesh, shapes_[s].sdf, kExactMeshBandVoxels * shapes_[s].sdf.voxelSize);
+      derived_[s] = exactMeshLevelSet(shapes_[s]);
 }
 
 double AssemblyLevelSets::phi(int s, const Eigen::Vector3d& x) const {
   const Shape& shape = shapes_[s];
-  if (shape.convex) {
-    double phi = -std::numeric_limits<double>::infinity();
-    for (const FacePlane& f : shape.convex->planes) phi = std::max(phi, f.normal.dot(x) - f.offset);
-    return phi;
-  }
+  if (shape.convex) return planesLevelSet(shape.convex->planes, x);
   const MeshSdf& exact = shape.exactMesh.empty() ? derived_[s] : shape.exactMesh;
   double phi;
   Eigen::Vector3d gradient;

@@ -6,9 +6,11 @@
 
 namespace tessera {
 
-void deriveExactMesh(Shape& shape) {
-  shape.exactMesh = buildMeshSdf(shape.mesh, shape.sdf, kExactMeshBandVoxels * shape.sdf.voxelSize);
+MeshSdf exactMeshLevelSet(const Shape& shape) {
+  return buildMeshSdf(shape.mesh, shape.sdf, kExactMeshBandVoxels * shape.sdf.voxelSize);
 }
+
+void deriveExactMesh(Shape& shape) { shape.exactMesh = exactMeshLevelSet(shape); }
 
 std::string levelSetPath(const Shape& shape, bool exactConvexLevelSets, bool exactMeshLevelSets) {
   char buffer[96];

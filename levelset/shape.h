@@ -68,12 +68,14 @@ struct Shape {
 };
 
 /// Within this many voxels of the surface, the exact mesh level set lists its triangles: more
-/// than the solver's candidate band (2.5 voxels at the default resolution), so that every node
-/// that can touch is evaluated exactly.
+/// than the solver's candidate band (0.1 voxel at the default resolution) and the grid's
+/// interpolation error ((sqrt 3 / 2) voxel), so that every node that can touch is evaluated exactly.
 constexpr int kExactMeshBandVoxels = 3;
 
-/// Derives the shape's exact mesh level set from its mesh and grid (for a run: tile, prep and
-/// inspect do not need it, and a bundle's reader does not build it).
+/// The shape's exact mesh level set, from its mesh and grid (for a run, and for the assembly
+/// checks of tile and assemble; a bundle does not store it).
+MeshSdf exactMeshLevelSet(const Shape& shape);
+/// shape.exactMesh = exactMeshLevelSet(shape).
 void deriveExactMesh(Shape& shape);
 
 /// The level-set path a shape takes in the solver, as printed and stored: "exact planes (6 faces,
