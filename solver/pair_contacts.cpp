@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <tuple>
 #include <utility>
@@ -100,11 +101,13 @@ void transformPoints(int n, const Eigen::Matrix3d& R, const Eigen::Vector3d& t, 
   }
 }
 
-// DenseSdf::value of n points at once (SIMD, the corners gathered), as it; int indices (the grid
-// has fewer than 2^31 nodes).
+// DenseSdf::sample of n points at once (SIMD, the corners gathered), as it: the value (as
+// DenseSdf::value) and its gradient, so that no point's corners are read twice; int indices (the
+// grid has fewer than 2^31 nodes).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-void gridValues(const DenseSdf& sdf, int n, const double* __restrict x, const double* __restrict y, const double* __restrict z,
-                double* __restrict value) {
+void gridSamples(const DenseSdf& sdf, int n, const double* __restrict x, const double* __restrict y,
+                 const double* __restrict z, double* __restrict value, double* __restrict gx, double* __restrict gy,
+                 double* __restrict gz) {
   const double x0 = sdf.origin.x(), y0 = sdf.origin.y(), z0 = sdf.origin.z();
   const Eigen::Vector3d top = sdf.upperCorner();
   const double x1 = top.x(), y1 = top.y(), z1 = top.z(), h = sdf.voxelSize;
@@ -124,7 +127,16 @@ void gridValues(const DenseSdf& sdf, int n, const double* __restrict x, const do
     const double c10 = c100 + wz * (c101 - c100), c11 = c110 + wz * (c111 - c110);
     const double a = c00 + wy * (c01 - c00), b = c10 + wy * (c11 - c10);
     const double ax = x[p] - cx, ay = y[p] - cy, az = z[p] - cz;
-    value[p] = (a + wx * (b - a)) + std::sqrt(ax * ax + ay * ay + az * az);
+    const double gap = std::sqrt(ax * ax + ay * ay + az * az);
+    value[p] = (a + wx * (b - a)) + gap;
+    // The trilinear gradient (each stage differentiated); outside the grid, away from it.
+    const double dy0 = c01 - c00, dy1 = c11 - c10;
+    const double dz0 = (c001 - c000) + wy * ((c011 - c010) - (c001 - c000));
+    const double dz1 = (c101 - c100) + wy * ((c111 - c110) - (c101 - c100));
+    const double away = gap > 0 ? gap : 1.0;
+    gx[p] = gap > 0 ? ax / away : (b - a) / h;
+    gy[p] = gap > 0 ? ay / away : (dy0 + wx * (dy1 - dy0)) / h;
+    gz[p] = gap > 0 ? az / away : (dz0 + wx * (dz1 - dz0)) / h;
   }
 }
 
@@ -166,49 +178,80 @@ struct PlanesInFrame {
   }
 };
 
-// PlanesInFrame::phi of n points at once (SIMD over the points, plane after plane), as it: the
-// first plane of largest value is the best.
+// Four doubles side by side (GCC's vector extension): one AVX2 register, two SSE2 ones; the same
+// operations in every lane and on every machine. (Eight, two AVX2 registers, compile the selects
+// below to scalar code.)
+using Lanes = double __attribute__((vector_size(32)));
+using LaneMask = long long __attribute__((vector_size(32)));
+using LaneInt = int __attribute__((vector_size(16)));
+constexpr int kLanes = 4;
+
+// PlanesInFrame::phi of n points at once, as it (the first plane of largest value is the best):
+// four points in SIMD lanes, their values and best planes kept in registers across the planes;
+// the last n mod 4 points one at a time.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 void planesPhi(const PlanesInFrame& planes, int n, const double* __restrict px, const double* __restrict py,
                const double* __restrict pz, double* __restrict phi, int* __restrict best) {
-#pragma omp simd
-  for (int i = 0; i < n; ++i) {
-    phi[i] = planes.nx[0] * px[i] + planes.ny[0] * py[i] + planes.nz[0] * pz[i] - planes.offset[0];
-    best[i] = 0;
-  }
-  for (int f = 1; f < planes.count; ++f) {
-    const double a = planes.nx[f], b = planes.ny[f], c = planes.nz[f], d = planes.offset[f];
-#pragma omp simd
-    for (int i = 0; i < n; ++i) {
-      const double v = a * px[i] + b * py[i] + c * pz[i] - d;
-      best[i] = v > phi[i] ? f : best[i];
-      phi[i] = v > phi[i] ? v : phi[i];
+  int i = 0;
+  for (; i + kLanes <= n; i += kLanes) {
+    Lanes x, y, z;
+    std::memcpy(&x, px + i, sizeof x);
+    std::memcpy(&y, py + i, sizeof y);
+    std::memcpy(&z, pz + i, sizeof z);
+    Lanes value = planes.nx[0] * x + planes.ny[0] * y + planes.nz[0] * z - planes.offset[0];
+    LaneMask plane = {};
+    for (int f = 1; f < planes.count; ++f) {
+      const Lanes v = planes.nx[f] * x + planes.ny[f] * y + planes.nz[f] * z - planes.offset[f];
+      const LaneMask higher = v > value;
+      plane = higher ? LaneMask{} + f : plane;
+      value = higher ? v : value;
     }
+    std::memcpy(phi + i, &value, sizeof value);
+    const LaneInt plane32 = __builtin_convertvector(plane, LaneInt);
+    std::memcpy(best + i, &plane32, sizeof plane32);
   }
+  for (; i < n; ++i) phi[i] = planes.phi(Eigen::Vector3d(px[i], py[i], pz[i]), best[i]);
 }
 
-// The candidates of a convex side found inside (index inside[k] of the candidates, with their
+// The candidates of one side of a pair (keys side << 31 | rank): n of them, each array from the
+// side's first.
+struct SideCandidates {
+  int n = 0;
+  const std::uint32_t* key;
+  const double *x, *y, *z, *nx, *ny, *nz, *area;
+};
+
+SideCandidates candidatesOf(const PairContacts& pair, std::uint32_t side) {
+  const CandidateNodes& c = pair.candidates;
+  const std::uint32_t* begin = c.key.data();
+  const std::uint32_t* end = begin + c.size();
+  const std::uint32_t* first = std::lower_bound(begin, end, side << 31);
+  const std::uint32_t* last = side == 0 ? std::lower_bound(first, end, 1u << 31) : end;
+  const std::size_t at = static_cast<std::size_t>(first - begin);
+  return {static_cast<int>(last - first), first,           c.x.data() + at,  c.y.data() + at,   c.z.data() + at,
+          c.nx.data() + at,               c.ny.data() + at, c.nz.data() + at, c.area.data() + at};
+}
+
+// The candidates of a convex side found inside (index inside[k] of the candidates c, with their
 // phi and best plane) as contacts of the batch, entries start .. start+count-1: key, lever
 // r = RM p + (c_M - c_a), the sign of the force on a, the world normal of the best plane, depth
 // -phi, and area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame),
 // clipped at 0. Scalar: its loads are gathers, which on AVX-512 measured slower than this loop.
 void planeContacts(int start, int count, const Eigen::Vector3d& shift, double forceSign, const int* __restrict inside,
-                   const std::uint32_t* __restrict keys, const double* __restrict px, const double* __restrict py,
-                   const double* __restrict pz, const double* __restrict phi, const int* __restrict best,
-                   const PlanesInFrame& planes, const Eigen::Matrix3d& RM, const double* __restrict nodeNormal,
-                   const double* __restrict nodeArea, PairBatch& batch) {
+                   const SideCandidates& c, const double* __restrict phi, const int* __restrict best,
+                   const PlanesInFrame& planes, const Eigen::Matrix3d& RM, PairBatch& batch) {
   std::uint32_t* __restrict key = batch.key.data() + start;
   double *__restrict rx = batch.rx.data() + start, *__restrict ry = batch.ry.data() + start, *__restrict rz = batch.rz.data() + start;
   double* __restrict sign = batch.sign.data() + start;
   double *__restrict nx = batch.nx.data() + start, *__restrict ny = batch.ny.data() + start, *__restrict nz = batch.nz.data() + start;
   double *__restrict depth = batch.depth.data() + start, *__restrict area = batch.area.data() + start;
+  const double *__restrict px = c.x, *__restrict py = c.y, *__restrict pz = c.z;
   const double sx = shift.x(), sy = shift.y(), sz = shift.z();
   const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
                r21 = RM(2, 1), r22 = RM(2, 2);
   for (int k = 0; k < count; ++k) {
     const int i = inside[k], f = best[i];
-    const std::uint32_t rank = keys[i] & kRankMask;
-    key[k] = keys[i];
+    key[k] = c.key[i];
     rx[k] = (r00 * px[i] + r01 * py[i] + r02 * pz[i]) + sx;
     ry[k] = (r10 * px[i] + r11 * py[i] + r12 * pz[i]) + sy;
     rz[k] = (r20 * px[i] + r21 * py[i] + r22 * pz[i]) + sz;
@@ -217,9 +260,68 @@ void planeContacts(int start, int count, const Eigen::Vector3d& shift, double fo
     ny[k] = planes.wy[f];
     nz[k] = planes.wz[f];
     depth[k] = -phi[i];
-    const double projection =
-        -(nodeNormal[3 * rank] * planes.nx[f] + nodeNormal[3 * rank + 1] * planes.ny[f] + nodeNormal[3 * rank + 2] * planes.nz[f]);
-    area[k] = projection > 0 ? 0.5 * nodeArea[rank] * projection : 0.0;
+    const double projection = -(c.nx[i] * planes.nx[f] + c.ny[i] * planes.ny[f] + c.nz[i] * planes.nz[f]);
+    // max(0, projection) without a branch (facing away is common at edges, a mispredicted branch
+    // cost 5 % of the step): projection times 0 or 1, and + 0.0 turns the -0.0 of a negative one
+    // into 0.0; the same bits as the select.
+    area[k] = 0.5 * c.area[i] * (projection * static_cast<double>(projection > 0)) + 0.0;
+  }
+}
+
+// ShapeModel::gridLevelSet of n points at once (SIMD), in place, from their grid samples (phi and
+// gradient): inside, the gradient made unit, or phi 0 (no contact) where it is zero; outside, phi
+// as it is.
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double* __restrict gy, double* __restrict gz) {
+#pragma omp simd
+  for (int i = 0; i < n; ++i) {
+    const double g = std::sqrt(gx[i] * gx[i] + gy[i] * gy[i] + gz[i] * gz[i]);
+    const bool usable = g > 0, in = phi[i] < 0;
+    const double divisor = usable ? g : 1.0;
+    phi[i] = in && !usable ? 0.0 : phi[i];
+    gx[i] = gx[i] / divisor;
+    gy[i] = gy[i] / divisor;
+    gz[i] = gz[i] / divisor;
+  }
+}
+
+// The candidates of a side found inside a non-convex other side O (index inside[k] of the
+// candidates c; their positions, level set and unit normal in O's frame) as contacts of the
+// batch, entries start .. start+count-1: key, lever r = RO x_O + (c_O - c_M) + (c_M - c_a), the
+// sign of the force on a, the world normal RO n, depth -phi, and area: half the node's, projected
+// on the contact plane, -(RM n_i) . (RO n), clipped at 0. Scalar (gathers), as planeContacts.
+void levelSetContacts(int start, int count, const Eigen::Vector3d& shift, double forceSign, const int* __restrict inside,
+                      const SideCandidates& c, const double* __restrict ox, const double* __restrict oy,
+                      const double* __restrict oz, const double* __restrict phi, const double* __restrict gx,
+                      const double* __restrict gy, const double* __restrict gz, const Eigen::Matrix3d& RO,
+                      const Eigen::Matrix3d& RM, const Eigen::Vector3d& offset, PairBatch& batch) {
+  std::uint32_t* __restrict key = batch.key.data() + start;
+  double *__restrict rx = batch.rx.data() + start, *__restrict ry = batch.ry.data() + start, *__restrict rz = batch.rz.data() + start;
+  double* __restrict sign = batch.sign.data() + start;
+  double *__restrict nx = batch.nx.data() + start, *__restrict ny = batch.ny.data() + start, *__restrict nz = batch.nz.data() + start;
+  double *__restrict depth = batch.depth.data() + start, *__restrict area = batch.area.data() + start;
+  const double o00 = RO(0, 0), o01 = RO(0, 1), o02 = RO(0, 2), o10 = RO(1, 0), o11 = RO(1, 1), o12 = RO(1, 2), o20 = RO(2, 0),
+               o21 = RO(2, 1), o22 = RO(2, 2);
+  const double m00 = RM(0, 0), m01 = RM(0, 1), m02 = RM(0, 2), m10 = RM(1, 0), m11 = RM(1, 1), m12 = RM(1, 2), m20 = RM(2, 0),
+               m21 = RM(2, 1), m22 = RM(2, 2);
+  const double tx = offset.x(), ty = offset.y(), tz = offset.z(), sx = shift.x(), sy = shift.y(), sz = shift.z();
+  for (int k = 0; k < count; ++k) {
+    const int i = inside[k];
+    key[k] = c.key[i];
+    rx[k] = ((o00 * ox[i] + o01 * oy[i] + o02 * oz[i]) + tx) + sx;
+    ry[k] = ((o10 * ox[i] + o11 * oy[i] + o12 * oz[i]) + ty) + sy;
+    rz[k] = ((o20 * ox[i] + o21 * oy[i] + o22 * oz[i]) + tz) + sz;
+    sign[k] = forceSign;
+    const double wx = o00 * gx[i] + o01 * gy[i] + o02 * gz[i], wy = o10 * gx[i] + o11 * gy[i] + o12 * gz[i],
+                 wz = o20 * gx[i] + o21 * gy[i] + o22 * gz[i];
+    nx[k] = wx;
+    ny[k] = wy;
+    nz[k] = wz;
+    depth[k] = -phi[i];
+    const double mx = m00 * c.nx[i] + m01 * c.ny[i] + m02 * c.nz[i], my = m10 * c.nx[i] + m11 * c.ny[i] + m12 * c.nz[i],
+                 mz = m20 * c.nx[i] + m21 * c.ny[i] + m22 * c.nz[i];
+    const double projection = -(mx * wx + my * wy + mz * wz);
+    area[k] = 0.5 * c.area[i] * (projection * static_cast<double>(projection > 0)) + 0.0;  // as in planeContacts
   }
 }
 
@@ -241,38 +343,48 @@ PairSums sumPair(const PairBatch& batch, const NodeContacts& contacts, bool perA
   double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nx = 0, ny = 0, nz = 0, wx = 0, wy = 0, wz = 0;
   double weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, deepest = 0;
   const double *__restrict rx = batch.rx.data(), *__restrict ry = batch.ry.data(), *__restrict rz = batch.rz.data();
-  const double* __restrict stored = contacts.energy.data();
+  const double *__restrict cx = batch.fx.data(), *__restrict cy = batch.fy.data(), *__restrict cz = batch.fz.data();
+  const double *__restrict ux = batch.nx.data(), *__restrict uy = batch.ny.data(), *__restrict uz = batch.nz.data();
+  const double *__restrict sign = batch.sign.data(), *__restrict normal = batch.fn.data();
+  const double *__restrict slid = batch.friction.data(), *__restrict damped = batch.viscous.data();
+  const double *__restrict atCap = batch.sliding.data(), *__restrict depth = batch.depth.data();
+  const double *__restrict area = batch.area.data(), *__restrict previousArea = batch.previousArea.data();
+  const double *__restrict previousEnergy = batch.previousEnergy.data(), *__restrict stored = contacts.energy.data();
+  const double perAreaFactor = perArea ? 1.0 : 0.0;
+  // (Every value loaded and one select at a time: a load or a nested select under a condition is
+  // control flow, which keeps the loop out of SIMD lanes.)
 #pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nx, ny, nz, wx, wy, wz, weight, elastic, friction, viscous, sliding, \
                                projection) reduction(max : deepest)
   for (int i = 0; i < n; ++i) {
     // Forces on a; a contact facing away (area 0) has none.
-    const double s = batch.sign[i], f0 = s * batch.fx[i], f1 = s * batch.fy[i], f2 = s * batch.fz[i], fn = batch.fn[i];
+    const double s = sign[i], f0 = s * cx[i], f1 = s * cy[i], f2 = s * cz[i], fn = normal[i];
     fx += f0;
     fy += f1;
     fz += f2;
     mx += ry[i] * f2 - rz[i] * f1;
     my += rz[i] * f0 - rx[i] * f2;
     mz += rx[i] * f1 - ry[i] * f0;
-    nx += s * fn * batch.nx[i];
-    ny += s * fn * batch.ny[i];
-    nz += s * fn * batch.nz[i];
+    nx += s * fn * ux[i];
+    ny += s * fn * uy[i];
+    nz += s * fn * uz[i];
     wx += fn * rx[i];
     wy += fn * ry[i];
     wz += fn * rz[i];
     weight += fn;
     elastic += stored[i];
-    friction += batch.friction[i];
-    viscous += batch.viscous[i];
-    sliding += batch.sliding[i];
+    friction += slid[i];
+    viscous += damped[i];
+    sliding += atCap[i];
     // Stored energy is proportional to the area: what the change of area alone removed (a contact
     // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
-    const double area = batch.area[i], previousArea = batch.previousArea[i];
-    const double scaled = stored[i] * (previousArea / (area > 0 ? area : 1.0) - 1);
-    projection += !(area > 0)                   ? batch.previousEnergy[i]
-                  : previousArea == 0           ? -stored[i]
-                  : previousArea > 0 && perArea ? scaled
-                                                : 0.0;
-    deepest = std::max(deepest, area > 0 ? batch.depth[i] : 0.0);
+    const double a = area[i], a0 = previousArea[i], energy = stored[i];
+    const double scaled = energy * (a0 / (a > 0 ? a : 1.0) - 1);
+    double removed = a0 > 0 ? perAreaFactor * scaled : 0.0;  // kept: scaled, if per area
+    removed = a0 == 0 ? -energy : removed;                    // back from a cut
+    removed = a > 0 ? removed : previousEnergy[i];            // cut now
+    projection += removed;
+    const double reached = a > 0 ? depth[i] : 0.0;
+    deepest = reached > deepest ? reached : deepest;
   }
   PairSums sums;
   const double value[12] = {fx, fy, fz, mx, my, mz, nx, ny, nz, wx, wy, wz};
@@ -292,11 +404,11 @@ struct Scratch {
   PairBatch batch;
   // The candidates of one side: level set (or the grid's value), the plane giving it, the
   // indices of those inside (or near), and their positions in the other side's frame.
-  std::vector<double> phi, ox, oy, oz;
+  std::vector<double> phi, ox, oy, oz, gx, gy, gz;
   std::vector<int> best, inside;
   void reserve(int n) {
     if (static_cast<int>(phi.size()) >= n) return;
-    for (auto* v : {&phi, &ox, &oy, &oz}) v->resize(static_cast<std::size_t>(n));
+    for (auto* v : {&phi, &ox, &oy, &oz, &gx, &gy, &gz}) v->resize(static_cast<std::size_t>(n));
     for (auto* v : {&best, &inside}) v->resize(static_cast<std::size_t>(n));
   }
 };
@@ -363,18 +475,33 @@ struct Accumulator {
     contacts.resize(static_cast<std::size_t>(n));
     std::copy_n(batch.key.data(), n, contacts.key.data());
     std::copy_n(batch.area.data(), n, contacts.area.data());
-    // Each contact's spring from the previous step, by merging the two key-sorted lists.
+    // Each contact's spring from the previous step, by merging the two key-sorted lists. `before`
+    // stays on an entry (the last at most), so that every load is made and `found` only selects:
+    // no branch but the merge's own.
     const NodeContacts& previous = pair.previous;
-    std::size_t before = 0;
-    for (int i = 0; i < n; ++i) {
-      const std::uint32_t key = batch.key[i];
-      while (before < previous.size() && previous.key[before] < key) ++before;
-      const bool found = before < previous.size() && previous.key[before] == key;
-      contacts.springX[i] = found ? previous.springX[before] : 0.0;
-      contacts.springY[i] = found ? previous.springY[before] : 0.0;
-      contacts.springZ[i] = found ? previous.springZ[before] : 0.0;
-      batch.previousArea[i] = found ? previous.area[before] : -1.0;
-      batch.previousEnergy[i] = found ? previous.energy[before] : 0.0;
+    if (previous.empty()) {
+      std::fill_n(contacts.springX.data(), n, 0.0);
+      std::fill_n(contacts.springY.data(), n, 0.0);
+      std::fill_n(contacts.springZ.data(), n, 0.0);
+      std::fill_n(batch.previousArea.data(), n, -1.0);
+      std::fill_n(batch.previousEnergy.data(), n, 0.0);
+    } else {
+      const std::size_t last = previous.size() - 1;
+      const std::uint32_t* __restrict keyBefore = previous.key.data();
+      const double *__restrict sx = previous.springX.data(), *__restrict sy = previous.springY.data(),
+                   *__restrict sz = previous.springZ.data(), *__restrict areaBefore = previous.area.data(),
+                   *__restrict energyBefore = previous.energy.data();
+      std::size_t before = 0;
+      for (int i = 0; i < n; ++i) {
+        const std::uint32_t key = batch.key[i];
+        while (before < last && keyBefore[before] < key) ++before;
+        const bool found = keyBefore[before] == key;
+        contacts.springX[i] = found ? sx[before] : 0.0;
+        contacts.springY[i] = found ? sy[before] : 0.0;
+        contacts.springZ[i] = found ? sz[before] : 0.0;
+        batch.previousArea[i] = found ? areaBefore[before] : -1.0;
+        batch.previousEnergy[i] = found ? energyBefore[before] : 0.0;
+      }
     }
     for (int k = 0; k < sideCount; ++k)
       relativeVelocities(sides[k].first, sides[k].last, sides[k].v0, sides[k].spin, batch.rx.data(), batch.ry.data(),
@@ -400,14 +527,6 @@ struct Accumulator {
   }
 };
 
-// The pair's candidates of one side (keys side << 31 | rank), as [first, last).
-std::pair<const std::uint32_t*, const std::uint32_t*> candidatesOf(const PairContacts& pair, std::uint32_t side) {
-  const std::uint32_t* begin = pair.candidates.data();
-  const std::uint32_t* end = begin + pair.candidates.size();
-  const std::uint32_t* first = std::lower_bound(begin, end, side << 31);
-  return {first, side == 0 ? std::lower_bound(first, end, 1u << 31) : end};
-}
-
 // Visits the nodes of one side (key = side << 31 | rank) that can touch: the pair's candidates
 // of that side or, when they are being rebuilt, every node in `region`, keeping as candidates
 // those with phi below the band. `test(key)` returns the node's phi.
@@ -417,32 +536,82 @@ void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::ui
   if (rebuild) {
     nodes.forEachNodeIn(region, [&](int rank) {
       const std::uint32_t key = side << 31 | static_cast<std::uint32_t>(rank);
-      if (test(key) < band) {
-        pair.candidates.push_back(key);
-        pair.candidateX.push_back(nodes.position[rank].x());
-        pair.candidateY.push_back(nodes.position[rank].y());
-        pair.candidateZ.push_back(nodes.position[rank].z());
-      }
+      if (test(key) < band) pair.candidates.add(key, nodes, rank);
     });
     return;
   }
-  const auto [first, last] = candidatesOf(pair, side);
-  for (const std::uint32_t* k = first; k != last; ++k) test(*k);
+  const SideCandidates c = candidatesOf(pair, side);
+  for (int i = 0; i < c.n; ++i) test(c.key[i]);
 }
 
 // The contacts of one side's candidates in a convex other side: every candidate's phi at once
 // (SIMD), the ones inside listed without branches, and their contacts added to the batch.
-void convexSideContacts(PairContacts& pair, std::uint32_t side, const NodeBins& nodes, const PlanesInFrame& planes,
-                        const Eigen::Matrix3d& RM, const Accumulator::Side& sideInfo, Scratch& scratch) {
-  const auto [first, last] = candidatesOf(pair, side);
-  const int n = static_cast<int>(last - first);
-  const std::size_t offset = static_cast<std::size_t>(first - pair.candidates.data());
-  scratch.reserve(n);
-  const double *px = pair.candidateX.data() + offset, *py = pair.candidateY.data() + offset, *pz = pair.candidateZ.data() + offset;
+void convexSideContacts(PairContacts& pair, std::uint32_t side, const PlanesInFrame& planes, const Eigen::Matrix3d& RM,
+                        const Accumulator::Side& sideInfo, Scratch& scratch) {
+  const SideCandidates c = candidatesOf(pair, side);
+  scratch.reserve(c.n);
   double* phi = scratch.phi.data();
   int *best = scratch.best.data(), *inside = scratch.inside.data();
-  planesPhi(planes, n, px, py, pz, phi, best);
+  planesPhi(planes, c.n, c.x, c.y, c.z, phi, best);
+  pair.evaluations += c.n;
+  int count = 0;
+  for (int i = 0; i < c.n; ++i) {
+    inside[count] = i;
+    count += phi[i] < 0;
+  }
+  PairBatch& batch = scratch.batch;
+  const int start = batch.count;
+  batch.reserve(start + count);
+  batch.count = start + count;
+  planeContacts(start, count, sideInfo.shift, sideInfo.sign, inside, c, phi, best, planes, RM, batch);
+}
+
+// The contacts of one side's candidates in a non-convex other side O (its exact mesh or grid level
+// set): every candidate's position in O's frame and the grid's value and gradient there (SIMD, no
+// branches), then the level set for those the grid's value does not settle
+// (ShapeModel::gridValueBound): from that gradient on the grid path, from the exact mesh where O
+// has one; and their contacts. `toO`, `shift`: O's frame from M's; `offset` = c_O - c_M.
+void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeModel& so, const Eigen::Matrix3d& toO,
+                          const Eigen::Vector3d& shift, const Eigen::Matrix3d& RM, const Eigen::Matrix3d& RO,
+                          const Eigen::Vector3d& offset, const Accumulator::Side& sideInfo, Scratch& scratch) {
+  const SideCandidates c = candidatesOf(pair, side);
+  const int n = c.n;
+  scratch.reserve(n);
+  double *ox = scratch.ox.data(), *oy = scratch.oy.data(), *oz = scratch.oz.data();
+  double *phi = scratch.phi.data(), *gx = scratch.gx.data(), *gy = scratch.gy.data(), *gz = scratch.gz.data();
+  transformPoints(n, toO, shift, c.x, c.y, c.z, ox, oy, oz);
+  if (so.sdf.values.size() < static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    gridSamples(so.sdf, n, ox, oy, oz, phi, gx, gy, gz);
+  else  // a grid too large for int indices
+    for (int i = 0; i < n; ++i) {
+      const SdfSample s = so.sdf.sample(Eigen::Vector3d(ox[i], oy[i], oz[i]));
+      phi[i] = s.phi;
+      gx[i] = s.gradient.x();
+      gy[i] = s.gradient.y();
+      gz[i] = s.gradient.z();
+    }
   pair.evaluations += n;
+  int* inside = scratch.inside.data();
+  if (so.exactMesh.empty()) {
+    gridLevelSets(n, phi, gx, gy, gz);
+  } else {
+    // The exact level set where the grid's value does not settle it; the grid's value elsewhere
+    // (outside: no normal needed).
+    const double bound = so.gridValueBound();
+    int near = 0;
+    for (int i = 0; i < n; ++i) {
+      inside[near] = i;
+      near += phi[i] <= bound;
+    }
+    for (int k = 0; k < near; ++k) {
+      const int i = inside[k];
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+      phi[i] = so.meshLevelSet(Eigen::Vector3d(ox[i], oy[i], oz[i]), phi[i], normal);
+      gx[i] = normal.x();
+      gy[i] = normal.y();
+      gz[i] = normal.z();
+    }
+  }
   int count = 0;
   for (int i = 0; i < n; ++i) {
     inside[count] = i;
@@ -452,46 +621,8 @@ void convexSideContacts(PairContacts& pair, std::uint32_t side, const NodeBins& 
   const int start = batch.count;
   batch.reserve(start + count);
   batch.count = start + count;
-  planeContacts(start, count, sideInfo.shift, sideInfo.sign, inside, first, px, py, pz, phi, best, planes, RM,
-                nodes.normal.data()->data(), nodes.area.data(), batch);
-}
-
-// The contacts of one side's candidates in a non-convex other side O (its exact mesh or grid level
-// set): every candidate's position in O's frame and the grid's value there (SIMD, no branches),
-// then the level set in full for those the grid cannot settle (ShapeModel::gridValueBound) and
-// their contacts. `toO`, `shift`: O's frame from M's; `offset` = c_O - c_M.
-void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const NodeBins& nodes, const ShapeModel& so,
-                          const Eigen::Matrix3d& toO, const Eigen::Vector3d& shift, const Eigen::Matrix3d& RM,
-                          const Eigen::Matrix3d& RO, const Eigen::Vector3d& offset, Accumulator& acc, Scratch& scratch) {
-  const auto [first, last] = candidatesOf(pair, side);
-  const int n = static_cast<int>(last - first);
-  const std::size_t at = static_cast<std::size_t>(first - pair.candidates.data());
-  scratch.reserve(n);
-  transformPoints(n, toO, shift, pair.candidateX.data() + at, pair.candidateY.data() + at, pair.candidateZ.data() + at,
-                  scratch.ox.data(), scratch.oy.data(), scratch.oz.data());
-  double* value = scratch.phi.data();
-  if (so.sdf.values.size() < static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    gridValues(so.sdf, n, scratch.ox.data(), scratch.oy.data(), scratch.oz.data(), value);
-  else  // a grid too large for int indices
-    for (int i = 0; i < n; ++i) value[i] = so.sdf.value(Eigen::Vector3d(scratch.ox[i], scratch.oy[i], scratch.oz[i]));
-  pair.evaluations += n;
-  const double bound = so.gridValueBound();
-  int* near = scratch.inside.data();
-  int count = 0;
-  for (int i = 0; i < n; ++i) {
-    near[count] = i;
-    count += value[i] <= bound;
-  }
-  for (int k = 0; k < count; ++k) {
-    const int i = near[k];
-    const Eigen::Vector3d xO(scratch.ox[i], scratch.oy[i], scratch.oz[i]);
-    Eigen::Vector3d normalO = Eigen::Vector3d::Zero();
-    const double phi = so.meshLevelSet(xO, value[i], normalO);
-    if (!(phi < 0)) continue;
-    const std::uint32_t rank = first[i] & kRankMask;
-    const Eigen::Vector3d normal = RO * normalO;
-    acc.add(first[i], RO * xO + offset, -(RM * nodes.normal[rank]).dot(normal), 0.5 * nodes.area[rank], normal, -phi);
-  }
+  levelSetContacts(start, count, sideInfo.shift, sideInfo.sign, inside, c, ox, oy, oz, phi, gx, gy, gz, RO, RM, offset,
+                   batch);
 }
 
 // The other side's world pose: body b's; an obstacle's centre or point, unturned.
@@ -516,9 +647,6 @@ bool beginEvaluation(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = !pair.candidatesValid || kSqrt3 * candidateMotion(scene, pair) >= scene.candidateBand;
   if (rebuild) {
     pair.candidates.clear();
-    pair.candidateX.clear();
-    pair.candidateY.clear();
-    pair.candidateZ.clear();
     pair.builtPositionA = scene.bodies->position[pair.a];
     pair.builtOrientationA = scene.bodies->orientation[pair.a];
     std::tie(pair.builtPositionB, pair.builtOrientationB) = otherPose(scene, pair);
@@ -607,7 +735,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
           int best;
           return planes.phi(sm.nodes.position[key & kRankMask], best);
         });
-      convexSideContacts(pair, side, sm.nodes, planes, RM, sideInfo, scratch);
+      convexSideContacts(pair, side, planes, RM, sideInfo, scratch);
     } else {
       // As for a convex side: the candidates first (if rebuilt), then the level set of all of them.
       if (rebuild)
@@ -615,7 +743,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
           ++pair.evaluations;
           return so.candidateValue(toO * sm.nodes.position[key & kRankMask] + shift);
         });
-      levelSetSideContacts(pair, side, sm.nodes, so, toO, shift, RM, RO, other.position - node.position, acc, scratch);
+      levelSetSideContacts(pair, side, so, toO, shift, RM, RO, other.position - node.position, sideInfo, scratch);
     }
     acc.endSide();
   }

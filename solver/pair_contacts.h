@@ -82,14 +82,45 @@ struct ShapeModel {
   double gridLevelSet(const Eigen::Vector3d& x, Eigen::Vector3d& normal) const { return gridLevelSet(x, sdf.value(x), normal); }
   /// gridLevelSet with sdf.value(x) known.
   double gridLevelSet(const Eigen::Vector3d& x, double gridValue, Eigen::Vector3d& normal) const {
-    const double outside = gridValue;  // most candidates are outside: no gradient for them
-    if (outside >= 0) return outside;
+    if (gridValue >= 0) return gridValue;  // most candidates are outside: no gradient for them
     const SdfSample s = sdf.sample(x);
-    if (s.phi >= 0) return s.phi;
-    const double g = s.gradient.norm();
+    return gridLevelSet(s.phi, s.gradient, normal);
+  }
+  /// gridLevelSet with the grid's sample at x known (sdf.sample(x): phi and its gradient).
+  double gridLevelSet(double phi, const Eigen::Vector3d& gradient, Eigen::Vector3d& normal) const {
+    if (phi >= 0) return phi;
+    const double g = gradient.norm();
     if (!(g > 0)) return 0.0;  // no direction to push along: treated as touching, no force
-    normal = s.gradient / g;
-    return s.phi;
+    normal = gradient / g;
+    return phi;
+  }
+};
+
+/// The candidate nodes of a pair, sorted by key (as in NodeContact), each quantity in its own
+/// array: what a step reads of a node, copied from its body's NodeBins when the candidates are
+/// built, so that the step reads them in order instead of gathering them by rank.
+struct CandidateNodes {
+  std::vector<std::uint32_t> key;
+  std::vector<double> x, y, z;     ///< m, the node's position in its own body's frame
+  std::vector<double> nx, ny, nz;  ///< its outward unit normal, same frame
+  std::vector<double> area;        ///< m^2, its whole area
+
+  std::size_t size() const { return key.size(); }
+  void clear() {
+    key.clear();
+    for (std::vector<double>* v : {&x, &y, &z, &nx, &ny, &nz, &area}) v->clear();
+  }
+  /// Node `rank` of `nodes`, with its key.
+  void add(std::uint32_t nodeKey, const NodeBins& nodes, int rank) {
+    key.push_back(nodeKey);
+    const Eigen::Vector3d &p = nodes.position[rank], &n = nodes.normal[rank];
+    x.push_back(p.x());
+    y.push_back(p.y());
+    z.push_back(p.z());
+    nx.push_back(n.x());
+    ny.push_back(n.y());
+    nz.push_back(n.z());
+    area.push_back(nodes.area[rank]);
   }
 };
 
@@ -104,12 +135,10 @@ struct PairContacts {
   int a = -1, b = -1;
   PairKind kind = PairKind::Bodies;  ///< pairKind(b, spheres)
   NodeContacts contacts, previous;  ///< of the last evaluation, and of the one before (its history)
-  /// Keys (as in NodeContact) of the nodes within the candidate band of the other side when the
-  /// candidates were last built; only these can touch until the two sides have moved by
-  /// candidateMotion() >= band / sqrt(3) relative to each other (then they are built again). Sorted.
-  std::vector<std::uint32_t> candidates;
-  /// m: each candidate node's position in its own body's frame (so that a step reads them in order).
-  std::vector<double> candidateX, candidateY, candidateZ;
+  /// The nodes within the candidate band of the other side when the candidates were last built;
+  /// only these can touch until the two sides have moved by candidateMotion() >= band / sqrt(3)
+  /// relative to each other (then they are built again).
+  CandidateNodes candidates;
   bool candidatesValid = false;  ///< false: the next evaluation visits every node in range and rebuilds them
   /// World poses when the candidates were built: body a's centroid and orientation, and the other
   /// side's (body b's; a sphere's centre; a plane's point), for candidateMotion().
