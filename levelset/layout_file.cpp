@@ -75,12 +75,12 @@ Layout readLayout(const std::string& path) {
   json root;
   try {
     root = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a syntax error, or a number too large for a double
     throw InputError(path + ": not valid JSON (" + std::string(e.what()) + ")");
   }
   const Reader r(path);
   r.onlyKeys(root, {"format", "version", "unit", "shapes", "bodies", "span"}, "top level");
-  if (root.value("format", std::string()) != kLayoutFormat)
+  if (!root.contains("format") || !root["format"].is_string() || root["format"].get<std::string>() != kLayoutFormat)
     r.fail("format", std::string("must be \"") + kLayoutFormat + "\"");
   if (!root.contains("version") || !root["version"].is_number_integer() || root["version"].get<int>() != kLayoutVersion)
     r.fail("version", "must be " + std::to_string(kLayoutVersion) + " (this tessera reads layout version 1)");

@@ -56,9 +56,11 @@ TEST_CASE("bad layouts are refused naming the file and the problem") {
           "norm 1.414214, not 1");
   refused(layoutText(R"({"name": "a", "shape": "b", "position": [0, NaN, 0]})"), "not valid JSON");
   refused(layoutText(R"({"name": "a", "shape": "b", "position": [0, "NaN", 0]})"), "numbers only");
+  refused(layoutText(R"({"name": "a", "shape": "b", "position": [0, 1e999, 0]})"), "not valid JSON");  // fuzz_layout
   refused(layoutText(R"({"name": "a", "shape": "b", "position": [0, 0]})"), "array of 3 numbers");
   refused(layoutText(R"({"name": "a", "shape": "b", "position": [0, 0, 0], "colour": "red"})"), "unknown key 'colour'");
   refused(R"({"format": "tessera-layout", "version": 2})", "version: must be 1");
+  refused(R"({"format": ["tessera-layout"], "version": 1})", "format: must be \"tessera-layout\"");  // found by fuzz_layout
   refused(R"({"format": "tessera-layout", "version": 1, "unit": "parsec", "shapes": {}, "bodies": []})",
           "unknown length unit 'parsec'");
   REQUIRE_THROWS_WITH(readLayout(dir / "missing.json"), Contains("missing.json") && Contains("cannot open"));
