@@ -57,9 +57,12 @@ struct PairBatch {
       v->resize(size);
   }
   /// A new contact at the end; its index.
-  int append() {
-    reserve(count + 1);
-    return count++;
+  int append() { return grow(1); }
+  /// n new contacts at the end (values unset); the index of the first.
+  int grow(int n) {
+    reserve(count + n);
+    count += n;
+    return count - n;
   }
   /// The law's view of the contacts, with the springs and energies in `contacts`.
   NodeContactBatch law(NodeContacts& contacts) {
@@ -211,6 +214,16 @@ void planesPhi(const PlanesInFrame& planes, int n, const double* __restrict px, 
     std::memcpy(best + i, &plane32, sizeof plane32);
   }
   for (; i < n; ++i) phi[i] = planes.phi(Eigen::Vector3d(px[i], py[i], pz[i]), best[i]);
+}
+
+// The indices i < n with phi[i] < 0 (inside), listed in order without branches; their count.
+int listInside(int n, const double* __restrict phi, int* __restrict inside) {
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    inside[count] = i;
+    count += phi[i] < 0;
+  }
+  return count;
 }
 
 // The candidates of one side of a pair (keys side << 31 | rank): n of them, each array from the
@@ -554,16 +567,9 @@ void convexSideContacts(PairContacts& pair, std::uint32_t side, const PlanesInFr
   int *best = scratch.best.data(), *inside = scratch.inside.data();
   planesPhi(planes, c.n, c.x, c.y, c.z, phi, best);
   pair.evaluations += c.n;
-  int count = 0;
-  for (int i = 0; i < c.n; ++i) {
-    inside[count] = i;
-    count += phi[i] < 0;
-  }
-  PairBatch& batch = scratch.batch;
-  const int start = batch.count;
-  batch.reserve(start + count);
-  batch.count = start + count;
-  planeContacts(start, count, sideInfo.shift, sideInfo.sign, inside, c, phi, best, planes, RM, batch);
+  const int count = listInside(c.n, phi, inside);
+  planeContacts(scratch.batch.grow(count), count, sideInfo.shift, sideInfo.sign, inside, c, phi, best, planes, RM,
+                scratch.batch);
 }
 
 // The contacts of one side's candidates in a non-convex other side O (its exact mesh or grid level
@@ -612,17 +618,9 @@ void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeMod
       gz[i] = normal.z();
     }
   }
-  int count = 0;
-  for (int i = 0; i < n; ++i) {
-    inside[count] = i;
-    count += phi[i] < 0;
-  }
-  PairBatch& batch = scratch.batch;
-  const int start = batch.count;
-  batch.reserve(start + count);
-  batch.count = start + count;
-  levelSetContacts(start, count, sideInfo.shift, sideInfo.sign, inside, c, ox, oy, oz, phi, gx, gy, gz, RO, RM, offset,
-                   batch);
+  const int count = listInside(n, phi, inside);
+  levelSetContacts(scratch.batch.grow(count), count, sideInfo.shift, sideInfo.sign, inside, c, ox, oy, oz, phi, gx, gy, gz,
+                   RO, RM, offset, scratch.batch);
 }
 
 // The other side's world pose: body b's; an obstacle's centre or point, unturned.
