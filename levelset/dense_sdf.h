@@ -38,8 +38,10 @@ struct DenseSdf {
   }
 
   /// The cell of a point inside the grid (its lower node i0) and the weights w in [0, 1] within it.
+  /// (Scaled by 1 / voxelSize, one division: the solver's SIMD copy of value() does the same, so
+  /// both give the same bits.)
   void locate(const Eigen::Vector3d& inside, int i0[3], double w[3]) const {
-    const Eigen::Vector3d u = (inside - origin) / voxelSize;
+    const Eigen::Vector3d u = (inside - origin) * (1.0 / voxelSize);
     for (int a = 0; a < 3; ++a) {
       i0[a] = std::min(static_cast<int>(u[a]), dims[a] - 2);  // u >= 0: truncation is floor
       w[a] = u[a] - i0[a];

@@ -104,23 +104,23 @@ void transformPoints(int n, const Eigen::Matrix3d& R, const Eigen::Vector3d& t, 
   }
 }
 
-// DenseSdf::sample of n points at once (SIMD, the corners gathered), as it: the value (as
-// DenseSdf::value) and its gradient, so that no point's corners are read twice; int indices (the
-// grid has fewer than 2^31 nodes).
+// DenseSdf::value of n points at once (SIMD, the corners gathered), as it, and a vector along its
+// gradient (DenseSdf::sample's times the voxel size; outside the grid, x less its nearest grid
+// point) from the same corner reads; int indices (the grid has fewer than 2^31 nodes).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 void gridSamples(const DenseSdf& sdf, int n, const double* __restrict x, const double* __restrict y,
                  const double* __restrict z, double* __restrict value, double* __restrict gx, double* __restrict gy,
                  double* __restrict gz) {
   const double x0 = sdf.origin.x(), y0 = sdf.origin.y(), z0 = sdf.origin.z();
   const Eigen::Vector3d top = sdf.upperCorner();
-  const double x1 = top.x(), y1 = top.y(), z1 = top.z(), h = sdf.voxelSize;
+  const double x1 = top.x(), y1 = top.y(), z1 = top.z(), perVoxel = 1.0 / sdf.voxelSize;
   const int ni = sdf.dims[0] - 2, nj = sdf.dims[1] - 2, nk = sdf.dims[2] - 2;
   const int dj = sdf.dims[2], di = sdf.dims[1] * sdf.dims[2];
   const float* __restrict v = sdf.values.data();
 #pragma omp simd
   for (int p = 0; p < n; ++p) {
     const double cx = std::min(std::max(x[p], x0), x1), cy = std::min(std::max(y[p], y0), y1), cz = std::min(std::max(z[p], z0), z1);
-    const double ux = (cx - x0) / h, uy = (cy - y0) / h, uz = (cz - z0) / h;
+    const double ux = (cx - x0) * perVoxel, uy = (cy - y0) * perVoxel, uz = (cz - z0) * perVoxel;
     const int i = std::min(static_cast<int>(ux), ni), j = std::min(static_cast<int>(uy), nj), k = std::min(static_cast<int>(uz), nk);
     const double wx = ux - i, wy = uy - j, wz = uz - k;
     const int c = (i * sdf.dims[1] + j) * sdf.dims[2] + k;
@@ -132,14 +132,14 @@ void gridSamples(const DenseSdf& sdf, int n, const double* __restrict x, const d
     const double ax = x[p] - cx, ay = y[p] - cy, az = z[p] - cz;
     const double gap = std::sqrt(ax * ax + ay * ay + az * az);
     value[p] = (a + wx * (b - a)) + gap;
-    // The trilinear gradient (each stage differentiated); outside the grid, away from it.
+    // The trilinear gradient times h (each stage differentiated); outside the grid, away from it.
     const double dy0 = c01 - c00, dy1 = c11 - c10;
     const double dz0 = (c001 - c000) + wy * ((c011 - c010) - (c001 - c000));
     const double dz1 = (c101 - c100) + wy * ((c111 - c110) - (c101 - c100));
-    const double away = gap > 0 ? gap : 1.0;
-    gx[p] = gap > 0 ? ax / away : (b - a) / h;
-    gy[p] = gap > 0 ? ay / away : (dy0 + wx * (dy1 - dy0)) / h;
-    gz[p] = gap > 0 ? az / away : (dz0 + wx * (dz1 - dz0)) / h;
+    const bool outside = gap > 0;
+    gx[p] = outside ? ax : b - a;
+    gy[p] = outside ? ay : dy0 + wx * (dy1 - dy0);
+    gz[p] = outside ? az : dz0 + wx * (dz1 - dz0);
   }
 }
 
@@ -281,20 +281,20 @@ void planeContacts(int start, int count, const Eigen::Vector3d& shift, double fo
   }
 }
 
-// ShapeModel::gridLevelSet of n points at once (SIMD), in place, from their grid samples (phi and
-// gradient): inside, the gradient made unit, or phi 0 (no contact) where it is zero; outside, phi
-// as it is.
+// ShapeModel::gridLevelSet of n points at once (SIMD), in place, from their grid values and
+// vectors along the gradient (gridSamples): inside, the vector made unit, or phi 0 (no contact)
+// where it is zero; outside, phi as it is.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double* __restrict gy, double* __restrict gz) {
 #pragma omp simd
   for (int i = 0; i < n; ++i) {
     const double g = std::sqrt(gx[i] * gx[i] + gy[i] * gy[i] + gz[i] * gz[i]);
     const bool usable = g > 0, in = phi[i] < 0;
-    const double divisor = usable ? g : 1.0;
+    const double unit = 1.0 / (usable ? g : 1.0);
     phi[i] = in && !usable ? 0.0 : phi[i];
-    gx[i] = gx[i] / divisor;
-    gy[i] = gy[i] / divisor;
-    gz[i] = gz[i] / divisor;
+    gx[i] = gx[i] * unit;
+    gy[i] = gy[i] * unit;
+    gz[i] = gz[i] * unit;
   }
 }
 
