@@ -274,9 +274,9 @@ void planeContacts(int start, int count, const Eigen::Vector3d& shift, double fo
     nz[k] = planes.wz[f];
     depth[k] = -phi[i];
     const double projection = -(c.nx[i] * planes.nx[f] + c.ny[i] * planes.ny[f] + c.nz[i] * planes.nz[f]);
-    // max(0, projection) without a branch (facing away is common at edges, a mispredicted branch
-    // cost 5 % of the step): projection times 0 or 1, and + 0.0 turns the -0.0 of a negative one
-    // into 0.0; the same bits as the select.
+    // max(0, projection) without a branch (GCC makes the select one, which mispredicts where the
+    // nodes at edges face away): projection times 0 or 1, and + 0.0 turns the -0.0 of a negative
+    // one into 0.0; the same bits as the select.
     area[k] = 0.5 * c.area[i] * (projection * static_cast<double>(projection > 0)) + 0.0;
   }
 }
@@ -416,7 +416,8 @@ PairSums sumPair(const PairBatch& batch, const NodeContacts& contacts, bool perA
 struct Scratch {
   PairBatch batch;
   // The candidates of one side: level set (or the grid's value), the plane giving it, the
-  // indices of those inside (or near), and their positions in the other side's frame.
+  // indices of those inside (or near), their positions in the other side's frame, and there the
+  // grid's gradient direction (then the level set's unit normal).
   std::vector<double> phi, ox, oy, oz, gx, gy, gz;
   std::vector<int> best, inside;
   void reserve(int n) {

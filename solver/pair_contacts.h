@@ -82,17 +82,14 @@ struct ShapeModel {
   double gridLevelSet(const Eigen::Vector3d& x, Eigen::Vector3d& normal) const { return gridLevelSet(x, sdf.value(x), normal); }
   /// gridLevelSet with sdf.value(x) known.
   double gridLevelSet(const Eigen::Vector3d& x, double gridValue, Eigen::Vector3d& normal) const {
-    if (gridValue >= 0) return gridValue;  // most candidates are outside: no gradient for them
+    const double outside = gridValue;  // most candidates are outside: no gradient for them
+    if (outside >= 0) return outside;
     const SdfSample s = sdf.sample(x);
-    return gridLevelSet(s.phi, s.gradient, normal);
-  }
-  /// gridLevelSet with the grid's sample at x known (sdf.sample(x): phi and its gradient).
-  double gridLevelSet(double phi, const Eigen::Vector3d& gradient, Eigen::Vector3d& normal) const {
-    if (phi >= 0) return phi;
-    const double g = gradient.norm();
+    if (s.phi >= 0) return s.phi;
+    const double g = s.gradient.norm();
     if (!(g > 0)) return 0.0;  // no direction to push along: treated as touching, no force
-    normal = gradient / g;
-    return phi;
+    normal = s.gradient / g;
+    return s.phi;
   }
 };
 
