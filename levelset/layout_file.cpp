@@ -80,9 +80,9 @@ Layout readLayout(const std::string& path) {
   }
   const Reader r(path);
   r.onlyKeys(root, {"format", "version", "unit", "shapes", "bodies", "span"}, "top level");
-  if (!root.contains("format") || !root["format"].is_string() || root["format"].get<std::string>() != kLayoutFormat)
+  if (!(root.contains("format") && root["format"] == kLayoutFormat))
     r.fail("format", std::string("must be \"") + kLayoutFormat + "\"");
-  if (!root.contains("version") || !root["version"].is_number_integer() || root["version"].get<int>() != kLayoutVersion)
+  if (!(root.contains("version") && root["version"].is_number_integer() && root["version"] == kLayoutVersion))
     r.fail("version", "must be " + std::to_string(kLayoutVersion) + " (this tessera reads layout version 1)");
 
   Layout layout;
@@ -158,8 +158,10 @@ Layout readLayout(const std::string& path) {
     if (!root["span"].contains("length") || !root["span"].contains("interfaces"))
       r.fail("span", "give both \"length\" (free span L) and \"interfaces\" (M)");
     layout.spanLength = r.number(root["span"]["length"], "span length") * scale;
-    if (!root["span"]["interfaces"].is_number_integer() || root["span"]["interfaces"].get<int>() < 1)
-      r.fail("span", "\"interfaces\" must be a positive whole number");
+    // (Compared as JSON numbers: get<int>() would wrap 4294967297 to 1.)
+    if (!root["span"]["interfaces"].is_number_integer() || root["span"]["interfaces"] < 1 ||
+        root["span"]["interfaces"] > 1000000)
+      r.fail("span", "\"interfaces\" must be a whole number from 1 to 1000000");
     layout.spanInterfaces = root["span"]["interfaces"].get<int>();
     if (!(layout.spanLength > 0)) r.fail("span", "\"length\" must be positive");
   }

@@ -245,39 +245,46 @@ SideCandidates candidatesOf(const PairContacts& pair, std::uint32_t side) {
           c.nx.data() + at,               c.ny.data() + at, c.nz.data() + at, c.area.data() + at};
 }
 
+// m^2, a node's share of its area projected on the contact plane: halfArea x projection, 0 where
+// the node faces away (projection <= 0, or NaN).
+inline double facingArea(double halfArea, double projection) { return halfArea * (projection > 0 ? projection : 0.0); }
+
+// The batch's contact arrays from entry `start` on, as the listing functions write them.
+struct BatchSlice {
+  std::uint32_t* __restrict key;
+  double *__restrict rx, *__restrict ry, *__restrict rz, *__restrict sign, *__restrict nx, *__restrict ny, *__restrict nz,
+      *__restrict depth, *__restrict area;
+  BatchSlice(PairBatch& b, int start)
+      : key(b.key.data() + start), rx(b.rx.data() + start), ry(b.ry.data() + start), rz(b.rz.data() + start),
+        sign(b.sign.data() + start), nx(b.nx.data() + start), ny(b.ny.data() + start), nz(b.nz.data() + start),
+        depth(b.depth.data() + start), area(b.area.data() + start) {}
+};
+
 // The candidates of a convex side found inside (index inside[k] of the candidates c, with their
 // phi and best plane) as contacts of the batch, entries start .. start+count-1: key, lever
-// r = RM p + (c_M - c_a), the sign of the force on a, the world normal of the best plane, depth
+// r = RM p + centreOffset (c_M - c_a), the sign of the force on a, the world normal of the best plane, depth
 // -phi, and area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame),
 // clipped at 0. Scalar: its loads are gathers, which on AVX-512 measured slower than this loop.
-void planeContacts(int start, int count, const Eigen::Vector3d& shift, double forceSign, const int* __restrict inside,
+void planeContacts(int start, int count, const Eigen::Vector3d& centreOffset, double forceSign, const int* __restrict inside,
                    const SideCandidates& c, const double* __restrict phi, const int* __restrict best,
                    const PlanesInFrame& planes, const Eigen::Matrix3d& RM, PairBatch& batch) {
-  std::uint32_t* __restrict key = batch.key.data() + start;
-  double *__restrict rx = batch.rx.data() + start, *__restrict ry = batch.ry.data() + start, *__restrict rz = batch.rz.data() + start;
-  double* __restrict sign = batch.sign.data() + start;
-  double *__restrict nx = batch.nx.data() + start, *__restrict ny = batch.ny.data() + start, *__restrict nz = batch.nz.data() + start;
-  double *__restrict depth = batch.depth.data() + start, *__restrict area = batch.area.data() + start;
+  const BatchSlice out(batch, start);
   const double *__restrict px = c.x, *__restrict py = c.y, *__restrict pz = c.z;
-  const double sx = shift.x(), sy = shift.y(), sz = shift.z();
+  const double sx = centreOffset.x(), sy = centreOffset.y(), sz = centreOffset.z();
   const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
                r21 = RM(2, 1), r22 = RM(2, 2);
   for (int k = 0; k < count; ++k) {
     const int i = inside[k], f = best[i];
-    key[k] = c.key[i];
-    rx[k] = (r00 * px[i] + r01 * py[i] + r02 * pz[i]) + sx;
-    ry[k] = (r10 * px[i] + r11 * py[i] + r12 * pz[i]) + sy;
-    rz[k] = (r20 * px[i] + r21 * py[i] + r22 * pz[i]) + sz;
-    sign[k] = forceSign;
-    nx[k] = planes.wx[f];
-    ny[k] = planes.wy[f];
-    nz[k] = planes.wz[f];
-    depth[k] = -phi[i];
-    const double projection = -(c.nx[i] * planes.nx[f] + c.ny[i] * planes.ny[f] + c.nz[i] * planes.nz[f]);
-    // max(0, projection) without a branch (GCC makes the select one, which mispredicts where the
-    // nodes at edges face away): projection times 0 or 1, and + 0.0 turns the -0.0 of a negative
-    // one into 0.0; the same bits as the select.
-    area[k] = 0.5 * c.area[i] * (projection * static_cast<double>(projection > 0)) + 0.0;
+    out.key[k] = c.key[i];
+    out.rx[k] = (r00 * px[i] + r01 * py[i] + r02 * pz[i]) + sx;
+    out.ry[k] = (r10 * px[i] + r11 * py[i] + r12 * pz[i]) + sy;
+    out.rz[k] = (r20 * px[i] + r21 * py[i] + r22 * pz[i]) + sz;
+    out.sign[k] = forceSign;
+    out.nx[k] = planes.wx[f];
+    out.ny[k] = planes.wy[f];
+    out.nz[k] = planes.wz[f];
+    out.depth[k] = -phi[i];
+    out.area[k] = facingArea(0.5 * c.area[i], -(c.nx[i] * planes.nx[f] + c.ny[i] * planes.ny[f] + c.nz[i] * planes.nz[f]));
   }
 }
 
@@ -303,38 +310,34 @@ void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double*
 // batch, entries start .. start+count-1: key, lever r = RO x_O + (c_O - c_M) + (c_M - c_a), the
 // sign of the force on a, the world normal RO n, depth -phi, and area: half the node's, projected
 // on the contact plane, -(RM n_i) . (RO n), clipped at 0. Scalar (gathers), as planeContacts.
-void levelSetContacts(int start, int count, const Eigen::Vector3d& shift, double forceSign, const int* __restrict inside,
-                      const SideCandidates& c, const double* __restrict ox, const double* __restrict oy,
-                      const double* __restrict oz, const double* __restrict phi, const double* __restrict gx,
-                      const double* __restrict gy, const double* __restrict gz, const Eigen::Matrix3d& RO,
-                      const Eigen::Matrix3d& RM, const Eigen::Vector3d& offset, PairBatch& batch) {
-  std::uint32_t* __restrict key = batch.key.data() + start;
-  double *__restrict rx = batch.rx.data() + start, *__restrict ry = batch.ry.data() + start, *__restrict rz = batch.rz.data() + start;
-  double* __restrict sign = batch.sign.data() + start;
-  double *__restrict nx = batch.nx.data() + start, *__restrict ny = batch.ny.data() + start, *__restrict nz = batch.nz.data() + start;
-  double *__restrict depth = batch.depth.data() + start, *__restrict area = batch.area.data() + start;
+void levelSetContacts(int start, int count, const Eigen::Vector3d& centreOffset, double forceSign,
+                      const int* __restrict inside, const SideCandidates& c, const double* __restrict ox,
+                      const double* __restrict oy, const double* __restrict oz, const double* __restrict phi,
+                      const double* __restrict gx, const double* __restrict gy, const double* __restrict gz,
+                      const Eigen::Matrix3d& RO, const Eigen::Matrix3d& RM, const Eigen::Vector3d& offset, PairBatch& batch) {
+  const BatchSlice out(batch, start);
   const double o00 = RO(0, 0), o01 = RO(0, 1), o02 = RO(0, 2), o10 = RO(1, 0), o11 = RO(1, 1), o12 = RO(1, 2), o20 = RO(2, 0),
                o21 = RO(2, 1), o22 = RO(2, 2);
   const double m00 = RM(0, 0), m01 = RM(0, 1), m02 = RM(0, 2), m10 = RM(1, 0), m11 = RM(1, 1), m12 = RM(1, 2), m20 = RM(2, 0),
                m21 = RM(2, 1), m22 = RM(2, 2);
-  const double tx = offset.x(), ty = offset.y(), tz = offset.z(), sx = shift.x(), sy = shift.y(), sz = shift.z();
+  const double tx = offset.x(), ty = offset.y(), tz = offset.z(), sx = centreOffset.x(), sy = centreOffset.y(),
+               sz = centreOffset.z();
   for (int k = 0; k < count; ++k) {
     const int i = inside[k];
-    key[k] = c.key[i];
-    rx[k] = ((o00 * ox[i] + o01 * oy[i] + o02 * oz[i]) + tx) + sx;
-    ry[k] = ((o10 * ox[i] + o11 * oy[i] + o12 * oz[i]) + ty) + sy;
-    rz[k] = ((o20 * ox[i] + o21 * oy[i] + o22 * oz[i]) + tz) + sz;
-    sign[k] = forceSign;
+    out.key[k] = c.key[i];
+    out.rx[k] = ((o00 * ox[i] + o01 * oy[i] + o02 * oz[i]) + tx) + sx;
+    out.ry[k] = ((o10 * ox[i] + o11 * oy[i] + o12 * oz[i]) + ty) + sy;
+    out.rz[k] = ((o20 * ox[i] + o21 * oy[i] + o22 * oz[i]) + tz) + sz;
+    out.sign[k] = forceSign;
     const double wx = o00 * gx[i] + o01 * gy[i] + o02 * gz[i], wy = o10 * gx[i] + o11 * gy[i] + o12 * gz[i],
                  wz = o20 * gx[i] + o21 * gy[i] + o22 * gz[i];
-    nx[k] = wx;
-    ny[k] = wy;
-    nz[k] = wz;
-    depth[k] = -phi[i];
+    out.nx[k] = wx;
+    out.ny[k] = wy;
+    out.nz[k] = wz;
+    out.depth[k] = -phi[i];
     const double mx = m00 * c.nx[i] + m01 * c.ny[i] + m02 * c.nz[i], my = m10 * c.nx[i] + m11 * c.ny[i] + m12 * c.nz[i],
                  mz = m20 * c.nx[i] + m21 * c.ny[i] + m22 * c.nz[i];
-    const double projection = -(mx * wx + my * wy + mz * wz);
-    area[k] = 0.5 * c.area[i] * (projection * static_cast<double>(projection > 0)) + 0.0;  // as in planeContacts
+    out.area[k] = facingArea(0.5 * c.area[i], -(mx * wx + my * wy + mz * wz));
   }
 }
 
@@ -363,7 +366,6 @@ PairSums sumPair(const PairBatch& batch, const NodeContacts& contacts, bool perA
   const double *__restrict atCap = batch.sliding.data(), *__restrict depth = batch.depth.data();
   const double *__restrict area = batch.area.data(), *__restrict previousArea = batch.previousArea.data();
   const double *__restrict previousEnergy = batch.previousEnergy.data(), *__restrict stored = contacts.energy.data();
-  const double perAreaFactor = perArea ? 1.0 : 0.0;
   // (Every value loaded and one select at a time: a load or a nested select under a condition is
   // control flow, which keeps the loop out of SIMD lanes.)
 #pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nx, ny, nz, wx, wy, wz, weight, elastic, friction, viscous, sliding, \
@@ -392,7 +394,7 @@ PairSums sumPair(const PairBatch& batch, const NodeContacts& contacts, bool perA
     // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
     const double a = area[i], a0 = previousArea[i], energy = stored[i];
     const double scaled = energy * (a0 / (a > 0 ? a : 1.0) - 1);
-    double removed = a0 > 0 ? perAreaFactor * scaled : 0.0;  // kept: scaled, if per area
+    double removed = a0 > 0 && perArea ? scaled : 0.0;       // kept: scaled, if per area
     removed = a0 == 0 ? -energy : removed;                    // back from a cut
     removed = a > 0 ? removed : previousEnergy[i];            // cut now
     projection += removed;
@@ -479,7 +481,7 @@ struct Accumulator {
     batch.ny[i] = normal.y();
     batch.nz[i] = normal.z();
     batch.depth[i] = depth;
-    batch.area[i] = projection > 0 ? area * projection : 0.0;
+    batch.area[i] = facingArea(area, projection);
   }
 
   // The law over the pair's contacts; their springs and forces stored in the pair.

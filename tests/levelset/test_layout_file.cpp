@@ -60,6 +60,8 @@ TEST_CASE("bad layouts are refused naming the file and the problem") {
   refused(layoutText(R"({"name": "a", "shape": "b", "position": [0, 0]})"), "array of 3 numbers");
   refused(layoutText(R"({"name": "a", "shape": "b", "position": [0, 0, 0], "colour": "red"})"), "unknown key 'colour'");
   refused(R"({"format": "tessera-layout", "version": 2})", "version: must be 1");
+  refused(R"({"format": "tessera-layout", "version": 4294967297})", "version: must be 1");  // not wrapped to 1
+  refused(layoutText(body, R"("span": {"length": 50, "interfaces": 4294967297}, )"), "from 1 to 1000000");
   refused(R"({"format": ["tessera-layout"], "version": 1})", "format: must be \"tessera-layout\"");  // found by fuzz_layout
   refused(R"({"format": "tessera-layout", "version": 1, "unit": "parsec", "shapes": {}, "bodies": []})",
           "unknown length unit 'parsec'");
