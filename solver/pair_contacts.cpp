@@ -73,21 +73,14 @@ struct PairBatch {
   }
 };
 
-// The relative velocity at contacts first .. last-1 of one side (its nodes on body M, the other
-// side O): v_M - v_O + w_M x (x - c_M) - w_O x (x - c_O) = v0 + (w_M - w_O) x r with the lever
-// r = x - c_a, v0 = v_M - v_O + w_O x (c_O - c_a) - w_M x (c_M - c_a).
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-void relativeVelocities(int first, int last, const Eigen::Vector3d& v0, const Eigen::Vector3d& spin,
-                        const double* __restrict rx, const double* __restrict ry, const double* __restrict rz,
-                        double* __restrict vx, double* __restrict vy, double* __restrict vz) {
-  const double ax = v0.x(), ay = v0.y(), az = v0.z(), wx = spin.x(), wy = spin.y(), wz = spin.z();
-#pragma omp simd
-  for (int i = first; i < last; ++i) {
-    vx[i] = ax + (wy * rz[i] - wz * ry[i]);
-    vy[i] = ay + (wz * rx[i] - wx * rz[i]);
-    vz[i] = az + (wx * ry[i] - wy * rx[i]);
-  }
-}
+// One side of a pair being collected (its nodes on body M, in the other side O): the sign of its
+// forces on body a (+1: M is a), c_M - c_a, and the terms of the relative velocity at a node,
+//   v_M - v_O + w_M x (x - c_M) - w_O x (x - c_O) = v0 + (w_M - w_O) x r,
+// with the lever r = x - c_a and v0 = v_M - v_O + w_O x (c_O - c_a) - w_M x (c_M - c_a).
+struct SideMotion {
+  double sign = 1.0;
+  Eigen::Vector3d shift, v0, spin;
+};
 
 // Points moved into another frame, x' = R x + t, n at once (SIMD).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
@@ -252,34 +245,46 @@ inline double facingArea(double halfArea, double projection) { return halfArea *
 // The batch's contact arrays from entry `start` on, as the listing functions write them.
 struct BatchSlice {
   std::uint32_t* __restrict key;
-  double *__restrict rx, *__restrict ry, *__restrict rz, *__restrict sign, *__restrict nx, *__restrict ny, *__restrict nz,
-      *__restrict depth, *__restrict area;
+  double *__restrict rx, *__restrict ry, *__restrict rz, *__restrict sign, *__restrict vx, *__restrict vy, *__restrict vz,
+      *__restrict nx, *__restrict ny, *__restrict nz, *__restrict depth, *__restrict area;
   BatchSlice(PairBatch& b, int start)
       : key(b.key.data() + start), rx(b.rx.data() + start), ry(b.ry.data() + start), rz(b.rz.data() + start),
-        sign(b.sign.data() + start), nx(b.nx.data() + start), ny(b.ny.data() + start), nz(b.nz.data() + start),
-        depth(b.depth.data() + start), area(b.area.data() + start) {}
+        sign(b.sign.data() + start), vx(b.vx.data() + start), vy(b.vy.data() + start), vz(b.vz.data() + start),
+        nx(b.nx.data() + start), ny(b.ny.data() + start), nz(b.nz.data() + start), depth(b.depth.data() + start),
+        area(b.area.data() + start) {}
+  /// Entry k's lever r = x - c_a (world), the sign of its force on a, and the relative velocity
+  /// at the node, v0 + (w_M - w_O) x r (SideMotion).
+  void setLever(int k, const SideMotion& side, double x, double y, double z) const {
+    rx[k] = x;
+    ry[k] = y;
+    rz[k] = z;
+    sign[k] = side.sign;
+    const Eigen::Vector3d &v0 = side.v0, &w = side.spin;
+    vx[k] = v0.x() + (w.y() * z - w.z() * y);
+    vy[k] = v0.y() + (w.z() * x - w.x() * z);
+    vz[k] = v0.z() + (w.x() * y - w.y() * x);
+  }
 };
 
 // The candidates of a convex side found inside (index inside[k] of the candidates c, with their
 // phi and best plane) as contacts of the batch, entries start .. start+count-1: key, lever
-// r = RM p + centreOffset (c_M - c_a), the sign of the force on a, the world normal of the best plane, depth
-// -phi, and area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame),
-// clipped at 0. Scalar: its loads are gathers, which on AVX-512 measured slower than this loop.
-void planeContacts(int start, int count, const Eigen::Vector3d& centreOffset, double forceSign, const int* __restrict inside,
+// r = RM p + (c_M - c_a), the sign of the force on a and the relative velocity (BatchSlice::setLever),
+// the world normal of the best plane, depth -phi, and area: half the node's, projected on the
+// contact plane, -n_i . n (taken in M's frame), clipped at 0. Scalar: its loads are gathers, which
+// on AVX-512 measured slower than this loop.
+void planeContacts(int start, int count, const SideMotion& side, const int* __restrict inside,
                    const SideCandidates& c, const double* __restrict phi, const int* __restrict best,
                    const PlanesInFrame& planes, const Eigen::Matrix3d& RM, PairBatch& batch) {
   const BatchSlice out(batch, start);
   const double *__restrict px = c.x, *__restrict py = c.y, *__restrict pz = c.z;
-  const double sx = centreOffset.x(), sy = centreOffset.y(), sz = centreOffset.z();
+  const double sx = side.shift.x(), sy = side.shift.y(), sz = side.shift.z();
   const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
                r21 = RM(2, 1), r22 = RM(2, 2);
   for (int k = 0; k < count; ++k) {
     const int i = inside[k], f = best[i];
     out.key[k] = c.key[i];
-    out.rx[k] = (r00 * px[i] + r01 * py[i] + r02 * pz[i]) + sx;
-    out.ry[k] = (r10 * px[i] + r11 * py[i] + r12 * pz[i]) + sy;
-    out.rz[k] = (r20 * px[i] + r21 * py[i] + r22 * pz[i]) + sz;
-    out.sign[k] = forceSign;
+    out.setLever(k, side, (r00 * px[i] + r01 * py[i] + r02 * pz[i]) + sx, (r10 * px[i] + r11 * py[i] + r12 * pz[i]) + sy,
+                 (r20 * px[i] + r21 * py[i] + r22 * pz[i]) + sz);
     out.nx[k] = planes.wx[f];
     out.ny[k] = planes.wy[f];
     out.nz[k] = planes.wz[f];
@@ -308,10 +313,9 @@ void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double*
 // The candidates of a side found inside a non-convex other side O (index inside[k] of the
 // candidates c; their positions, level set and unit normal in O's frame) as contacts of the
 // batch, entries start .. start+count-1: key, lever r = RO x_O + (c_O - c_M) + (c_M - c_a), the
-// sign of the force on a, the world normal RO n, depth -phi, and area: half the node's, projected
+// sign of the force on a and the relative velocity (BatchSlice::setLever), the world normal RO n, depth -phi, and area: half the node's, projected
 // on the contact plane, -(RM n_i) . (RO n), clipped at 0. Scalar (gathers), as planeContacts.
-void levelSetContacts(int start, int count, const Eigen::Vector3d& centreOffset, double forceSign,
-                      const int* __restrict inside, const SideCandidates& c, const double* __restrict ox,
+void levelSetContacts(int start, int count, const SideMotion& side, const int* __restrict inside, const SideCandidates& c, const double* __restrict ox,
                       const double* __restrict oy, const double* __restrict oz, const double* __restrict phi,
                       const double* __restrict gx, const double* __restrict gy, const double* __restrict gz,
                       const Eigen::Matrix3d& RO, const Eigen::Matrix3d& RM, const Eigen::Vector3d& offset, PairBatch& batch) {
@@ -320,15 +324,13 @@ void levelSetContacts(int start, int count, const Eigen::Vector3d& centreOffset,
                o21 = RO(2, 1), o22 = RO(2, 2);
   const double m00 = RM(0, 0), m01 = RM(0, 1), m02 = RM(0, 2), m10 = RM(1, 0), m11 = RM(1, 1), m12 = RM(1, 2), m20 = RM(2, 0),
                m21 = RM(2, 1), m22 = RM(2, 2);
-  const double tx = offset.x(), ty = offset.y(), tz = offset.z(), sx = centreOffset.x(), sy = centreOffset.y(),
-               sz = centreOffset.z();
+  const double tx = offset.x(), ty = offset.y(), tz = offset.z(), sx = side.shift.x(), sy = side.shift.y(),
+               sz = side.shift.z();
   for (int k = 0; k < count; ++k) {
     const int i = inside[k];
     out.key[k] = c.key[i];
-    out.rx[k] = ((o00 * ox[i] + o01 * oy[i] + o02 * oz[i]) + tx) + sx;
-    out.ry[k] = ((o10 * ox[i] + o11 * oy[i] + o12 * oz[i]) + ty) + sy;
-    out.rz[k] = ((o20 * ox[i] + o21 * oy[i] + o22 * oz[i]) + tz) + sz;
-    out.sign[k] = forceSign;
+    out.setLever(k, side, ((o00 * ox[i] + o01 * oy[i] + o02 * oz[i]) + tx) + sx, ((o10 * ox[i] + o11 * oy[i] + o12 * oz[i]) + ty) + sy,
+                 ((o20 * ox[i] + o21 * oy[i] + o22 * oz[i]) + tz) + sz);
     const double wx = o00 * gx[i] + o01 * gy[i] + o02 * gz[i], wy = o10 * gx[i] + o11 * gy[i] + o12 * gz[i],
                  wz = o20 * gx[i] + o21 * gy[i] + o22 * gz[i];
     out.nx[k] = wx;
@@ -440,20 +442,10 @@ struct Accumulator {
   Eigen::Vector3d centreA;  // m, body a's centroid
   double kn, kt;            // N/m^3, this pair's stiffnesses
   PairBatch& batch;
-  // The side being collected: its first contact, the sign of its forces on a, c_M - c_a, and the
-  // relative velocity's terms (relativeVelocities).
-  struct Side {
-    int first = 0, last = 0;
-    double sign = 1.0;
-    Eigen::Vector3d shift, v0, spin;
-  };
-  std::array<Side, 2> sides{};
-  int sideCount = 0;
+  SideMotion side{};  // the side being collected
 
   // Starts a side: the nodes of the body moving as `node` in the other side, moving as `other`.
-  Side& beginSide(const Motion& node, const Motion& other, bool nodeBodyIsA) {
-    Side& side = sides[sideCount++];
-    side.first = batch.count;
+  const SideMotion& beginSide(const Motion& node, const Motion& other, bool nodeBodyIsA) {
     side.sign = nodeBodyIsA ? 1.0 : -1.0;
     side.shift = node.position - centreA;
     side.spin = node.angularVelocity - other.angularVelocity;
@@ -461,8 +453,6 @@ struct Accumulator {
               node.angularVelocity.cross(side.shift);
     return side;
   }
-  void endSide() { sides[sideCount - 1].last = batch.count; }
-
   // One node of the side's body at r = x - c_M (world), inside the other side by depth along
   // `normal` (world, out of the other side), with its share of its node's area and the projection
   // -n_i . n of its outward normal n_i on the contact normal: its effective area is area x
@@ -470,58 +460,67 @@ struct Accumulator {
   // faces away.
   void add(std::uint32_t key, const Eigen::Vector3d& r, double projection, double area, const Eigen::Vector3d& normal,
            double depth) {
-    const Side& side = sides[sideCount - 1];
-    const int i = batch.append();
-    batch.key[i] = key;
-    batch.rx[i] = r.x() + side.shift.x();
-    batch.ry[i] = r.y() + side.shift.y();
-    batch.rz[i] = r.z() + side.shift.z();
-    batch.sign[i] = side.sign;
-    batch.nx[i] = normal.x();
-    batch.ny[i] = normal.y();
-    batch.nz[i] = normal.z();
-    batch.depth[i] = depth;
-    batch.area[i] = facingArea(area, projection);
+    const BatchSlice out(batch, batch.append());
+    out.key[0] = key;
+    out.setLever(0, side, r.x() + side.shift.x(), r.y() + side.shift.y(), r.z() + side.shift.z());
+    out.nx[0] = normal.x();
+    out.ny[0] = normal.y();
+    out.nz[0] = normal.z();
+    out.depth[0] = depth;
+    out.area[0] = facingArea(area, projection);
   }
 
-  // The law over the pair's contacts; their springs and forces stored in the pair.
-  void finish() {
-    const int n = batch.count;
+  // Each contact's spring, and its area and energy before this step, from the previous
+  // evaluation's contacts (pair.previous; new contacts: no spring, area -1). Most steps a pair's
+  // node contacts are the same as before: then the previous arrays become the contacts' as they
+  // are (the law updates the springs in place). Otherwise the two key-sorted lists are merged:
+  // `before` stays on an entry (the last at most), so that every load is made and `found` only
+  // selects, no branch but the merge's own.
+  void takeHistory(int n) {
+    const NodeContacts& previous = pair.previous;
+    const std::uint32_t* key = batch.key.data();
+    if (!previous.empty() && previous.size() == static_cast<std::size_t>(n) && std::equal(key, key + n, previous.key.data())) {
+      std::swap(pair.contacts, pair.previous);
+      NodeContacts& contacts = pair.contacts;
+      std::copy_n(contacts.area.data(), n, batch.previousArea.data());
+      std::copy_n(contacts.energy.data(), n, batch.previousEnergy.data());
+      std::copy_n(batch.area.data(), n, contacts.area.data());
+      return;
+    }
     NodeContacts& contacts = pair.contacts;
     contacts.resize(static_cast<std::size_t>(n));
-    std::copy_n(batch.key.data(), n, contacts.key.data());
+    std::copy_n(key, n, contacts.key.data());
     std::copy_n(batch.area.data(), n, contacts.area.data());
-    // Each contact's spring from the previous step, by merging the two key-sorted lists. `before`
-    // stays on an entry (the last at most), so that every load is made and `found` only selects:
-    // no branch but the merge's own.
-    const NodeContacts& previous = pair.previous;
     if (previous.empty()) {
       std::fill_n(contacts.springX.data(), n, 0.0);
       std::fill_n(contacts.springY.data(), n, 0.0);
       std::fill_n(contacts.springZ.data(), n, 0.0);
       std::fill_n(batch.previousArea.data(), n, -1.0);
       std::fill_n(batch.previousEnergy.data(), n, 0.0);
-    } else {
-      const std::size_t last = previous.size() - 1;
-      const std::uint32_t* __restrict keyBefore = previous.key.data();
-      const double *__restrict sx = previous.springX.data(), *__restrict sy = previous.springY.data(),
-                   *__restrict sz = previous.springZ.data(), *__restrict areaBefore = previous.area.data(),
-                   *__restrict energyBefore = previous.energy.data();
-      std::size_t before = 0;
-      for (int i = 0; i < n; ++i) {
-        const std::uint32_t key = batch.key[i];
-        while (before < last && keyBefore[before] < key) ++before;
-        const bool found = keyBefore[before] == key;
-        contacts.springX[i] = found ? sx[before] : 0.0;
-        contacts.springY[i] = found ? sy[before] : 0.0;
-        contacts.springZ[i] = found ? sz[before] : 0.0;
-        batch.previousArea[i] = found ? areaBefore[before] : -1.0;
-        batch.previousEnergy[i] = found ? energyBefore[before] : 0.0;
-      }
+      return;
     }
-    for (int k = 0; k < sideCount; ++k)
-      relativeVelocities(sides[k].first, sides[k].last, sides[k].v0, sides[k].spin, batch.rx.data(), batch.ry.data(),
-                         batch.rz.data(), batch.vx.data(), batch.vy.data(), batch.vz.data());
+    const std::size_t last = previous.size() - 1;
+    const std::uint32_t* __restrict keyBefore = previous.key.data();
+    const double *__restrict sx = previous.springX.data(), *__restrict sy = previous.springY.data(),
+                 *__restrict sz = previous.springZ.data(), *__restrict areaBefore = previous.area.data(),
+                 *__restrict energyBefore = previous.energy.data();
+    std::size_t before = 0;
+    for (int i = 0; i < n; ++i) {
+      while (before < last && keyBefore[before] < key[i]) ++before;
+      const bool found = keyBefore[before] == key[i];
+      contacts.springX[i] = found ? sx[before] : 0.0;
+      contacts.springY[i] = found ? sy[before] : 0.0;
+      contacts.springZ[i] = found ? sz[before] : 0.0;
+      batch.previousArea[i] = found ? areaBefore[before] : -1.0;
+      batch.previousEnergy[i] = found ? energyBefore[before] : 0.0;
+    }
+  }
+
+  // The law over the pair's contacts; their springs and forces stored in the pair.
+  void finish() {
+    const int n = batch.count;
+    takeHistory(n);
+    NodeContacts& contacts = pair.contacts;
     applyContactLaw(scene.parameters, kn, kt, scene.dt, batch.law(contacts));
     const PairSums sums = sumPair(batch, contacts, scene.parameters.perNodeStiffness <= 0);
 
@@ -563,7 +562,7 @@ void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::ui
 // The contacts of one side's candidates in a convex other side: every candidate's phi at once
 // (SIMD), the ones inside listed without branches, and their contacts added to the batch.
 void convexSideContacts(PairContacts& pair, std::uint32_t side, const PlanesInFrame& planes, const Eigen::Matrix3d& RM,
-                        const Accumulator::Side& sideInfo, Scratch& scratch) {
+                        const SideMotion& sideInfo, Scratch& scratch) {
   const SideCandidates c = candidatesOf(pair, side);
   scratch.reserve(c.n);
   double* phi = scratch.phi.data();
@@ -571,7 +570,7 @@ void convexSideContacts(PairContacts& pair, std::uint32_t side, const PlanesInFr
   planesPhi(planes, c.n, c.x, c.y, c.z, phi, best);
   pair.evaluations += c.n;
   const int count = listInside(c.n, phi, inside);
-  planeContacts(scratch.batch.grow(count), count, sideInfo.shift, sideInfo.sign, inside, c, phi, best, planes, RM,
+  planeContacts(scratch.batch.grow(count), count, sideInfo, inside, c, phi, best, planes, RM,
                 scratch.batch);
 }
 
@@ -582,7 +581,7 @@ void convexSideContacts(PairContacts& pair, std::uint32_t side, const PlanesInFr
 // has one; and their contacts. `toO`, `shift`: O's frame from M's; `offset` = c_O - c_M.
 void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeModel& so, const Eigen::Matrix3d& toO,
                           const Eigen::Vector3d& shift, const Eigen::Matrix3d& RM, const Eigen::Matrix3d& RO,
-                          const Eigen::Vector3d& offset, const Accumulator::Side& sideInfo, Scratch& scratch) {
+                          const Eigen::Vector3d& offset, const SideMotion& sideInfo, Scratch& scratch) {
   const SideCandidates c = candidatesOf(pair, side);
   const int n = c.n;
   scratch.reserve(n);
@@ -622,7 +621,7 @@ void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeMod
     }
   }
   const int count = listInside(n, phi, inside);
-  levelSetContacts(scratch.batch.grow(count), count, sideInfo.shift, sideInfo.sign, inside, c, ox, oy, oz, phi, gx, gy, gz,
+  levelSetContacts(scratch.batch.grow(count), count, sideInfo, inside, c, ox, oy, oz, phi, gx, gy, gz,
                    RO, RM, offset, scratch.batch);
 }
 
@@ -675,8 +674,7 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
     if (phi < 0) acc.add(key, r, -(RM * sm.nodes.normal[key]).dot(normal), sm.nodes.area[key], normal, -phi);
     return phi;
   });
-  acc.endSide();
-  acc.finish();
+    acc.finish();
 }
 
 }  // namespace
@@ -722,7 +720,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
       region.min().array() -= scene.candidateBand;
       region.max().array() += scene.candidateBand;
     }
-    const Accumulator::Side& sideInfo = acc.beginSide(node, other, side == 0);
+    const SideMotion& sideInfo = acc.beginSide(node, other, side == 0);
     if (!so.planes.empty()) {
       // A convex other side: its planes moved into M's frame once, n' = toO^T n, d' = d - n . shift,
       // so that a candidate is tested as it is: phi = max_f (n'_f . p - d'_f).
@@ -746,8 +744,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
         });
       levelSetSideContacts(pair, side, so, toO, shift, RM, RO, other.position - node.position, sideInfo, scratch);
     }
-    acc.endSide();
-  }
+      }
   acc.finish();
 }
 

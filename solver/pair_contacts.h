@@ -131,7 +131,10 @@ enum class PairKind : std::uint8_t { Bodies, Sphere, Plane };
 struct PairContacts {
   int a = -1, b = -1;
   PairKind kind = PairKind::Bodies;  ///< pairKind(b, spheres)
-  NodeContacts contacts, previous;  ///< of the last evaluation, and of the one before (its history)
+  NodeContacts contacts;  ///< of the last evaluation
+  /// During an evaluation, the contacts of the one before (their history); between evaluations,
+  /// spare arrays (no allocation per step).
+  NodeContacts previous;
   /// The nodes within the candidate band of the other side when the candidates were last built;
   /// only these can touch until the two sides have moved by candidateMotion() >= band / sqrt(3)
   /// relative to each other (then they are built again).
