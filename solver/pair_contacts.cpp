@@ -182,33 +182,6 @@ using LaneMask = long long __attribute__((vector_size(32)));
 using LaneInt = int __attribute__((vector_size(16)));
 constexpr int kLanes = 4;
 
-// PlanesInFrame::phi of n points at once, as it (the first plane of largest value is the best):
-// four points in SIMD lanes, their values and best planes kept in registers across the planes;
-// the last n mod 4 points one at a time.
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-void planesPhi(const PlanesInFrame& planes, int n, const double* __restrict px, const double* __restrict py,
-               const double* __restrict pz, double* __restrict phi, int* __restrict best) {
-  int i = 0;
-  for (; i + kLanes <= n; i += kLanes) {
-    Lanes x, y, z;
-    std::memcpy(&x, px + i, sizeof x);
-    std::memcpy(&y, py + i, sizeof y);
-    std::memcpy(&z, pz + i, sizeof z);
-    Lanes value = planes.nx[0] * x + planes.ny[0] * y + planes.nz[0] * z - planes.offset[0];
-    LaneMask plane = {};
-    for (int f = 1; f < planes.count; ++f) {
-      const Lanes v = planes.nx[f] * x + planes.ny[f] * y + planes.nz[f] * z - planes.offset[f];
-      const LaneMask higher = v > value;
-      plane = higher ? LaneMask{} + f : plane;
-      value = higher ? v : value;
-    }
-    std::memcpy(phi + i, &value, sizeof value);
-    const LaneInt plane32 = __builtin_convertvector(plane, LaneInt);
-    std::memcpy(best + i, &plane32, sizeof plane32);
-  }
-  for (; i < n; ++i) phi[i] = planes.phi(Eigen::Vector3d(px[i], py[i], pz[i]), best[i]);
-}
-
 // The indices i < n with phi[i] < 0 (inside), listed in order without branches; their count.
 int listInside(int n, const double* __restrict phi, int* __restrict inside) {
   int count = 0;
@@ -266,31 +239,130 @@ struct BatchSlice {
   }
 };
 
-// The candidates of a convex side found inside (index inside[k] of the candidates c, with their
-// phi and best plane) as contacts of the batch, entries start .. start+count-1: key, lever
-// r = RM p + (c_M - c_a), the sign of the force on a and the relative velocity (BatchSlice::setLever),
-// the world normal of the best plane, depth -phi, and area: half the node's, projected on the
-// contact plane, -n_i . n (taken in M's frame), clipped at 0. Scalar: its loads are gathers, which
-// on AVX-512 measured slower than this loop.
-void planeContacts(int start, int count, const SideMotion& side, const int* __restrict inside,
-                   const SideCandidates& c, const double* __restrict phi, const int* __restrict best,
-                   const PlanesInFrame& planes, const Eigen::Matrix3d& RM, PairBatch& batch) {
+// Lane compaction without branches: for the mask of a block of four lanes (bit j: lane j is kept),
+// the lane order that moves the kept lanes to the front, in order (the others follow, unused), as
+// the 32-bit word indices of a Lanes (two words a lane) and of four 32-bit keys.
+using Words = int __attribute__((vector_size(32)));
+using Keys = std::uint32_t __attribute__((vector_size(16)));
+using KeyOrder = std::int32_t __attribute__((vector_size(16)));
+struct Compaction {
+  int words[16][8];
+  int keys[16][kLanes];
+  constexpr Compaction() : words{}, keys{} {
+    for (int mask = 0; mask < 16; ++mask) {
+      int kept = 0;
+      for (int lane = 0; lane < kLanes; ++lane)
+        if (mask >> lane & 1) {
+          words[mask][2 * kept] = 2 * lane;
+          words[mask][2 * kept + 1] = 2 * lane + 1;
+          keys[mask][kept++] = lane;
+        }
+    }
+  }
+};
+constexpr Compaction kCompaction;
+
+// The kept lanes of v (Compaction order `order`) stored from `to` on: four doubles are written,
+// the first popcount(mask) of them meaningful.
+__attribute__((always_inline)) inline void storeKept(const Lanes& v, const Words& order, double* to) {
+  const Lanes kept = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(v), order));
+  std::memcpy(to, &kept, sizeof kept);
+}
+
+// The contacts of one side's candidates c in a convex other side, listed into the batch from
+// entry `start` on; their count. In one pass, four candidates at a time (SIMD lanes):
+// phi = max_f (n'_f . p - d'_f) as PlanesInFrame::phi (the first plane of largest value is the
+// best; phi and the best plane's normals kept in registers across the planes), and for the candidates
+// inside (phi < 0), packed to the front of the lanes without branches: key, lever
+// r = RM p + (c_M - c_a), the sign of the force on a and the relative velocity
+// (BatchSlice::setLever, same operations), the world normal of the best plane, depth -phi, and
+// area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame), clipped at
+// 0 (facingArea). The batch must have room for four entries past the last candidate (the
+// packed stores write whole blocks). The last n mod 4 candidates go through a padded block.
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& planes, const SideMotion& side,
+                   const Eigen::Matrix3d& RM, PairBatch& batch) {
   const BatchSlice out(batch, start);
-  const double *__restrict px = c.x, *__restrict py = c.y, *__restrict pz = c.z;
-  const double sx = side.shift.x(), sy = side.shift.y(), sz = side.shift.z();
+  const double sx = side.shift.x(), sy = side.shift.y(), sz = side.shift.z(), sign = side.sign;
+  const double ax = side.v0.x(), ay = side.v0.y(), az = side.v0.z(), wx = side.spin.x(), wy = side.spin.y(),
+               wz = side.spin.z();
   const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
                r21 = RM(2, 1), r22 = RM(2, 2);
-  for (int k = 0; k < count; ++k) {
-    const int i = inside[k], f = best[i];
-    out.key[k] = c.key[i];
-    out.setLever(k, side, (r00 * px[i] + r01 * py[i] + r02 * pz[i]) + sx, (r10 * px[i] + r11 * py[i] + r12 * pz[i]) + sy,
-                 (r20 * px[i] + r21 * py[i] + r22 * pz[i]) + sz);
-    out.nx[k] = planes.wx[f];
-    out.ny[k] = planes.wy[f];
-    out.nz[k] = planes.wz[f];
-    out.depth[k] = -phi[i];
-    out.area[k] = facingArea(0.5 * c.area[i], -(c.nx[i] * planes.nx[f] + c.ny[i] * planes.ny[f] + c.nz[i] * planes.nz[f]));
+  const Lanes signs = Lanes{} + sign;
+  // The last block's candidates, padded with points that are never inside (NaN: every
+  // comparison false).
+  double tail[7][kLanes];
+  Keys tailKeys = {};
+  const int full = c.n - c.n % kLanes;
+  if (full < c.n) {
+    const double* from[7] = {c.x, c.y, c.z, c.nx, c.ny, c.nz, c.area};
+    for (int a = 0; a < 7; ++a)
+      for (int lane = 0; lane < kLanes; ++lane) tail[a][lane] = full + lane < c.n ? from[a][full + lane] : NAN;
+    for (int lane = 0; full + lane < c.n; ++lane) tailKeys[lane] = c.key[full + lane];
   }
+  int count = 0;
+  for (int i = 0; i < c.n; i += kLanes) {
+    const bool padded = i == full;
+    const auto load = [&](Lanes& v, const double* array, int a) {
+      std::memcpy(&v, padded ? tail[a] : array + i, sizeof v);
+    };
+    Lanes x, y, z;
+    load(x, c.x, 0);
+    load(y, c.y, 1);
+    load(z, c.z, 2);
+    Lanes value = planes.nx[0] * x + planes.ny[0] * y + planes.nz[0] * z - planes.offset[0];
+    Lanes nnx = Lanes{} + planes.nx[0], nny = Lanes{} + planes.ny[0], nnz = Lanes{} + planes.nz[0];
+    Lanes nwx = Lanes{} + planes.wx[0], nwy = Lanes{} + planes.wy[0], nwz = Lanes{} + planes.wz[0];
+    for (int f = 1; f < planes.count; ++f) {
+      const Lanes v = planes.nx[f] * x + planes.ny[f] * y + planes.nz[f] * z - planes.offset[f];
+      const LaneMask higher = v > value;
+      value = higher ? v : value;
+      nnx = higher ? planes.nx[f] : nnx;
+      nny = higher ? planes.ny[f] : nny;
+      nnz = higher ? planes.nz[f] : nnz;
+      nwx = higher ? planes.wx[f] : nwx;
+      nwy = higher ? planes.wy[f] : nwy;
+      nwz = higher ? planes.wz[f] : nwz;
+    }
+    const LaneMask inside = value < 0;
+    const int mask = static_cast<int>((inside[0] & 1) | (inside[1] & 2) | (inside[2] & 4) | (inside[3] & 8));
+    if (mask == 0) continue;
+    Words order;
+    std::memcpy(&order, kCompaction.words[mask], sizeof order);
+    const Lanes rx = (r00 * x + r01 * y + r02 * z) + sx, ry = (r10 * x + r11 * y + r12 * z) + sy,
+                rz = (r20 * x + r21 * y + r22 * z) + sz;
+    const Lanes vx = ax + (wy * rz - wz * ry), vy = ay + (wz * rx - wx * rz), vz = az + (wx * ry - wy * rx);
+    Lanes nx, ny, nz, nodeArea;
+    load(nx, c.nx, 3);
+    load(ny, c.ny, 4);
+    load(nz, c.nz, 5);
+    load(nodeArea, c.area, 6);
+    const Lanes projection = -(nx * nnx + ny * nny + nz * nnz);
+    const Lanes area = (0.5 * nodeArea) * (projection > 0 ? projection : Lanes{});
+    storeKept(rx, order, out.rx + count);
+    storeKept(ry, order, out.ry + count);
+    storeKept(rz, order, out.rz + count);
+    storeKept(vx, order, out.vx + count);
+    storeKept(vy, order, out.vy + count);
+    storeKept(vz, order, out.vz + count);
+    storeKept(nwx, order, out.nx + count);
+    storeKept(nwy, order, out.ny + count);
+    storeKept(nwz, order, out.nz + count);
+    storeKept(-value, order, out.depth + count);
+    storeKept(area, order, out.area + count);
+    std::memcpy(out.sign + count, &signs, sizeof signs);
+    Keys keys;
+    if (padded)
+      keys = tailKeys;
+    else
+      std::memcpy(&keys, c.key + i, sizeof keys);
+    KeyOrder keyOrder;
+    std::memcpy(&keyOrder, kCompaction.keys[mask], sizeof keyOrder);
+    const Keys kept = __builtin_shuffle(keys, keyOrder);
+    std::memcpy(out.key + count, &kept, sizeof kept);
+    count += __builtin_popcount(static_cast<unsigned>(mask));
+  }
+  return count;
 }
 
 // ShapeModel::gridLevelSet of n points at once (SIMD), in place, from their grid values and
@@ -315,10 +387,11 @@ void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double*
 // batch, entries start .. start+count-1: key, lever r = RO x_O + (c_O - c_M) + (c_M - c_a), the
 // sign of the force on a and the relative velocity (BatchSlice::setLever), the world normal RO n, depth -phi, and area: half the node's, projected
 // on the contact plane, -(RM n_i) . (RO n), clipped at 0. Scalar (gathers), as planeContacts.
-void levelSetContacts(int start, int count, const SideMotion& side, const int* __restrict inside, const SideCandidates& c, const double* __restrict ox,
+void levelSetContacts(int start, int count, const SideMotion& sideMotion, const int* __restrict inside, const SideCandidates& c, const double* __restrict ox,
                       const double* __restrict oy, const double* __restrict oz, const double* __restrict phi,
                       const double* __restrict gx, const double* __restrict gy, const double* __restrict gz,
                       const Eigen::Matrix3d& RO, const Eigen::Matrix3d& RM, const Eigen::Vector3d& offset, PairBatch& batch) {
+  const SideMotion side = sideMotion;  // a local copy, as in planeContacts
   const BatchSlice out(batch, start);
   const double o00 = RO(0, 0), o01 = RO(0, 1), o02 = RO(0, 2), o10 = RO(1, 0), o11 = RO(1, 1), o12 = RO(1, 2), o20 = RO(2, 0),
                o21 = RO(2, 1), o22 = RO(2, 2);
@@ -423,11 +496,11 @@ struct Scratch {
   // indices of those inside (or near), their positions in the other side's frame, and there the
   // grid's gradient direction (then the level set's unit normal).
   std::vector<double> phi, ox, oy, oz, gx, gy, gz;
-  std::vector<int> best, inside;
+  std::vector<int> inside;
   void reserve(int n) {
     if (static_cast<int>(phi.size()) >= n) return;
     for (auto* v : {&phi, &ox, &oy, &oz, &gx, &gy, &gz}) v->resize(static_cast<std::size_t>(n));
-    for (auto* v : {&best, &inside}) v->resize(static_cast<std::size_t>(n));
+    inside.resize(static_cast<std::size_t>(n));
   }
 };
 thread_local Scratch threadScratch;
@@ -559,19 +632,13 @@ void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::ui
   for (int i = 0; i < c.n; ++i) test(c.key[i]);
 }
 
-// The contacts of one side's candidates in a convex other side: every candidate's phi at once
-// (SIMD), the ones inside listed without branches, and their contacts added to the batch.
+// The contacts of one side's candidates in a convex other side (convexContacts), added to the batch.
 void convexSideContacts(PairContacts& pair, std::uint32_t side, const PlanesInFrame& planes, const Eigen::Matrix3d& RM,
-                        const SideMotion& sideInfo, Scratch& scratch) {
+                        const SideMotion& sideInfo, PairBatch& batch) {
   const SideCandidates c = candidatesOf(pair, side);
-  scratch.reserve(c.n);
-  double* phi = scratch.phi.data();
-  int *best = scratch.best.data(), *inside = scratch.inside.data();
-  planesPhi(planes, c.n, c.x, c.y, c.z, phi, best);
   pair.evaluations += c.n;
-  const int count = listInside(c.n, phi, inside);
-  planeContacts(scratch.batch.grow(count), count, sideInfo, inside, c, phi, best, planes, RM,
-                scratch.batch);
+  batch.reserve(batch.count + c.n + kLanes);
+  batch.count += convexContacts(batch.count, c, planes, sideInfo, RM, batch);
 }
 
 // The contacts of one side's candidates in a non-convex other side O (its exact mesh or grid level
@@ -734,7 +801,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
           int best;
           return planes.phi(sm.nodes.position[key & kRankMask], best);
         });
-      convexSideContacts(pair, side, planes, RM, sideInfo, scratch);
+      convexSideContacts(pair, side, planes, RM, sideInfo, scratch.batch);
     } else {
       // As for a convex side: the candidates first (if rebuilt), then the level set of all of them.
       if (rebuild)
