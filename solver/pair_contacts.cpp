@@ -179,18 +179,7 @@ struct PlanesInFrame {
 // below to scalar code.)
 using Lanes = double __attribute__((vector_size(32)));
 using LaneMask = long long __attribute__((vector_size(32)));
-using LaneInt = int __attribute__((vector_size(16)));
 constexpr int kLanes = 4;
-
-// The indices i < n with phi[i] < 0 (inside), listed in order without branches; their count.
-int listInside(int n, const double* __restrict phi, int* __restrict inside) {
-  int count = 0;
-  for (int i = 0; i < n; ++i) {
-    inside[count] = i;
-    count += phi[i] < 0;
-  }
-  return count;
-}
 
 // The candidates of one side of a pair (keys side << 31 | rank): n of them, each array from the
 // side's first.
@@ -262,57 +251,123 @@ struct Compaction {
 };
 constexpr Compaction kCompaction;
 
-// The kept lanes of v (Compaction order `order`) stored from `to` on: four doubles are written,
-// the first popcount(mask) of them meaningful.
-__attribute__((always_inline)) inline void storeKept(const Lanes& v, const Words& order, double* to) {
-  const Lanes kept = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(v), order));
-  std::memcpy(to, &kept, sizeof kept);
+// A side's candidates four at a time (SIMD lanes): a block starting at i (a multiple of four)
+// read from the candidate arrays, the last, incomplete one from a copy padded with NaN (every
+// comparison false: never inside) and key 0.
+struct CandidateLanes {
+  enum Field { X, Y, Z, NX, NY, NZ, Area };
+  const SideCandidates& c;
+  int full;  // the candidates in complete blocks
+  double tail[7][kLanes];
+  Keys tailKeys = {};
+
+  explicit CandidateLanes(const SideCandidates& candidates) : c(candidates), full(c.n - c.n % kLanes) {
+    for (int f = X; f <= Area; ++f)
+      for (int lane = 0; lane < kLanes; ++lane)
+        tail[f][lane] = full + lane < c.n ? array(static_cast<Field>(f))[full + lane] : NAN;
+    for (int lane = 0; full + lane < c.n; ++lane) tailKeys[lane] = c.key[full + lane];
+  }
+  const double* array(Field f) const {
+    switch (f) {
+      case X: return c.x;
+      case Y: return c.y;
+      case Z: return c.z;
+      case NX: return c.nx;
+      case NY: return c.ny;
+      case NZ: return c.nz;
+      case Area: break;
+    }
+    return c.area;
+  }
+  void load(Lanes& v, Field f, int i) const { std::memcpy(&v, i == full ? tail[f] : array(f) + i, sizeof v); }
+  void loadKeys(Keys& keys, int i) const {
+    if (i == full)
+      keys = tailKeys;
+    else
+      std::memcpy(&keys, c.key + i, sizeof keys);
+  }
+};
+
+// The lane mask of a block's lanes (bit j: lane j is true).
+inline int laneBits(const LaneMask& m) {
+  return static_cast<int>((m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8));
+}
+
+// Four node contacts (or none, lane by lane) as the listings compute them.
+struct ContactLanes {
+  Lanes rx, ry, rz, vx, vy, vz, nx, ny, nz, depth, area;
+  Keys key;
+};
+
+// The lanes of `mask` (laneBits) of a block of contacts, packed to the front and stored in the
+// batch from entry `count` on, with the sign of their force on a; the new count. Whole blocks
+// are stored: the batch needs room for four entries past the last contact.
+__attribute__((always_inline)) inline int storeKept(const ContactLanes& block, int mask, const Lanes& signs,
+                                                    const BatchSlice& out, int count) {
+  Words order;
+  std::memcpy(&order, kCompaction.words[mask], sizeof order);
+  const auto store = [&](const Lanes& v, double* to) {
+    const Lanes kept = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(v), order));
+    std::memcpy(to + count, &kept, sizeof kept);
+  };
+  store(block.rx, out.rx);
+  store(block.ry, out.ry);
+  store(block.rz, out.rz);
+  store(block.vx, out.vx);
+  store(block.vy, out.vy);
+  store(block.vz, out.vz);
+  store(block.nx, out.nx);
+  store(block.ny, out.ny);
+  store(block.nz, out.nz);
+  store(block.depth, out.depth);
+  store(block.area, out.area);
+  std::memcpy(out.sign + count, &signs, sizeof signs);
+  KeyOrder keyOrder;
+  std::memcpy(&keyOrder, kCompaction.keys[mask], sizeof keyOrder);
+  const Keys kept = __builtin_shuffle(block.key, keyOrder);
+  std::memcpy(out.key + count, &kept, sizeof kept);
+  return count + __builtin_popcount(static_cast<unsigned>(mask));
+}
+
+// The relative velocity at levers r (BatchSlice::setLever, same operations).
+__attribute__((always_inline)) inline void laneVelocities(const SideMotion& side, ContactLanes& b) {
+  const double ax = side.v0.x(), ay = side.v0.y(), az = side.v0.z();
+  const double wx = side.spin.x(), wy = side.spin.y(), wz = side.spin.z();
+  b.vx = ax + (wy * b.rz - wz * b.ry);
+  b.vy = ay + (wz * b.rx - wx * b.rz);
+  b.vz = az + (wx * b.ry - wy * b.rx);
 }
 
 // The contacts of one side's candidates c in a convex other side, listed into the batch from
-// entry `start` on; their count. In one pass, four candidates at a time (SIMD lanes):
+// entry `start` on; their count. In one pass, four candidates at a time (CandidateLanes):
 // phi = max_f (n'_f . p - d'_f) as PlanesInFrame::phi (the first plane of largest value is the
-// best; phi and the best plane's normals kept in registers across the planes), and for the candidates
-// inside (phi < 0), packed to the front of the lanes without branches: key, lever
-// r = RM p + (c_M - c_a), the sign of the force on a and the relative velocity
+// best; phi and the best plane's normals kept in registers across the planes), and for the
+// candidates inside (phi < 0), packed to the front of the lanes without branches (storeKept):
+// key, lever r = RM p + (c_M - c_a), the sign of the force on a and the relative velocity
 // (BatchSlice::setLever, same operations), the world normal of the best plane, depth -phi, and
 // area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame), clipped at
-// 0 (facingArea). The batch must have room for four entries past the last candidate (the
-// packed stores write whole blocks). The last n mod 4 candidates go through a padded block.
+// 0 (facingArea). The batch needs room for four entries past the last candidate.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& planes, const SideMotion& side,
                    const Eigen::Matrix3d& RM, PairBatch& batch) {
   const BatchSlice out(batch, start);
-  const double sx = side.shift.x(), sy = side.shift.y(), sz = side.shift.z(), sign = side.sign;
-  const double ax = side.v0.x(), ay = side.v0.y(), az = side.v0.z(), wx = side.spin.x(), wy = side.spin.y(),
-               wz = side.spin.z();
+  const double sx = side.shift.x(), sy = side.shift.y(), sz = side.shift.z();
   const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
                r21 = RM(2, 1), r22 = RM(2, 2);
-  const Lanes signs = Lanes{} + sign;
-  // The last block's candidates, padded with points that are never inside (NaN: every
-  // comparison false).
-  double tail[7][kLanes];
-  Keys tailKeys = {};
-  const int full = c.n - c.n % kLanes;
-  if (full < c.n) {
-    const double* from[7] = {c.x, c.y, c.z, c.nx, c.ny, c.nz, c.area};
-    for (int a = 0; a < 7; ++a)
-      for (int lane = 0; lane < kLanes; ++lane) tail[a][lane] = full + lane < c.n ? from[a][full + lane] : NAN;
-    for (int lane = 0; full + lane < c.n; ++lane) tailKeys[lane] = c.key[full + lane];
-  }
+  const Lanes signs = Lanes{} + side.sign;
+  const CandidateLanes lanes(c);
   int count = 0;
   for (int i = 0; i < c.n; i += kLanes) {
-    const bool padded = i == full;
-    const auto load = [&](Lanes& v, const double* array, int a) {
-      std::memcpy(&v, padded ? tail[a] : array + i, sizeof v);
-    };
     Lanes x, y, z;
-    load(x, c.x, 0);
-    load(y, c.y, 1);
-    load(z, c.z, 2);
+    lanes.load(x, CandidateLanes::X, i);
+    lanes.load(y, CandidateLanes::Y, i);
+    lanes.load(z, CandidateLanes::Z, i);
     Lanes value = planes.nx[0] * x + planes.ny[0] * y + planes.nz[0] * z - planes.offset[0];
     Lanes nnx = Lanes{} + planes.nx[0], nny = Lanes{} + planes.ny[0], nnz = Lanes{} + planes.nz[0];
-    Lanes nwx = Lanes{} + planes.wx[0], nwy = Lanes{} + planes.wy[0], nwz = Lanes{} + planes.wz[0];
+    ContactLanes b;
+    b.nx = Lanes{} + planes.wx[0];
+    b.ny = Lanes{} + planes.wy[0];
+    b.nz = Lanes{} + planes.wz[0];
     for (int f = 1; f < planes.count; ++f) {
       const Lanes v = planes.nx[f] * x + planes.ny[f] * y + planes.nz[f] * z - planes.offset[f];
       const LaneMask higher = v > value;
@@ -320,47 +375,26 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
       nnx = higher ? planes.nx[f] : nnx;
       nny = higher ? planes.ny[f] : nny;
       nnz = higher ? planes.nz[f] : nnz;
-      nwx = higher ? planes.wx[f] : nwx;
-      nwy = higher ? planes.wy[f] : nwy;
-      nwz = higher ? planes.wz[f] : nwz;
+      b.nx = higher ? planes.wx[f] : b.nx;
+      b.ny = higher ? planes.wy[f] : b.ny;
+      b.nz = higher ? planes.wz[f] : b.nz;
     }
-    const LaneMask inside = value < 0;
-    const int mask = static_cast<int>((inside[0] & 1) | (inside[1] & 2) | (inside[2] & 4) | (inside[3] & 8));
+    const int mask = laneBits(value < 0);
     if (mask == 0) continue;
-    Words order;
-    std::memcpy(&order, kCompaction.words[mask], sizeof order);
-    const Lanes rx = (r00 * x + r01 * y + r02 * z) + sx, ry = (r10 * x + r11 * y + r12 * z) + sy,
-                rz = (r20 * x + r21 * y + r22 * z) + sz;
-    const Lanes vx = ax + (wy * rz - wz * ry), vy = ay + (wz * rx - wx * rz), vz = az + (wx * ry - wy * rx);
+    b.rx = (r00 * x + r01 * y + r02 * z) + sx;
+    b.ry = (r10 * x + r11 * y + r12 * z) + sy;
+    b.rz = (r20 * x + r21 * y + r22 * z) + sz;
+    laneVelocities(side, b);
+    b.depth = -value;
     Lanes nx, ny, nz, nodeArea;
-    load(nx, c.nx, 3);
-    load(ny, c.ny, 4);
-    load(nz, c.nz, 5);
-    load(nodeArea, c.area, 6);
+    lanes.load(nx, CandidateLanes::NX, i);
+    lanes.load(ny, CandidateLanes::NY, i);
+    lanes.load(nz, CandidateLanes::NZ, i);
+    lanes.load(nodeArea, CandidateLanes::Area, i);
     const Lanes projection = -(nx * nnx + ny * nny + nz * nnz);
-    const Lanes area = (0.5 * nodeArea) * (projection > 0 ? projection : Lanes{});
-    storeKept(rx, order, out.rx + count);
-    storeKept(ry, order, out.ry + count);
-    storeKept(rz, order, out.rz + count);
-    storeKept(vx, order, out.vx + count);
-    storeKept(vy, order, out.vy + count);
-    storeKept(vz, order, out.vz + count);
-    storeKept(nwx, order, out.nx + count);
-    storeKept(nwy, order, out.ny + count);
-    storeKept(nwz, order, out.nz + count);
-    storeKept(-value, order, out.depth + count);
-    storeKept(area, order, out.area + count);
-    std::memcpy(out.sign + count, &signs, sizeof signs);
-    Keys keys;
-    if (padded)
-      keys = tailKeys;
-    else
-      std::memcpy(&keys, c.key + i, sizeof keys);
-    KeyOrder keyOrder;
-    std::memcpy(&keyOrder, kCompaction.keys[mask], sizeof keyOrder);
-    const Keys kept = __builtin_shuffle(keys, keyOrder);
-    std::memcpy(out.key + count, &kept, sizeof kept);
-    count += __builtin_popcount(static_cast<unsigned>(mask));
+    b.area = (0.5 * nodeArea) * (projection > 0 ? projection : Lanes{});
+    lanes.loadKeys(b.key, i);
+    count = storeKept(b, mask, signs, out, count);
   }
   return count;
 }
@@ -382,16 +416,18 @@ void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double*
   }
 }
 
-// The candidates of a side found inside a non-convex other side O (index inside[k] of the
-// candidates c; their positions, level set and unit normal in O's frame) as contacts of the
-// batch, entries start .. start+count-1: key, lever r = RO x_O + (c_O - c_M) + (c_M - c_a), the
-// sign of the force on a and the relative velocity (BatchSlice::setLever), the world normal RO n, depth -phi, and area: half the node's, projected
-// on the contact plane, -(RM n_i) . (RO n), clipped at 0. Scalar (gathers), as planeContacts.
-void levelSetContacts(int start, int count, const SideMotion& sideMotion, const int* __restrict inside, const SideCandidates& c, const double* __restrict ox,
-                      const double* __restrict oy, const double* __restrict oz, const double* __restrict phi,
-                      const double* __restrict gx, const double* __restrict gy, const double* __restrict gz,
-                      const Eigen::Matrix3d& RO, const Eigen::Matrix3d& RM, const Eigen::Vector3d& offset, PairBatch& batch) {
-  const SideMotion side = sideMotion;  // a local copy, as in planeContacts
+// The candidates of a side found inside a non-convex other side O (their positions o, level set
+// phi and unit normal g in O's frame, n of them, with room for four more: phi NaN there) as
+// contacts of the batch from entry `start` on; their count. Four candidates at a time
+// (CandidateLanes), those inside (phi < 0) packed to the front of the lanes (storeKept): key,
+// lever r = RO o + (c_O - c_M) + (c_M - c_a), the sign of the force on a and the relative
+// velocity (BatchSlice::setLever, same operations), the world normal RO g, depth -phi, and area:
+// half the node's, projected on the contact plane, -(RM n_i) . (RO g), clipped at 0 (facingArea).
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side, const double* __restrict ox,
+                     const double* __restrict oy, const double* __restrict oz, const double* __restrict phi,
+                     const double* __restrict gx, const double* __restrict gy, const double* __restrict gz,
+                     const Eigen::Matrix3d& RO, const Eigen::Matrix3d& RM, const Eigen::Vector3d& offset, PairBatch& batch) {
   const BatchSlice out(batch, start);
   const double o00 = RO(0, 0), o01 = RO(0, 1), o02 = RO(0, 2), o10 = RO(1, 0), o11 = RO(1, 1), o12 = RO(1, 2), o20 = RO(2, 0),
                o21 = RO(2, 1), o22 = RO(2, 2);
@@ -399,21 +435,42 @@ void levelSetContacts(int start, int count, const SideMotion& sideMotion, const 
                m21 = RM(2, 1), m22 = RM(2, 2);
   const double tx = offset.x(), ty = offset.y(), tz = offset.z(), sx = side.shift.x(), sy = side.shift.y(),
                sz = side.shift.z();
-  for (int k = 0; k < count; ++k) {
-    const int i = inside[k];
-    out.key[k] = c.key[i];
-    out.setLever(k, side, ((o00 * ox[i] + o01 * oy[i] + o02 * oz[i]) + tx) + sx, ((o10 * ox[i] + o11 * oy[i] + o12 * oz[i]) + ty) + sy,
-                 ((o20 * ox[i] + o21 * oy[i] + o22 * oz[i]) + tz) + sz);
-    const double wx = o00 * gx[i] + o01 * gy[i] + o02 * gz[i], wy = o10 * gx[i] + o11 * gy[i] + o12 * gz[i],
-                 wz = o20 * gx[i] + o21 * gy[i] + o22 * gz[i];
-    out.nx[k] = wx;
-    out.ny[k] = wy;
-    out.nz[k] = wz;
-    out.depth[k] = -phi[i];
-    const double mx = m00 * c.nx[i] + m01 * c.ny[i] + m02 * c.nz[i], my = m10 * c.nx[i] + m11 * c.ny[i] + m12 * c.nz[i],
-                 mz = m20 * c.nx[i] + m21 * c.ny[i] + m22 * c.nz[i];
-    out.area[k] = facingArea(0.5 * c.area[i], -(mx * wx + my * wy + mz * wz));
+  const Lanes signs = Lanes{} + side.sign;
+  const CandidateLanes lanes(c);
+  int count = 0;
+  for (int i = 0; i < c.n; i += kLanes) {
+    Lanes value;
+    std::memcpy(&value, phi + i, sizeof value);
+    const int mask = laneBits(value < 0);
+    if (mask == 0) continue;
+    Lanes x, y, z, g0, g1, g2;
+    std::memcpy(&x, ox + i, sizeof x);
+    std::memcpy(&y, oy + i, sizeof y);
+    std::memcpy(&z, oz + i, sizeof z);
+    std::memcpy(&g0, gx + i, sizeof g0);
+    std::memcpy(&g1, gy + i, sizeof g1);
+    std::memcpy(&g2, gz + i, sizeof g2);
+    ContactLanes b;
+    b.rx = ((o00 * x + o01 * y + o02 * z) + tx) + sx;
+    b.ry = ((o10 * x + o11 * y + o12 * z) + ty) + sy;
+    b.rz = ((o20 * x + o21 * y + o22 * z) + tz) + sz;
+    laneVelocities(side, b);
+    b.nx = o00 * g0 + o01 * g1 + o02 * g2;
+    b.ny = o10 * g0 + o11 * g1 + o12 * g2;
+    b.nz = o20 * g0 + o21 * g1 + o22 * g2;
+    b.depth = -value;
+    Lanes nx, ny, nz, nodeArea;
+    lanes.load(nx, CandidateLanes::NX, i);
+    lanes.load(ny, CandidateLanes::NY, i);
+    lanes.load(nz, CandidateLanes::NZ, i);
+    lanes.load(nodeArea, CandidateLanes::Area, i);
+    const Lanes mx = m00 * nx + m01 * ny + m02 * nz, my = m10 * nx + m11 * ny + m12 * nz, mz = m20 * nx + m21 * ny + m22 * nz;
+    const Lanes projection = -(mx * b.nx + my * b.ny + mz * b.nz);
+    b.area = (0.5 * nodeArea) * (projection > 0 ? projection : Lanes{});
+    lanes.loadKeys(b.key, i);
+    count = storeKept(b, mask, signs, out, count);
   }
+  return count;
 }
 
 // What a pair's contacts add up to: force on body a, its moment about a's centroid (sum r x f),
@@ -651,7 +708,7 @@ void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeMod
                           const Eigen::Vector3d& offset, const SideMotion& sideInfo, Scratch& scratch) {
   const SideCandidates c = candidatesOf(pair, side);
   const int n = c.n;
-  scratch.reserve(n);
+  scratch.reserve(n + kLanes);
   double *ox = scratch.ox.data(), *oy = scratch.oy.data(), *oz = scratch.oz.data();
   double *phi = scratch.phi.data(), *gx = scratch.gx.data(), *gy = scratch.gy.data(), *gz = scratch.gz.data();
   transformPoints(n, toO, shift, c.x, c.y, c.z, ox, oy, oz);
@@ -687,9 +744,10 @@ void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeMod
       gz[i] = normal.z();
     }
   }
-  const int count = listInside(n, phi, inside);
-  levelSetContacts(scratch.batch.grow(count), count, sideInfo, inside, c, ox, oy, oz, phi, gx, gy, gz,
-                   RO, RM, offset, scratch.batch);
+  std::fill_n(phi + n, kLanes, NAN);  // the last block's padding: never inside
+  PairBatch& batch = scratch.batch;
+  batch.reserve(batch.count + n + kLanes);
+  batch.count += levelSetContacts(batch.count, c, sideInfo, ox, oy, oz, phi, gx, gy, gz, RO, RM, offset, batch);
 }
 
 // The other side's world pose: body b's; an obstacle's centre or point, unturned.
