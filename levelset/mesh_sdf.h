@@ -53,15 +53,45 @@ struct MeshSdf {
   std::vector<float> centreDistance;         ///< m, of each listed triangle from its cell's centre (rounded down)
 
   bool empty() const { return triangles.empty(); }
+  /// m: a cell lists every triangle within its nearest triangle's distance plus this of its
+  /// centre (the cell's diagonal: any triangle nearest to a point of the cell is that near).
+  double listReach() const { return std::sqrt(3.0) * cellSize; }
+
+  /// What an evaluation leaves for later ones at points near it (the solver keeps one for each
+  /// candidate node): the triangle whose face holds the closest point of `at`, and `clearance`,
+  /// a distance within which no other triangle comes of `at`. At a later x in the same cell that
+  /// projects onto that face, with |phi_T(x)| < clearance - |x - at| (less a rounding margin), the
+  /// triangle is still strictly the nearest (every other is at least clearance - |x - at| from x),
+  /// so phi and the gradient come from its plane without the search, with the bits the search
+  /// would give.
+  struct NearestFace {
+    Eigen::Vector3d at{0, 0, 0};  ///< m, body frame
+    double clearance = -1.0;      ///< m; negative: nothing kept
+    std::size_t cell = 0;         ///< the cell of `at`
+    std::uint32_t triangle = 0;
+  };
 
   /// The exact phi (m, negative inside) and its unit gradient at x (body frame); false when x's
   /// cell has no triangles (x outside the grid or farther than `band` from the surface).
-  bool evaluate(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& gradient) const {
+  /// With `kept`: first the NearestFace it holds, if it settles x; else the search, which then
+  /// keeps what it found in it (for a face; else nothing).
+  bool evaluate(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& gradient, NearestFace* kept = nullptr) const {
     const Eigen::Vector3d u = (x - origin) * inverseCellSize;
     // Compared as doubles first: NaN and far points never reach the integer conversion.
     if (!(u.minCoeff() >= 0) || !(u[0] < cells[0] && u[1] < cells[1] && u[2] < cells[2])) return false;
     const int i = static_cast<int>(u[0]), j = static_cast<int>(u[1]), k = static_cast<int>(u[2]);
     const std::size_t c = (static_cast<std::size_t>(i) * cells[1] + j) * cells[2] + k;
+    if (kept != nullptr && kept->clearance > 0 && kept->cell == c) {
+      const Triangle& t = triangles[kept->triangle];
+      const Eigen::Vector3d fromA = x - t.corner[0];
+      const double plane = fromA.dot(t.normal);
+      if (faceOutward(x, fromA, t) <= t.faceLimit &&
+          std::abs(plane) < kept->clearance - (x - kept->at).norm() - kRoundingMargin * cellSize) {
+        phi = plane;
+        gradient = t.normal;
+        return true;
+      }
+    }
     const std::uint32_t begin = cellStart[c], end = cellStart[c + 1];
     if (begin == end) return false;
     // Triangles in increasing distance from the cell's centre c: once a triangle's distance from c
@@ -73,28 +103,56 @@ struct MeshSdf {
     // beyond: |x - q|^2 >= ((x - a) . n)^2 + max(0, max_k (x - a_k) . m_k)^2, exact when x
     // projects onto its face (then the bound is the distance). Only a triangle that bound does not
     // rule out, with x beyond one of its edges, takes the distance to its edges.
-    double best = INFINITY;
+    // With `kept`, the search goes on past the nearest by kClearanceReach cells (stop2: the
+    // square of how far it looks), and the least lower bound of every other triangle (other2,
+    // squared) is tracked: the clearance it keeps.
+    const double reach = kept != nullptr ? kClearanceReach * cellSize : 0.0;
+    double best = INFINITY, stop2 = INFINITY, other2 = INFINITY;
     std::uint32_t nearest = cellTriangles[begin];
     bool nearestOnFace = false;
     double nearestPlane = 0.0;
-    for (std::uint32_t n = begin; n < end; ++n) {
+    std::uint32_t n = begin;
+    for (; n < end; ++n) {
       const double bound = centreDistance[n] - offCentre;
-      if (bound > 0 && bound * bound > best) break;
+      if (bound > 0 && bound * bound > stop2) break;
       const Triangle& t = triangles[cellTriangles[n]];
       const Eigen::Vector3d fromA = x - t.corner[0];  // corner 0 is on edges 0 and 2
       const double plane = fromA.dot(t.normal);
-      const double outward = std::max({fromA.dot(t.edgeOutward[0]), fromA.dot(t.edgeOutward[2]),
-                                       (x - t.corner[1]).dot(t.edgeOutward[1])});
+      const double outward = faceOutward(x, fromA, t);
       const double beyond = std::max(outward, 0.0);
-      if (plane * plane + beyond * beyond >= best) continue;
+      const double lower = plane * plane + beyond * beyond;
+      if (lower >= best) {
+        other2 = std::min(other2, lower);
+        continue;
+      }
       const bool face = outward <= t.faceLimit;
       const double d2 = face ? plane * plane : edgeSquaredDistance(x, t);
       if (d2 < best) {
+        other2 = std::min(other2, best);
         best = d2;
         nearest = cellTriangles[n];
         nearestOnFace = face;
         nearestPlane = plane;
+        if (kept != nullptr) {
+          const double look = std::sqrt(best) + reach;
+          stop2 = look * look;
+        } else {
+          stop2 = best;
+        }
+      } else {
+        other2 = std::min(other2, d2);
       }
+    }
+    if (kept != nullptr) {
+      // Triangles not visited: those after the stop, and those not listed (farther from the
+      // cell's centre than the nearest listed one plus listReach()): at least their distance
+      // from the centre less |x - c|.
+      const double unlisted = centreDistance[begin] + listReach();
+      const double notVisited = (n < end ? std::min<double>(centreDistance[n], unlisted) : unlisted) - offCentre;
+      kept->clearance = nearestOnFace ? std::min(std::sqrt(other2), notVisited) : -1.0;
+      kept->at = x;
+      kept->cell = c;
+      kept->triangle = nearest;
     }
     // Most points near the surface project onto the face of their nearest triangle: then
     // q = x - ((x - a) . n) n, the feature is the face, phi = (x - a) . n and grad phi = n.
@@ -114,6 +172,18 @@ struct MeshSdf {
     phi = sign * distance;
     gradient = distance > 0 ? Eigen::Vector3d(sign * away / distance) : Eigen::Vector3d(pseudoNormal.normalized());
     return true;
+  }
+
+  /// The search's cells beyond the nearest triangle it looks when it keeps a NearestFace (a
+  /// farther look gives a larger clearance, kept for more steps), and the rounding margin of the
+  /// NearestFace test, in cells.
+  static constexpr double kClearanceReach = 0.1;
+  static constexpr double kRoundingMargin = 1e-9;
+
+  /// How far beyond its farthest edge line p projects in t's plane, max_k (p - a_k) . m_k (fromA:
+  /// p - corner 0); at most faceLimit when p projects onto the face.
+  static double faceOutward(const Eigen::Vector3d& p, const Eigen::Vector3d& fromA, const Triangle& t) {
+    return std::max({fromA.dot(t.edgeOutward[0]), fromA.dot(t.edgeOutward[2]), (p - t.corner[1]).dot(t.edgeOutward[1])});
   }
 
   /// Whether p projects onto the face of t (inside or on its edges; never for a degenerate t).

@@ -96,7 +96,7 @@ MeshSdf buildMeshSdf(const TriangleMesh& mesh, const DenseSdf& grid, double band
         for (int t = 0; t < triangleCount; ++t)
           if (boxDistance(centre, lo[t], hi[t]) < closest) closest = std::min(closest, triangleDistance(centre, m.triangles[t]));
         auto& list = lists[(static_cast<std::size_t>(i) * m.cells[1] + j) * m.cells[2] + k];
-        const double reach = closest + diagonal;
+        const double reach = closest + m.listReach();
         for (int t = 0; t < triangleCount; ++t) {
           if (boxDistance(centre, lo[t], hi[t]) > reach) continue;
           const double d = triangleDistance(centre, m.triangles[t]);

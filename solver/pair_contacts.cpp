@@ -735,10 +735,14 @@ void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeMod
       inside[near] = i;
       near += phi[i] <= bound;
     }
+    // Each candidate's NearestFace, kept from its last exact evaluation (the same bits as the search).
+    CandidateNodes& all = pair.candidates;
+    if (all.nearestFace.size() != all.size()) all.nearestFace.assign(all.size(), MeshSdf::NearestFace{});
+    MeshSdf::NearestFace* kept = all.nearestFace.data() + (c.key - all.key.data());
     for (int k = 0; k < near; ++k) {
       const int i = inside[k];
       Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-      phi[i] = so.meshLevelSet(Eigen::Vector3d(ox[i], oy[i], oz[i]), phi[i], normal);
+      phi[i] = so.meshLevelSet(Eigen::Vector3d(ox[i], oy[i], oz[i]), phi[i], normal, kept + i);
       gx[i] = normal.x();
       gy[i] = normal.y();
       gz[i] = normal.z();

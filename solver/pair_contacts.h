@@ -39,7 +39,9 @@ struct ShapeModel {
   /// meshLevelSet with the grid's value at x, sdf.value(x), known. A grid value above
   /// gridValueBound() is the level set itself (outside, no contact); below it the level set needs
   /// this call.
-  double meshLevelSet(const Eigen::Vector3d& x, double gridValue, Eigen::Vector3d& normal) const {
+  /// `kept`: the NearestFace of this point's last evaluation, if any (MeshSdf::evaluate).
+  double meshLevelSet(const Eigen::Vector3d& x, double gridValue, Eigen::Vector3d& normal,
+                      MeshSdf::NearestFace* kept = nullptr) const {
     if (!exactMesh.empty()) {
       const double outside = gridValue;
       if (outside > 0.8660254037844386 * sdf.voxelSize) return outside;
@@ -48,7 +50,7 @@ struct ShapeModel {
       // than it saves: 0.94x the wave slab's step without it. candidateValue keeps it.)
       double phi;
       Eigen::Vector3d gradient;
-      if (exactMesh.evaluate(x, phi, gradient)) {
+      if (exactMesh.evaluate(x, phi, gradient, kept)) {
         if (phi < 0) normal = gradient;
         return phi;
       }
@@ -101,11 +103,15 @@ struct CandidateNodes {
   std::vector<double> x, y, z;     ///< m, the node's position in its own body's frame
   std::vector<double> nx, ny, nz;  ///< its outward unit normal, same frame
   std::vector<double> area;        ///< m^2, its whole area
+  /// Against a shape with an exact mesh: what each candidate's last exact evaluation kept for the
+  /// next (MeshSdf::NearestFace); sized when first used.
+  std::vector<MeshSdf::NearestFace> nearestFace;
 
   std::size_t size() const { return key.size(); }
   void clear() {
     key.clear();
     for (std::vector<double>* v : {&x, &y, &z, &nx, &ny, &nz, &area}) v->clear();
+    nearestFace.clear();
   }
   /// Node `rank` of `nodes`, with its key.
   void add(std::uint32_t nodeKey, const NodeBins& nodes, int rank) {
