@@ -1,7 +1,9 @@
 // Cost of one level-set evaluation at points near a block's surface (within 2 voxels, inside and
 // out, where the contact loop evaluates its candidate nodes), by path: the exact planes of a
 // convex block, the exact mesh level set (closest triangle of the cell's list, pseudo-normal sign),
-// and the trilinear grid. Blocks: the paper's planar block (convex) and the wave block (not), at
+// and the trilinear grid; and the exact mesh as a run evaluates it, each point with the
+// MeshSdf::NearestFace its last evaluation kept and moved 0.1 um between evaluations (a step moves
+// a node by less). Blocks: the paper's planar block (convex) and the wave block (not), at
 // the paper's resolution (0.25 mm voxels). One thread.
 // Run: build/bench/bench_level_set --benchmark_min_time=2   (results: docs/performance.md)
 #include "geometry/block_generators.h"
@@ -59,7 +61,8 @@ const Block& block(bool wave) {
   return wave ? waveBlock : planar;
 }
 
-// Arguments: block (0 planar, 1 wave), path (0 planes, 1 exact mesh, 2 grid).
+// Arguments: block (0 planar, 1 wave), path (0 planes, 1 exact mesh, 2 grid, 3 exact mesh with
+// each point's NearestFace kept).
 void LevelSetEvaluation(benchmark::State& state) {
   const Block& b = block(state.range(0) == 1);
   const int path = static_cast<int>(state.range(1));
@@ -69,14 +72,21 @@ void LevelSetEvaluation(benchmark::State& state) {
   }
   double sum = 0;
   std::size_t k = 0;
+  std::vector<MeshSdf::NearestFace> kept(b.points.size());
+  const Eigen::Vector3d shift = Eigen::Vector3d(1, 2, 3).normalized() * 1e-7;
   for (auto _ : state) {
-    const Eigen::Vector3d& x = b.points[k++ & 4095];
+    const std::size_t i = k++ & 4095;
+    // (Path 3 moves every other pass over the points by `shift`, so that the kept NearestFace is
+    // tested at a point it was not made at.)
+    const Eigen::Vector3d x = path == 3 && (k >> 12 & 1) != 0 ? Eigen::Vector3d(b.points[i] + shift) : b.points[i];
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     double phi;
     if (path == 0) {
       phi = planesLevelSet(b.model.planes, x);
     } else if (path == 1) {
       phi = b.model.meshLevelSet(x, normal);
+    } else if (path == 3) {
+      phi = b.model.meshLevelSet(x, b.model.sdf.value(x), normal, &kept[i]);
     } else {
       phi = b.model.gridLevelSet(x, normal);
     }
@@ -93,6 +103,6 @@ void LevelSetEvaluation(benchmark::State& state) {
 
 BENCHMARK(LevelSetEvaluation)
     ->ArgNames({"wave", "path"})
-    ->Args({0, 0})->Args({0, 1})->Args({0, 2})->Args({1, 1})->Args({1, 2})
+    ->Args({0, 0})->Args({0, 1})->Args({0, 2})->Args({0, 3})->Args({1, 1})->Args({1, 2})->Args({1, 3})
     ->Unit(benchmark::kNanosecond);
 BENCHMARK_MAIN();

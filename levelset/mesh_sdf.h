@@ -73,40 +73,66 @@ struct MeshSdf {
 
   /// The exact phi (m, negative inside) and its unit gradient at x (body frame); false when x's
   /// cell has no triangles (x outside the grid or farther than `band` from the surface).
-  /// With `kept`: first the NearestFace it holds, if it settles x; else the search, which then
-  /// keeps what it found in it (for a face; else nothing).
-  bool evaluate(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& gradient, NearestFace* kept = nullptr) const {
-    const Eigen::Vector3d u = (x - origin) * inverseCellSize;
-    // Compared as doubles first: NaN and far points never reach the integer conversion.
-    if (!(u.minCoeff() >= 0) || !(u[0] < cells[0] && u[1] < cells[1] && u[2] < cells[2])) return false;
-    const int i = static_cast<int>(u[0]), j = static_cast<int>(u[1]), k = static_cast<int>(u[2]);
-    const std::size_t c = (static_cast<std::size_t>(i) * cells[1] + j) * cells[2] + k;
-    if (kept != nullptr && kept->clearance > 0 && kept->cell == c) {
-      const Triangle& t = triangles[kept->triangle];
+  bool evaluate(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& gradient) const {
+    Cell cell;
+    return locate(x, cell) && search<false>(x, cell, phi, gradient, nullptr);
+  }
+  /// evaluate, first from the NearestFace `kept` holds if it settles x; else by the search, which
+  /// then keeps what it found in it (for a face; else nothing). The same bits either way.
+  bool evaluate(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& gradient, NearestFace& kept) const {
+    Cell cell;
+    if (!locate(x, cell)) return false;
+    if (kept.clearance > 0 && kept.cell == cell.index) {
+      const Triangle& t = triangles[kept.triangle];
       const Eigen::Vector3d fromA = x - t.corner[0];
       const double plane = fromA.dot(t.normal);
-      if (faceOutward(x, fromA, t) <= t.faceLimit &&
-          std::abs(plane) < kept->clearance - (x - kept->at).norm() - kRoundingMargin * cellSize) {
+      // |plane| < clearance - |x - at| - margin, without the square root.
+      const double room = kept.clearance - std::abs(plane) - kRoundingMargin * cellSize;
+      if (faceOutward(x, fromA, t) <= t.faceLimit && room > 0 && (x - kept.at).squaredNorm() < room * room) {
         phi = plane;
         gradient = t.normal;
         return true;
       }
     }
-    const std::uint32_t begin = cellStart[c], end = cellStart[c + 1];
+    return search<true>(x, cell, phi, gradient, &kept);
+  }
+
+ private:
+  /// The cell of a point: its indices and its index in cellStart.
+  struct Cell {
+    int i = 0, j = 0, k = 0;
+    std::size_t index = 0;
+  };
+  /// x's cell; false outside the grid (or NaN).
+  bool locate(const Eigen::Vector3d& x, Cell& cell) const {
+    const Eigen::Vector3d u = (x - origin) * inverseCellSize;
+    // Compared as doubles first: NaN and far points never reach the integer conversion.
+    if (!(u.minCoeff() >= 0) || !(u[0] < cells[0] && u[1] < cells[1] && u[2] < cells[2])) return false;
+    cell.i = static_cast<int>(u[0]);
+    cell.j = static_cast<int>(u[1]);
+    cell.k = static_cast<int>(u[2]);
+    cell.index = (static_cast<std::size_t>(cell.i) * cells[1] + cell.j) * cells[2] + cell.k;
+    return true;
+  }
+
+  /// The search of x's cell list (evaluate); with Keep, it also fills *kept.
+  template <bool Keep>
+  bool search(const Eigen::Vector3d& x, const Cell& cell, double& phi, Eigen::Vector3d& gradient, NearestFace* kept) const {
+    const std::uint32_t begin = cellStart[cell.index], end = cellStart[cell.index + 1];
     if (begin == end) return false;
     // Triangles in increasing distance from the cell's centre c: once a triangle's distance from c
     // less |x - c| exceeds the best distance so far, neither it nor any later one can be closer.
-    const Eigen::Vector3d centre = origin + cellSize * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+    const Eigen::Vector3d centre = origin + cellSize * Eigen::Vector3d(cell.i + 0.5, cell.j + 0.5, cell.k + 0.5);
     const double offCentre = (x - centre).norm();
     // The nearest triangle, then its closest point and feature. Each listed triangle is first
     // bounded below by its plane and, in the plane, the edge line x's projection is farthest
     // beyond: |x - q|^2 >= ((x - a) . n)^2 + max(0, max_k (x - a_k) . m_k)^2, exact when x
     // projects onto its face (then the bound is the distance). Only a triangle that bound does not
     // rule out, with x beyond one of its edges, takes the distance to its edges.
-    // With `kept`, the search goes on past the nearest by kClearanceReach cells (stop2: the
-    // square of how far it looks), and the least lower bound of every other triangle (other2,
-    // squared) is tracked: the clearance it keeps.
-    const double reach = kept != nullptr ? kClearanceReach * cellSize : 0.0;
+    // With Keep, the search goes on past the nearest by kClearanceReach cells (stop2: the square
+    // of how far it looks), and the least lower bound of every other triangle (other2, squared)
+    // is tracked: the clearance it keeps.
+    const double reach = kClearanceReach * cellSize;
     double best = INFINITY, stop2 = INFINITY, other2 = INFINITY;
     std::uint32_t nearest = cellTriangles[begin];
     bool nearestOnFace = false;
@@ -122,28 +148,28 @@ struct MeshSdf {
       const double beyond = std::max(outward, 0.0);
       const double lower = plane * plane + beyond * beyond;
       if (lower >= best) {
-        other2 = std::min(other2, lower);
+        if constexpr (Keep) other2 = std::min(other2, lower);
         continue;
       }
       const bool face = outward <= t.faceLimit;
       const double d2 = face ? plane * plane : edgeSquaredDistance(x, t);
       if (d2 < best) {
-        other2 = std::min(other2, best);
+        if constexpr (Keep) other2 = std::min(other2, best);
         best = d2;
         nearest = cellTriangles[n];
         nearestOnFace = face;
         nearestPlane = plane;
-        if (kept != nullptr) {
+        if constexpr (Keep) {
           const double look = std::sqrt(best) + reach;
           stop2 = look * look;
         } else {
           stop2 = best;
         }
-      } else {
+      } else if constexpr (Keep) {
         other2 = std::min(other2, d2);
       }
     }
-    if (kept != nullptr) {
+    if constexpr (Keep) {
       // Triangles not visited: those after the stop, and those not listed (farther from the
       // cell's centre than the nearest listed one plus listReach()): at least their distance
       // from the centre less |x - c|.
@@ -151,7 +177,7 @@ struct MeshSdf {
       const double notVisited = (n < end ? std::min<double>(centreDistance[n], unlisted) : unlisted) - offCentre;
       kept->clearance = nearestOnFace ? std::min(std::sqrt(other2), notVisited) : -1.0;
       kept->at = x;
-      kept->cell = c;
+      kept->cell = cell.index;
       kept->triangle = nearest;
     }
     // Most points near the surface project onto the face of their nearest triangle: then
@@ -174,6 +200,7 @@ struct MeshSdf {
     return true;
   }
 
+ public:
   /// The search's cells beyond the nearest triangle it looks when it keeps a NearestFace (a
   /// farther look gives a larger clearance, kept for more steps), and the rounding margin of the
   /// NearestFace test, in cells.

@@ -50,7 +50,7 @@ struct ShapeModel {
       // than it saves: 0.94x the wave slab's step without it. candidateValue keeps it.)
       double phi;
       Eigen::Vector3d gradient;
-      if (exactMesh.evaluate(x, phi, gradient, kept)) {
+      if (kept != nullptr ? exactMesh.evaluate(x, phi, gradient, *kept) : exactMesh.evaluate(x, phi, gradient)) {
         if (phi < 0) normal = gradient;
         return phi;
       }

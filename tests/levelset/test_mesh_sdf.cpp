@@ -199,7 +199,7 @@ double keptNearestFaceAgrees(const ExactMesh& e, double step, double jump, unsig
       double phi = 0, reference = 0;
       Eigen::Vector3d gradient = Eigen::Vector3d::Zero(), referenceGradient = Eigen::Vector3d::Zero();
       const MeshSdf::NearestFace before = kept;
-      const bool found = e.sdf.evaluate(x, phi, gradient, &kept);
+      const bool found = e.sdf.evaluate(x, phi, gradient, kept);
       INFO("x = " << x.transpose() << ", step " << k);
       REQUIRE(found == e.sdf.evaluate(x, reference, referenceGradient));
       if (!found) continue;
