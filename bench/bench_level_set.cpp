@@ -75,10 +75,10 @@ void LevelSetEvaluation(benchmark::State& state) {
   std::vector<MeshSdf::NearestFace> kept(b.points.size());
   const Eigen::Vector3d shift = Eigen::Vector3d(1, 2, 3).normalized() * 1e-7;
   for (auto _ : state) {
-    const std::size_t i = k++ & 4095;
+    const std::size_t i = k & 4095, pass = k++ >> 12;
     // (Path 3 moves every other pass over the points by `shift`, so that the kept NearestFace is
     // tested at a point it was not made at.)
-    const Eigen::Vector3d x = path == 3 && (k >> 12 & 1) != 0 ? Eigen::Vector3d(b.points[i] + shift) : b.points[i];
+    const Eigen::Vector3d x = path == 3 && (pass & 1) != 0 ? Eigen::Vector3d(b.points[i] + shift) : b.points[i];
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     double phi;
     if (path == 0) {

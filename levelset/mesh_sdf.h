@@ -82,7 +82,9 @@ struct MeshSdf {
   bool evaluate(const Eigen::Vector3d& x, double& phi, Eigen::Vector3d& gradient, NearestFace& kept) const {
     Cell cell;
     if (!locate(x, cell)) return false;
-    if (kept.clearance > 0 && kept.cell == cell.index) {
+    // (The same cell: x's list holds the triangle. The clearance holds for the whole mesh, but
+    // a point in a cell without a list must get `false`, as from the search.)
+    if (kept.clearance > 0 && kept.cell == cell.index && kept.triangle < triangles.size()) {
       const Triangle& t = triangles[kept.triangle];
       const Eigen::Vector3d fromA = x - t.corner[0];
       const double plane = fromA.dot(t.normal);
@@ -203,7 +205,9 @@ struct MeshSdf {
  public:
   /// The search's cells beyond the nearest triangle it looks when it keeps a NearestFace (a
   /// farther look gives a larger clearance, kept for more steps), and the rounding margin of the
-  /// NearestFace test, in cells.
+  /// NearestFace test, in cells: the distances it compares are rounded to about 1e-16 of the
+  /// coordinates (body frame, within the grid), far below 1e-9 cells for any grid of fewer than
+  /// 10^6 cells a side.
   static constexpr double kClearanceReach = 0.1;
   static constexpr double kRoundingMargin = 1e-9;
 

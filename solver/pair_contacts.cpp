@@ -204,6 +204,11 @@ SideCandidates candidatesOf(const PairContacts& pair, std::uint32_t side) {
 // the node faces away (projection <= 0, or NaN).
 inline double facingArea(double halfArea, double projection) { return halfArea * (projection > 0 ? projection : 0.0); }
 
+// facingArea of four nodes (the same operations lane by lane).
+__attribute__((always_inline)) inline void facingArea(Lanes& area, const Lanes& halfArea, const Lanes& projection) {
+  area = halfArea * (projection > 0 ? projection : Lanes{});
+}
+
 // The batch's contact arrays from entry `start` on, as the listing functions write them.
 struct BatchSlice {
   std::uint32_t* __restrict key;
@@ -250,6 +255,16 @@ struct Compaction {
   }
 };
 constexpr Compaction kCompaction;
+
+// out = the lanes of v in the order `order` (a variable permutation: GCC's builtin or Clang's).
+template <class Vector, class Order>
+__attribute__((always_inline)) inline void permute(Vector& out, const Vector& v, const Order& order) {
+#ifdef __clang__
+  out = __builtin_shufflevector(v, order);
+#else
+  out = __builtin_shuffle(v, order);
+#endif
+}
 
 // A side's candidates four at a time (SIMD lanes): a block starting at i (a multiple of four)
 // read from the candidate arrays, the last, incomplete one from a copy padded with NaN (every
@@ -307,7 +322,8 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
   Words order;
   std::memcpy(&order, kCompaction.words[mask], sizeof order);
   const auto store = [&](const Lanes& v, double* to) {
-    const Lanes kept = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(v), order));
+    Words kept;
+    permute(kept, reinterpret_cast<Words>(v), order);
     std::memcpy(to + count, &kept, sizeof kept);
   };
   store(block.rx, out.rx);
@@ -324,7 +340,8 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
   std::memcpy(out.sign + count, &signs, sizeof signs);
   KeyOrder keyOrder;
   std::memcpy(&keyOrder, kCompaction.keys[mask], sizeof keyOrder);
-  const Keys kept = __builtin_shuffle(block.key, keyOrder);
+  Keys kept;
+  permute(kept, block.key, keyOrder);
   std::memcpy(out.key + count, &kept, sizeof kept);
   return count + __builtin_popcount(static_cast<unsigned>(mask));
 }
@@ -391,8 +408,7 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
     lanes.load(ny, CandidateLanes::NY, i);
     lanes.load(nz, CandidateLanes::NZ, i);
     lanes.load(nodeArea, CandidateLanes::Area, i);
-    const Lanes projection = -(nx * nnx + ny * nny + nz * nnz);
-    b.area = (0.5 * nodeArea) * (projection > 0 ? projection : Lanes{});
+    facingArea(b.area, 0.5 * nodeArea, -(nx * nnx + ny * nny + nz * nnz));
     lanes.loadKeys(b.key, i);
     count = storeKept(b, mask, signs, out, count);
   }
@@ -465,8 +481,7 @@ int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side,
     lanes.load(nz, CandidateLanes::NZ, i);
     lanes.load(nodeArea, CandidateLanes::Area, i);
     const Lanes mx = m00 * nx + m01 * ny + m02 * nz, my = m10 * nx + m11 * ny + m12 * nz, mz = m20 * nx + m21 * ny + m22 * nz;
-    const Lanes projection = -(mx * b.nx + my * b.ny + mz * b.nz);
-    b.area = (0.5 * nodeArea) * (projection > 0 ? projection : Lanes{});
+    facingArea(b.area, 0.5 * nodeArea, -(mx * b.nx + my * b.ny + mz * b.nz));
     lanes.loadKeys(b.key, i);
     count = storeKept(b, mask, signs, out, count);
   }
@@ -549,9 +564,9 @@ PairSums sumPair(const PairBatch& batch, const NodeContacts& contacts, bool perA
 // Per-thread scratch (kept from pair to pair and step to step: no allocation once grown).
 struct Scratch {
   PairBatch batch;
-  // The candidates of one side: level set (or the grid's value), the plane giving it, the
-  // indices of those inside (or near), their positions in the other side's frame, and there the
-  // grid's gradient direction (then the level set's unit normal).
+  // The candidates of one side against a non-convex other side: their level set (or the grid's
+  // value), the indices of those near the surface, their positions in the other side's frame, and
+  // there the grid's gradient direction (then the level set's unit normal).
   std::vector<double> phi, ox, oy, oz, gx, gy, gz;
   std::vector<int> inside;
   void reserve(int n) {
@@ -691,11 +706,11 @@ void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::ui
 
 // The contacts of one side's candidates in a convex other side (convexContacts), added to the batch.
 void convexSideContacts(PairContacts& pair, std::uint32_t side, const PlanesInFrame& planes, const Eigen::Matrix3d& RM,
-                        const SideMotion& sideInfo, PairBatch& batch) {
+                        const SideMotion& motion, PairBatch& batch) {
   const SideCandidates c = candidatesOf(pair, side);
   pair.evaluations += c.n;
   batch.reserve(batch.count + c.n + kLanes);
-  batch.count += convexContacts(batch.count, c, planes, sideInfo, RM, batch);
+  batch.count += convexContacts(batch.count, c, planes, motion, RM, batch);
 }
 
 // The contacts of one side's candidates in a non-convex other side O (its exact mesh or grid level
@@ -705,7 +720,7 @@ void convexSideContacts(PairContacts& pair, std::uint32_t side, const PlanesInFr
 // has one; and their contacts. `toO`, `shift`: O's frame from M's; `offset` = c_O - c_M.
 void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeModel& so, const Eigen::Matrix3d& toO,
                           const Eigen::Vector3d& shift, const Eigen::Matrix3d& RM, const Eigen::Matrix3d& RO,
-                          const Eigen::Vector3d& offset, const SideMotion& sideInfo, Scratch& scratch) {
+                          const Eigen::Vector3d& offset, const SideMotion& motion, Scratch& scratch) {
   const SideCandidates c = candidatesOf(pair, side);
   const int n = c.n;
   scratch.reserve(n + kLanes);
@@ -735,9 +750,10 @@ void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeMod
       inside[near] = i;
       near += phi[i] <= bound;
     }
-    // Each candidate's NearestFace, kept from its last exact evaluation (the same bits as the search).
+    // Each candidate's NearestFace, kept from its last exact evaluation (the same bits as the
+    // search); new candidates (side 1's, appended after side 0's were evaluated) start empty.
     CandidateNodes& all = pair.candidates;
-    if (all.nearestFace.size() != all.size()) all.nearestFace.assign(all.size(), MeshSdf::NearestFace{});
+    if (all.nearestFace.size() != all.size()) all.nearestFace.resize(all.size());
     MeshSdf::NearestFace* kept = all.nearestFace.data() + (c.key - all.key.data());
     for (int k = 0; k < near; ++k) {
       const int i = inside[k];
@@ -751,7 +767,7 @@ void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeMod
   std::fill_n(phi + n, kLanes, NAN);  // the last block's padding: never inside
   PairBatch& batch = scratch.batch;
   batch.reserve(batch.count + n + kLanes);
-  batch.count += levelSetContacts(batch.count, c, sideInfo, ox, oy, oz, phi, gx, gy, gz, RO, RM, offset, batch);
+  batch.count += levelSetContacts(batch.count, c, motion, ox, oy, oz, phi, gx, gy, gz, RO, RM, offset, batch);
 }
 
 // The other side's world pose: body b's; an obstacle's centre or point, unturned.
@@ -803,7 +819,7 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
     if (phi < 0) acc.add(key, r, -(RM * sm.nodes.normal[key]).dot(normal), sm.nodes.area[key], normal, -phi);
     return phi;
   });
-    acc.finish();
+  acc.finish();
 }
 
 }  // namespace
@@ -849,7 +865,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
       region.min().array() -= scene.candidateBand;
       region.max().array() += scene.candidateBand;
     }
-    const SideMotion& sideInfo = acc.beginSide(node, other, side == 0);
+    const SideMotion& motion = acc.beginSide(node, other, side == 0);
     if (!so.planes.empty()) {
       // A convex other side: its planes moved into M's frame once, n' = toO^T n, d' = d - n . shift,
       // so that a candidate is tested as it is: phi = max_f (n'_f . p - d'_f).
@@ -863,7 +879,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
           int best;
           return planes.phi(sm.nodes.position[key & kRankMask], best);
         });
-      convexSideContacts(pair, side, planes, RM, sideInfo, scratch.batch);
+      convexSideContacts(pair, side, planes, RM, motion, scratch.batch);
     } else {
       // As for a convex side: the candidates first (if rebuilt), then the level set of all of them.
       if (rebuild)
@@ -871,9 +887,9 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
           ++pair.evaluations;
           return so.candidateValue(toO * sm.nodes.position[key & kRankMask] + shift);
         });
-      levelSetSideContacts(pair, side, so, toO, shift, RM, RO, other.position - node.position, sideInfo, scratch);
+      levelSetSideContacts(pair, side, so, toO, shift, RM, RO, other.position - node.position, motion, scratch);
     }
-      }
+  }
   acc.finish();
 }
 
