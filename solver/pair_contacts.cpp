@@ -56,13 +56,10 @@ struct PairBatch {
                     &sliding, &previousArea, &previousEnergy})
       v->resize(size);
   }
-  /// A new contact at the end; its index.
-  int append() { return grow(1); }
-  /// n new contacts at the end (values unset); the index of the first.
-  int grow(int n) {
-    reserve(count + n);
-    count += n;
-    return count - n;
+  /// A new contact at the end (values unset); its index.
+  int append() {
+    reserve(count + 1);
+    return count++;
   }
   /// The law's view of the contacts, with the springs and energies in `contacts`.
   NodeContactBatch law(NodeContacts& contacts) {
@@ -295,6 +292,13 @@ struct CandidateLanes {
     return c.area;
   }
   void load(Lanes& v, Field f, int i) const { std::memcpy(&v, i == full ? tail[f] : array(f) + i, sizeof v); }
+  /// The nodes' outward normals and areas.
+  void loadNormalAndArea(Lanes& nx, Lanes& ny, Lanes& nz, Lanes& area, int i) const {
+    load(nx, NX, i);
+    load(ny, NY, i);
+    load(nz, NZ, i);
+    load(area, Area, i);
+  }
   void loadKeys(Keys& keys, int i) const {
     if (i == full)
       keys = tailKeys;
@@ -404,10 +408,7 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
     laneVelocities(side, b);
     b.depth = -value;
     Lanes nx, ny, nz, nodeArea;
-    lanes.load(nx, CandidateLanes::NX, i);
-    lanes.load(ny, CandidateLanes::NY, i);
-    lanes.load(nz, CandidateLanes::NZ, i);
-    lanes.load(nodeArea, CandidateLanes::Area, i);
+    lanes.loadNormalAndArea(nx, ny, nz, nodeArea, i);
     facingArea(b.area, 0.5 * nodeArea, -(nx * nnx + ny * nny + nz * nnz));
     lanes.loadKeys(b.key, i);
     count = storeKept(b, mask, signs, out, count);
@@ -476,10 +477,7 @@ int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side,
     b.nz = o20 * g0 + o21 * g1 + o22 * g2;
     b.depth = -value;
     Lanes nx, ny, nz, nodeArea;
-    lanes.load(nx, CandidateLanes::NX, i);
-    lanes.load(ny, CandidateLanes::NY, i);
-    lanes.load(nz, CandidateLanes::NZ, i);
-    lanes.load(nodeArea, CandidateLanes::Area, i);
+    lanes.loadNormalAndArea(nx, ny, nz, nodeArea, i);
     const Lanes mx = m00 * nx + m01 * ny + m02 * nz, my = m10 * nx + m11 * ny + m12 * nz, mz = m20 * nx + m21 * ny + m22 * nz;
     facingArea(b.area, 0.5 * nodeArea, -(mx * b.nx + my * b.ny + mz * b.nz));
     lanes.loadKeys(b.key, i);
