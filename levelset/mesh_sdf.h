@@ -218,11 +218,7 @@ struct MeshSdf {
   }
 
   /// Whether p projects onto the face of t (inside or on its edges; never for a degenerate t).
-  static bool onFace(const Eigen::Vector3d& p, const Triangle& t) {
-    double outward = -INFINITY;
-    for (int k = 0; k < 3; ++k) outward = std::max(outward, (p - t.corner[k]).dot(t.edgeOutward[k]));
-    return outward <= t.faceLimit;
-  }
+  static bool onFace(const Eigen::Vector3d& p, const Triangle& t) { return faceOutward(p, p - t.corner[0], t) <= t.faceLimit; }
 
   /// |p - q|^2 for the closest point q of triangle t: the distance to the face's plane when p
   /// projects onto the face, else the least distance to its three edges (segments: the closest
