@@ -230,6 +230,10 @@ TEST_CASE("exact mesh level set: a kept NearestFace gives the search's bits, and
     const ExactMesh e(test::lPrism(4e-3), 0.25e-3);
     CHECK(keptNearestFaceAgrees(e, 1e-7, 0.05e-3, 22) > 0.8);
   }
+  SECTION("wave block 100 times larger (a 1 m block, 25 mm voxels): the rule scales with the cell") {
+    const ExactMesh e(makeWaveBlock(1.0, 0.318, 5.0 * M_PI / 180, 0.02, 1, 24), 25e-3);
+    CHECK(keptNearestFaceAgrees(e, 1e-5, 5e-3, 24) > 0.8);
+  }
   SECTION("torus (curved)") {
     const ExactMesh e(test::torus(4e-3, 1.5e-3, 24, 12), 0.2e-3);
     CHECK(keptNearestFaceAgrees(e, 1e-7, 0.05e-3, 23) > 0.5);
