@@ -37,23 +37,21 @@ constexpr std::uint32_t kRankMask = (1u << 31) - 1;
 constexpr double kSqrt3 = 1.7320508075688772;
 
 // The node contacts of a pair being collected, in key order (side 0, a's nodes in b, then side 1),
-// for the contact law: its inputs and outputs but the springs and energies (which are the pair's
-// own NodeContacts), each contact's key, its lever r = x - c_a about body a's centroid (world),
-// the sign of its force on a (+1: the node is a's), and its area and stored energy before this
-// step (area -1: a new contact). Area 0: a node inside but facing away from the contact normal.
+// for the contact law: its inputs but the springs (the pair's own NodeContacts hold them, and the
+// areas and stored energies), each contact's key and its lever r = x - c_a about body a's centroid
+// (world). Area 0: a node inside but facing away from the contact normal.
 struct PairBatch {
   int count = 0;
   std::vector<std::uint32_t> key;
-  std::vector<double> rx, ry, rz, sign, nx, ny, nz, depth, area, vx, vy, vz, fx, fy, fz, fn, friction, viscous, sliding,
-      previousArea, previousEnergy;
+  std::vector<double> rx, ry, rz, nx, ny, nz, depth, area, vx, vy, vz;
+  std::vector<double> scale;  // the law's: each contact's slidingScale
 
   /// Room for n contacts (values unset).
   void reserve(int n) {
     if (static_cast<int>(key.size()) >= n) return;
     const std::size_t size = static_cast<std::size_t>(n + n / 2);
     key.resize(size);
-    for (auto* v : {&rx, &ry, &rz, &sign, &nx, &ny, &nz, &depth, &area, &vx, &vy, &vz, &fx, &fy, &fz, &fn, &friction, &viscous,
-                    &sliding, &previousArea, &previousEnergy})
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &vx, &vy, &vz, &scale})
       v->resize(size);
   }
   /// A new contact at the end (values unset); its index.
@@ -61,21 +59,13 @@ struct PairBatch {
     reserve(count + 1);
     return count++;
   }
-  /// The law's view of the contacts, with the springs and energies in `contacts`.
-  NodeContactBatch law(NodeContacts& contacts) {
-    return {count,          nx.data(),  ny.data(),  nz.data(), depth.data(),           area.data(),
-            vx.data(),      vy.data(),  vz.data(),  contacts.springX.data(), contacts.springY.data(), contacts.springZ.data(),
-            fx.data(),      fy.data(),  fz.data(),  fn.data(), contacts.energy.data(), friction.data(),
-            viscous.data(), sliding.data()};
-  }
 };
 
-// One side of a pair being collected (its nodes on body M, in the other side O): the sign of its
-// forces on body a (+1: M is a), c_M - c_a, and the terms of the relative velocity at a node,
+// One side of a pair being collected (its nodes on body M, in the other side O): c_M - c_a, and
+// the terms of the relative velocity at a node,
 //   v_M - v_O + w_M x (x - c_M) - w_O x (x - c_O) = v0 + (w_M - w_O) x r,
 // with the lever r = x - c_a and v0 = v_M - v_O + w_O x (c_O - c_a) - w_M x (c_M - c_a).
 struct SideMotion {
-  double sign = 1.0;
   Eigen::Vector3d shift, v0, spin;
 };
 
@@ -209,20 +199,19 @@ __attribute__((always_inline)) inline void facingArea(Lanes& area, const Lanes& 
 // The batch's contact arrays from entry `start` on, as the listing functions write them.
 struct BatchSlice {
   std::uint32_t* __restrict key;
-  double *__restrict rx, *__restrict ry, *__restrict rz, *__restrict sign, *__restrict vx, *__restrict vy, *__restrict vz,
-      *__restrict nx, *__restrict ny, *__restrict nz, *__restrict depth, *__restrict area;
+  double *__restrict rx, *__restrict ry, *__restrict rz, *__restrict vx, *__restrict vy, *__restrict vz, *__restrict nx,
+      *__restrict ny, *__restrict nz, *__restrict depth, *__restrict area;
   BatchSlice(PairBatch& b, int start)
       : key(b.key.data() + start), rx(b.rx.data() + start), ry(b.ry.data() + start), rz(b.rz.data() + start),
-        sign(b.sign.data() + start), vx(b.vx.data() + start), vy(b.vy.data() + start), vz(b.vz.data() + start),
+        vx(b.vx.data() + start), vy(b.vy.data() + start), vz(b.vz.data() + start),
         nx(b.nx.data() + start), ny(b.ny.data() + start), nz(b.nz.data() + start), depth(b.depth.data() + start),
         area(b.area.data() + start) {}
-  /// Entry k's lever r = x - c_a (world), the sign of its force on a, and the relative velocity
-  /// at the node, v0 + (w_M - w_O) x r (SideMotion).
+  /// Entry k's lever r = x - c_a (world) and the relative velocity at the node, v0 + (w_M - w_O)
+  /// x r (SideMotion).
   void setLever(int k, const SideMotion& side, double x, double y, double z) const {
     rx[k] = x;
     ry[k] = y;
     rz[k] = z;
-    sign[k] = side.sign;
     const Eigen::Vector3d &v0 = side.v0, &w = side.spin;
     vx[k] = v0.x() + (w.y() * z - w.z() * y);
     vy[k] = v0.y() + (w.z() * x - w.x() * z);
@@ -319,10 +308,9 @@ struct ContactLanes {
 };
 
 // The lanes of `mask` (laneBits) of a block of contacts, packed to the front and stored in the
-// batch from entry `count` on, with the sign of their force on a; the new count. Whole blocks
-// are stored: the batch needs room for four entries past the last contact.
-__attribute__((always_inline)) inline int storeKept(const ContactLanes& block, int mask, const Lanes& signs,
-                                                    const BatchSlice& out, int count) {
+// batch from entry `count` on; the new count. Whole blocks are stored: the batch needs room for
+// four entries past the last contact.
+__attribute__((always_inline)) inline int storeKept(const ContactLanes& block, int mask, const BatchSlice& out, int count) {
   Words order;
   std::memcpy(&order, kCompaction.words[mask], sizeof order);
   const auto store = [&](const Lanes& v, double* to) {
@@ -341,7 +329,6 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
   store(block.nz, out.nz);
   store(block.depth, out.depth);
   store(block.area, out.area);
-  std::memcpy(out.sign + count, &signs, sizeof signs);
   KeyOrder keyOrder;
   std::memcpy(&keyOrder, kCompaction.keys[mask], sizeof keyOrder);
   Keys kept;
@@ -364,8 +351,7 @@ __attribute__((always_inline)) inline void laneVelocities(const SideMotion& side
 // phi = max_f (n'_f . p - d'_f) as PlanesInFrame::phi (the first plane of largest value is the
 // best; phi and the best plane's normals kept in registers across the planes), and for the
 // candidates inside (phi < 0), packed to the front of the lanes without branches (storeKept):
-// key, lever r = RM p + (c_M - c_a), the sign of the force on a and the relative velocity
-// (BatchSlice::setLever, same operations), the world normal of the best plane, depth -phi, and
+// key, lever r = RM p + (c_M - c_a) and the relative velocity (BatchSlice::setLever, same operations), the world normal of the best plane, depth -phi, and
 // area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame), clipped at
 // 0 (facingArea). The batch needs room for four entries past the last candidate.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
@@ -375,7 +361,6 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
   const double sx = side.shift.x(), sy = side.shift.y(), sz = side.shift.z();
   const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
                r21 = RM(2, 1), r22 = RM(2, 2);
-  const Lanes signs = Lanes{} + side.sign;
   const CandidateLanes lanes(c);
   int count = 0;
   for (int i = 0; i < c.n; i += kLanes) {
@@ -411,7 +396,7 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
     lanes.loadNormalAndArea(nx, ny, nz, nodeArea, i);
     facingArea(b.area, 0.5 * nodeArea, -(nx * nnx + ny * nny + nz * nnz));
     lanes.loadKeys(b.key, i);
-    count = storeKept(b, mask, signs, out, count);
+    count = storeKept(b, mask, out, count);
   }
   return count;
 }
@@ -437,8 +422,8 @@ void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double*
 // phi and unit normal g in O's frame, n of them, with room for four more: phi NaN there) as
 // contacts of the batch from entry `start` on; their count. Four candidates at a time
 // (CandidateLanes), those inside (phi < 0) packed to the front of the lanes (storeKept): key,
-// lever r = RO o + (c_O - c_M) + (c_M - c_a), the sign of the force on a and the relative
-// velocity (BatchSlice::setLever, same operations), the world normal RO g, depth -phi, and area:
+// lever r = RO o + (c_O - c_M) + (c_M - c_a) and the relative velocity (BatchSlice::setLever,
+// same operations), the world normal RO g, depth -phi, and area:
 // half the node's, projected on the contact plane, -(RM n_i) . (RO g), clipped at 0 (facingArea).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side, const double* __restrict ox,
@@ -452,7 +437,6 @@ int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side,
                m21 = RM(2, 1), m22 = RM(2, 2);
   const double tx = offset.x(), ty = offset.y(), tz = offset.z(), sx = side.shift.x(), sy = side.shift.y(),
                sz = side.shift.z();
-  const Lanes signs = Lanes{} + side.sign;
   const CandidateLanes lanes(c);
   int count = 0;
   for (int i = 0; i < c.n; i += kLanes) {
@@ -481,7 +465,7 @@ int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side,
     const Lanes mx = m00 * nx + m01 * ny + m02 * nz, my = m10 * nx + m11 * ny + m12 * nz, mz = m20 * nx + m21 * ny + m22 * nz;
     facingArea(b.area, 0.5 * nodeArea, -(mx * b.nx + my * b.ny + mz * b.nz));
     lanes.loadKeys(b.key, i);
-    count = storeKept(b, mask, signs, out, count);
+    count = storeKept(b, mask, out, count);
   }
   return count;
 }
@@ -495,59 +479,86 @@ struct PairSums {
   double value[12] = {};
   double weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, maxDepth = 0;
   Eigen::Vector3d vector(Vector v) const { return {value[v], value[v + 1], value[v + 2]}; }
+  /// Adds one side's sums, whose forces act on a (sign +1) or on b (-1).
+  void add(const PairSums& side, double sign) {
+    for (int k = kForce; k < kWeighted; ++k) value[k] += sign * side.value[k];
+    for (int k = kWeighted; k < kWeighted + 3; ++k) value[k] += side.value[k];
+    weight += side.weight;
+    elastic += side.elastic;
+    friction += side.friction;
+    viscous += side.viscous;
+    sliding += side.sliding;
+    projection += side.projection;
+    maxDepth = std::max(maxDepth, side.maxDepth);
+  }
 };
 
-// The sums, in SIMD lanes (the order of the additions follows the machine's vector width).
+// The contact law (nodeContactLaw) over the batch's entries [begin, end), one side's, with the
+// springs, areas and stored energies in `contacts` (the step before's, area -1 for a new contact;
+// updated in place), and what they add up to, the
+// forces on the side's own body, in the same pass and in SIMD lanes (the order of the additions
+// follows the machine's vector width).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-PairSums sumPair(const PairBatch& batch, const NodeContacts& contacts, bool perArea) {
-  const int n = batch.count;
-  double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nx = 0, ny = 0, nz = 0, wx = 0, wy = 0, wz = 0;
+PairSums lawAndSums(const ContactLawConstants& law, PairBatch& batch, NodeContacts& contacts, int begin, int end) {
+  double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nfx = 0, nfy = 0, nfz = 0, wx = 0, wy = 0, wz = 0;
   double weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, deepest = 0;
   const double *__restrict rx = batch.rx.data(), *__restrict ry = batch.ry.data(), *__restrict rz = batch.rz.data();
-  const double *__restrict cx = batch.fx.data(), *__restrict cy = batch.fy.data(), *__restrict cz = batch.fz.data();
-  const double *__restrict ux = batch.nx.data(), *__restrict uy = batch.ny.data(), *__restrict uz = batch.nz.data();
-  const double *__restrict sign = batch.sign.data(), *__restrict normal = batch.fn.data();
-  const double *__restrict slid = batch.friction.data(), *__restrict damped = batch.viscous.data();
-  const double *__restrict atCap = batch.sliding.data(), *__restrict depth = batch.depth.data();
-  const double *__restrict area = batch.area.data(), *__restrict previousArea = batch.previousArea.data();
-  const double *__restrict previousEnergy = batch.previousEnergy.data(), *__restrict stored = contacts.energy.data();
+  const double *__restrict nx = batch.nx.data(), *__restrict ny = batch.ny.data(), *__restrict nz = batch.nz.data();
+  const double *__restrict vx = batch.vx.data(), *__restrict vy = batch.vy.data(), *__restrict vz = batch.vz.data();
+  const double *__restrict depth = batch.depth.data(), *__restrict area = batch.area.data();
+  double *__restrict ux = contacts.springX.data(), *__restrict uy = contacts.springY.data(),
+         *__restrict uz = contacts.springZ.data(), *__restrict stored = contacts.energy.data(),
+         *__restrict storedArea = contacts.area.data();
   // (Every value loaded and one select at a time: a load or a nested select under a condition is
   // control flow, which keeps the loop out of SIMD lanes.)
-#pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nx, ny, nz, wx, wy, wz, weight, elastic, friction, viscous, sliding, \
-                               projection) reduction(max : deepest)
-  for (int i = 0; i < n; ++i) {
-    // Forces on a; a contact facing away (area 0) has none.
-    const double s = sign[i], f0 = s * cx[i], f1 = s * cy[i], f2 = s * cz[i], fn = normal[i];
-    fx += f0;
-    fy += f1;
-    fz += f2;
-    mx += ry[i] * f2 - rz[i] * f1;
-    my += rz[i] * f0 - rx[i] * f2;
-    mz += rx[i] * f1 - ry[i] * f0;
-    nx += s * fn * ux[i];
-    ny += s * fn * uy[i];
-    nz += s * fn * uz[i];
-    wx += fn * rx[i];
-    wy += fn * ry[i];
-    wz += fn * rz[i];
-    weight += fn;
-    elastic += stored[i];
-    friction += slid[i];
-    viscous += damped[i];
-    sliding += atCap[i];
-    // Stored energy is proportional to the area: what the change of area alone removed (a contact
+  double* __restrict scale = batch.scale.data();
+  // The law in three passes, each short enough for the next contacts' work to overlap one's
+  // square roots and divisions (one long pass waited on them).
+#pragma omp simd
+  for (int i = begin; i < end; ++i) {
+    turnSpring(nx[i], ny[i], nz[i], ux[i], uy[i], uz[i]);
+    scale[i] = slidingScale(contactTrial(law, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]));
+  }
+#pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, weight, elastic, friction, viscous, \
+                               sliding, projection) reduction(max : deepest)
+  for (int i = begin; i < end; ++i) {
+    const double a = area[i], a0 = storedArea[i], e0 = stored[i];
+    const NodeContactForce f =
+        turnedContactLaw(law, nx[i], ny[i], nz[i], depth[i], a, vx[i], vy[i], vz[i], scale[i], ux[i], uy[i], uz[i]);
+    stored[i] = f.stored;
+    storedArea[i] = a;
+    // Forces on the side's body; a contact facing away (area 0) has none.
+    fx += f.fx;
+    fy += f.fy;
+    fz += f.fz;
+    mx += ry[i] * f.fz - rz[i] * f.fy;
+    my += rz[i] * f.fx - rx[i] * f.fz;
+    mz += rx[i] * f.fy - ry[i] * f.fx;
+    nfx += f.fn * nx[i];
+    nfy += f.fn * ny[i];
+    nfz += f.fn * nz[i];
+    wx += f.fn * rx[i];
+    wy += f.fn * ry[i];
+    wz += f.fn * rz[i];
+    weight += f.fn;
+    elastic += f.stored;
+    friction += f.friction;
+    viscous += f.viscous;
+    sliding += f.sliding;
+    // Stored energy is proportional to the area (with stiffnesses per area; per node it is not):
+    // what the change of area alone removed, the energy per area times the area lost (a contact
     // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
-    const double a = area[i], a0 = previousArea[i], energy = stored[i];
-    const double scaled = energy * (a0 / (a > 0 ? a : 1.0) - 1);
-    double removed = a0 > 0 && perArea ? scaled : 0.0;       // kept: scaled, if per area
-    removed = a0 == 0 ? -energy : removed;                    // back from a cut
-    removed = a > 0 ? removed : previousEnergy[i];            // cut now
+    const double u2 = ux[i] * ux[i] + uy[i] * uy[i] + uz[i] * uz[i];
+    const double perArea = 0.5 * law.perAreaNormal * depth[i] * depth[i] + 0.5 * law.perAreaTangent * u2;
+    double removed = a0 > 0 ? perArea * (a0 - a) : 0.0;       // kept
+    removed = a0 == 0 ? -f.stored : removed;                  // back from a cut
+    removed = a > 0 ? removed : e0;                           // cut now
     projection += removed;
     const double reached = a > 0 ? depth[i] : 0.0;
     deepest = reached > deepest ? reached : deepest;
   }
   PairSums sums;
-  const double value[12] = {fx, fy, fz, mx, my, mz, nx, ny, nz, wx, wy, wz};
+  const double value[12] = {fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz};
   std::copy(value, value + 12, sums.value);
   sums.weight = weight;
   sums.elastic = elastic;
@@ -586,10 +597,11 @@ struct Accumulator {
   double kn, kt;            // N/m^3, this pair's stiffnesses
   PairBatch& batch;
   SideMotion side{};  // the side being collected
+  int sideOne = -1;   // the batch entry where side 1 (b's nodes) begins; -1: not begun
 
   // Starts a side: the nodes of the body moving as `node` in the other side, moving as `other`.
   const SideMotion& beginSide(const Motion& node, const Motion& other, bool nodeBodyIsA) {
-    side.sign = nodeBodyIsA ? 1.0 : -1.0;
+    if (!nodeBodyIsA) sideOne = batch.count;
     side.shift = node.position - centreA;
     side.spin = node.angularVelocity - other.angularVelocity;
     side.v0 = node.velocity - other.velocity + other.angularVelocity.cross(other.position - centreA) -
@@ -613,33 +625,28 @@ struct Accumulator {
     out.area[0] = facingArea(area, projection);
   }
 
-  // Each contact's spring, and its area and energy before this step, from the previous
-  // evaluation's contacts (pair.previous; new contacts: no spring, area -1). Most steps a pair's
-  // node contacts are the same as before: then the previous arrays become the contacts' as they
-  // are (the law updates the springs in place). Otherwise the two key-sorted lists are merged:
-  // `before` stays on an entry (the last at most), so that every load is made and `found` only
-  // selects, no branch but the merge's own.
+  // The pair's contacts as they were before this step, for the batch's keys: each one's spring,
+  // area and stored energy from the previous evaluation's contacts (pair.previous; new contacts:
+  // no spring, area -1, no energy); the law updates them in place. Most steps a pair's node
+  // contacts are the same as before: then the previous arrays become the contacts' as they are.
+  // Otherwise the two key-sorted lists are merged: `before` stays on an entry (the last at most),
+  // so that every load is made and `found` only selects, no branch but the merge's own.
   void takeHistory(int n) {
     const NodeContacts& previous = pair.previous;
     const std::uint32_t* key = batch.key.data();
     if (!previous.empty() && previous.size() == static_cast<std::size_t>(n) && std::equal(key, key + n, previous.key.data())) {
       std::swap(pair.contacts, pair.previous);
-      NodeContacts& contacts = pair.contacts;
-      std::copy_n(contacts.area.data(), n, batch.previousArea.data());
-      std::copy_n(contacts.energy.data(), n, batch.previousEnergy.data());
-      std::copy_n(batch.area.data(), n, contacts.area.data());
       return;
     }
     NodeContacts& contacts = pair.contacts;
     contacts.resize(static_cast<std::size_t>(n));
     std::copy_n(key, n, contacts.key.data());
-    std::copy_n(batch.area.data(), n, contacts.area.data());
     if (previous.empty()) {
       std::fill_n(contacts.springX.data(), n, 0.0);
       std::fill_n(contacts.springY.data(), n, 0.0);
       std::fill_n(contacts.springZ.data(), n, 0.0);
-      std::fill_n(batch.previousArea.data(), n, -1.0);
-      std::fill_n(batch.previousEnergy.data(), n, 0.0);
+      std::fill_n(contacts.area.data(), n, -1.0);
+      std::fill_n(contacts.energy.data(), n, 0.0);
       return;
     }
     const std::size_t last = previous.size() - 1;
@@ -654,8 +661,8 @@ struct Accumulator {
       contacts.springX[i] = found ? sx[before] : 0.0;
       contacts.springY[i] = found ? sy[before] : 0.0;
       contacts.springZ[i] = found ? sz[before] : 0.0;
-      batch.previousArea[i] = found ? areaBefore[before] : -1.0;
-      batch.previousEnergy[i] = found ? energyBefore[before] : 0.0;
+      contacts.area[i] = found ? areaBefore[before] : -1.0;
+      contacts.energy[i] = found ? energyBefore[before] : 0.0;
     }
   }
 
@@ -664,8 +671,11 @@ struct Accumulator {
     const int n = batch.count;
     takeHistory(n);
     NodeContacts& contacts = pair.contacts;
-    applyContactLaw(scene.parameters, kn, kt, scene.dt, batch.law(contacts));
-    const PairSums sums = sumPair(batch, contacts, scene.parameters.perNodeStiffness <= 0);
+    const ContactLawConstants law = ContactLawConstants::of(scene.parameters, kn, kt, scene.dt);
+    const int split = sideOne >= 0 ? sideOne : n;
+    PairSums sums;
+    sums.add(lawAndSums(law, batch, contacts, 0, split), 1.0);
+    sums.add(lawAndSums(law, batch, contacts, split, n), -1.0);
 
     pair.tally.projection = sums.projection;
     pair.tally.elastic = sums.elastic;
