@@ -29,8 +29,8 @@ struct Motion {
   Eigen::Vector3d position, velocity, angularVelocity;
 };
 
-Motion motionOf(const RigidBodies& bodies, int i) {
-  return {bodies.position[i], bodies.velocity[i], bodies.angularVelocity(i)};
+Motion motionOf(const ContactScene& scene, int i) {
+  return {scene.bodies->position[i], scene.bodies->velocity[i], scene.kinematics->angularVelocity[i]};
 }
 
 constexpr std::uint32_t kRankMask = (1u << 31) - 1;
@@ -259,28 +259,18 @@ struct CandidateLanes {
   enum Field { X, Y, Z, NX, NY, NZ, Area };
   const SideCandidates& c;
   int full;  // the candidates in complete blocks
-  double tail[7][kLanes];
+  const double* field[Area + 1];
+  double tail[Area + 1][kLanes];
   Keys tailKeys = {};
 
-  explicit CandidateLanes(const SideCandidates& candidates) : c(candidates), full(c.n - c.n % kLanes) {
+  explicit CandidateLanes(const SideCandidates& candidates)
+      : c(candidates), full(c.n - c.n % kLanes), field{c.x, c.y, c.z, c.nx, c.ny, c.nz, c.area} {
+    const int rest = c.n - full;
     for (int f = X; f <= Area; ++f)
-      for (int lane = 0; lane < kLanes; ++lane)
-        tail[f][lane] = full + lane < c.n ? array(static_cast<Field>(f))[full + lane] : NAN;
-    for (int lane = 0; full + lane < c.n; ++lane) tailKeys[lane] = c.key[full + lane];
+      for (int lane = 0; lane < kLanes; ++lane) tail[f][lane] = lane < rest ? field[f][full + lane] : NAN;
+    for (int lane = 0; lane < rest; ++lane) tailKeys[lane] = c.key[full + lane];
   }
-  const double* array(Field f) const {
-    switch (f) {
-      case X: return c.x;
-      case Y: return c.y;
-      case Z: return c.z;
-      case NX: return c.nx;
-      case NY: return c.ny;
-      case NZ: return c.nz;
-      case Area: break;
-    }
-    return c.area;
-  }
-  void load(Lanes& v, Field f, int i) const { std::memcpy(&v, i == full ? tail[f] : array(f) + i, sizeof v); }
+  void load(Lanes& v, Field f, int i) const { std::memcpy(&v, i == full ? tail[f] : field[f] + i, sizeof v); }
   /// The nodes' outward normals and areas.
   void loadNormalAndArea(Lanes& nx, Lanes& ny, Lanes& nz, Lanes& area, int i) const {
     load(nx, NX, i);
@@ -816,8 +806,8 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
   const RigidBodies& bodies = *scene.bodies;
   const int m = pair.a;
   const ShapeModel& sm = (*scene.shapes)[bodies.shape[m]];
-  const Eigen::Matrix3d RM = bodies.orientation[m].toRotationMatrix();
-  const Motion node = motionOf(bodies, m);
+  const Eigen::Matrix3d& RM = scene.kinematics->rotation[m];
+  const Motion node = motionOf(scene, m);
   acc.beginSide(node, other, true);
   visitSide(sm.nodes, region, 0, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
     ++pair.evaluations;
@@ -832,11 +822,24 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
 
 }  // namespace
 
+namespace {
+
+// rad, an upper bound on the angle between two orientations, cheaper than the angle itself: the
+// rotation d = q q0^-1 turns by theta with |d.vec| = sin(theta / 2) and |d.w| = cos(theta / 2),
+// and x <= tan x on [0, pi / 2), so theta <= 2 |d.vec| / |d.w| (above theta by theta^3 / 12 at
+// most to third order; infinite at a half turn).
+double turnBound(const Eigen::Quaterniond& q, const Eigen::Quaterniond& q0) {
+  const Eigen::Quaterniond d = q * q0.conjugate();
+  return 2 * d.vec().norm() / std::abs(d.w());
+}
+
+}  // namespace
+
 double candidateMotion(const ContactScene& scene, const PairContacts& pair) {
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
   const auto moved = [](const Eigen::Vector3d& p, const Eigen::Quaterniond& q, const Eigen::Vector3d& p0,
-                        const Eigen::Quaterniond& q0, double radius) { return (p - p0).norm() + q.angularDistance(q0) * radius; };
+                        const Eigen::Quaterniond& q0, double radius) { return (p - p0).norm() + turnBound(q, q0) * radius; };
   const auto [position, orientation] = otherPose(scene, pair);
   return moved(bodies.position[pair.a], bodies.orientation[pair.a], pair.builtPositionA, pair.builtOrientationA,
                shapes[bodies.shape[pair.a]].radius) +
@@ -862,10 +865,10 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
     const int m = side == 0 ? pair.a : pair.b, o = side == 0 ? pair.b : pair.a;
     const ShapeModel& sm = shapes[bodies.shape[m]];
     const ShapeModel& so = shapes[bodies.shape[o]];
-    const Eigen::Matrix3d RM = bodies.orientation[m].toRotationMatrix(), RO = bodies.orientation[o].toRotationMatrix();
+    const Eigen::Matrix3d &RM = scene.kinematics->rotation[m], &RO = scene.kinematics->rotation[o];
     const Eigen::Matrix3d toO = RO.transpose() * RM;  // M body -> O body
     const Eigen::Vector3d shift = RO.transpose() * (bodies.position[m] - bodies.position[o]);
-    const Motion node = motionOf(bodies, m), other = motionOf(bodies, o);
+    const Motion node = motionOf(scene, m), other = motionOf(scene, o);
     // Only nodes inside the other body's box (and band) can be inside the other body.
     Eigen::AlignedBox3d region;
     if (rebuild) {

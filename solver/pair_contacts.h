@@ -161,6 +161,7 @@ struct PairContacts {
 /// The scene as a pair evaluation needs it (read-only during evaluation).
 struct ContactScene {
   const RigidBodies* bodies;
+  const BodyKinematics* kinematics;  ///< of `bodies`, this step
   const std::vector<ShapeModel>* shapes;
   const std::vector<SphereObstacle>* spheres;
   const std::vector<PlaneObstacle>* planes;
@@ -183,7 +184,7 @@ inline PairKind pairKind(int b, int spheres) {
 /// side's frame, since its candidates were built: a rigid motion moves a point x of body M by at
 /// most |dp_M| + theta_M |x - c_M| (theta_M the angle M turned), and a point near O in O's frame
 /// by at most |dp_O| + theta_O r_O, so the bound is the sum of |dp| + theta r over both sides (r:
-/// ShapeModel::radius; an obstacle does not turn).
+/// ShapeModel::radius; an obstacle does not turn; theta itself bounded from above, cheaply).
 double candidateMotion(const ContactScene& scene, const PairContacts& pair);
 
 /// Evaluates one pair, by its kind. Each keeps the springs of nodes still in contact and drops

@@ -32,6 +32,22 @@ struct RigidBodies {
   }
 };
 
+/// What every pair of a step reads of each body's rotation, computed once per step for all its
+/// pairs: its rotation matrix (body -> world) and its angular velocity (world, rad/s), the values
+/// of orientation[i].toRotationMatrix() and RigidBodies::angularVelocity(i).
+struct BodyKinematics {
+  std::vector<Eigen::Matrix3d> rotation;
+  std::vector<Eigen::Vector3d> angularVelocity;
+  void update(const RigidBodies& bodies) {
+    rotation.resize(bodies.size());
+    angularVelocity.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      rotation[i] = bodies.orientation[i].toRotationMatrix();
+      angularVelocity[i] = bodies.angularVelocity(i);
+    }
+  }
+};
+
 /// Bodies of a bundle at rest: mass = density x volume, inertia = density x principal moments.
 RigidBodies makeRigidBodies(const Bundle& bundle, double density);
 

@@ -278,7 +278,8 @@ void World::updatePairs() {
 
 void World::evaluateForces() {
   updatePairs();
-  ContactScene scene{&state_.bodies, &shapes_, &state_.spheres, &state_.planes, parameters_,
+  kinematics_.update(state_.bodies);
+  ContactScene scene{&state_.bodies, &kinematics_, &shapes_, &state_.spheres, &state_.planes, parameters_,
                      parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt_, candidateBand()};
   arena_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, state_.pairs.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {

@@ -128,6 +128,7 @@ private:
   SolverSettings settings_;
   struct ThreadArena;
   std::unique_ptr<ThreadArena> arena_;  // the threads the contact loop runs on
+  BodyKinematics kinematics_;           // of state_.bodies at the last evaluation (derived, not state)
   double penetrationLimit_ = 0.0;
   double dt_ = 0.0, automaticDt_ = 0.0;
 };

@@ -145,7 +145,7 @@ TEST_CASE("candidate motion: |dp| + theta r of each side since the candidates we
   bodies.shape = {0, 0};
   std::vector<SphereObstacle> spheres(1);
   std::vector<PlaneObstacle> planes;
-  const ContactScene scene{&bodies, &shapes, &spheres, &planes, ContactParameters{}, 0, 0, 0, 0};
+  const ContactScene scene{&bodies, nullptr, &shapes, &spheres, &planes, ContactParameters{}, 0, 0, 0, 0};
   PairContacts pair;
   pair.a = 0;
   pair.b = 1;
@@ -153,8 +153,16 @@ TEST_CASE("candidate motion: |dp| + theta r of each side since the candidates we
   REQUIRE(candidateMotion(scene, pair) == 0.0);
   bodies.position[1] += Eigen::Vector3d(3e-6, -4e-6, 0);  // 5 um
   REQUIRE(candidateMotion(scene, pair) == Approx(5e-6).epsilon(1e-12));
+  // A turn theta counts theta r, bounded from above by 2 tan(theta / 2) r: at most theta^3 / 12
+  // more to third order, never less, at small and at large angles.
+  for (double theta : {1e-3, 0.3, 2.5}) {
+    bodies.orientation[0] = Eigen::Quaterniond(Eigen::AngleAxisd(theta, Eigen::Vector3d(0.6, 0, 0.8)));
+    const double exact = 5e-6 + theta * 5e-3, bound = 5e-6 + 2 * std::tan(theta / 2) * 5e-3;
+    REQUIRE(candidateMotion(scene, pair) >= exact);
+    REQUIRE(candidateMotion(scene, pair) == Approx(bound).epsilon(1e-12));
+  }
   bodies.orientation[0] = Eigen::Quaterniond(Eigen::AngleAxisd(1e-3, Eigen::Vector3d(0.6, 0, 0.8)));
-  REQUIRE(candidateMotion(scene, pair) == Approx(5e-6 + 1e-3 * 5e-3).epsilon(1e-9));
+  REQUIRE(candidateMotion(scene, pair) == Approx(5e-6 + 1e-3 * 5e-3).epsilon(1e-7));
   // A sphere moves, and does not turn: only its centre counts.
   PairContacts touch;
   touch.a = 1;
