@@ -16,15 +16,16 @@ void contactLaw(const ContactLawConstants& k, const NodeContactBatch& b) {
          *__restrict viscous = b.viscous, *__restrict sliding = b.sliding;
 #pragma omp simd
   for (int i = 0; i < n; ++i) {
-    const NodeContactForce f = nodeContactLaw(k, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
+    const SpringUpdate u = updateSpring(k, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
+    const ContactForce f = contactForce(k, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
     fx[i] = f.fx;
     fy[i] = f.fy;
     fz[i] = f.fz;
     fn[i] = f.fn;
     stored[i] = f.stored;
-    friction[i] = f.friction;
+    friction[i] = u.friction;
     viscous[i] = f.viscous;
-    sliding[i] = f.sliding;
+    sliding[i] = u.sliding;
   }
 }
 

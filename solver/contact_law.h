@@ -64,113 +64,89 @@ struct ContactLawConstants {
   }
 };
 
-/// What the law gives one node contact (the outputs of NodeContactBatch but the spring).
-struct NodeContactForce {
-  double fx, fy, fz;  ///< N, on the node's body
-  double fn;          ///< N, f . n
-  double stored;      ///< J
-  double friction;    ///< J, dissipated by sliding this step
-  double viscous;     ///< J, dissipated by the normal viscosity this step
-  double sliding;     ///< 1 at the Coulomb cap, else 0
+/// The normal force of one contact: f_n = k_n a d - eta_n a v_n clipped at 0, with its elastic part
+/// k_n a d, the approach speed v_n = v . n, and k_t a (0 for a node facing away, area 0).
+struct NormalForce {
+  double kna, kta, vn, elastic, fn;
+};
+__attribute__((always_inline)) inline NormalForce normalForce(const ContactLawConstants& k, double nx, double ny, double nz,
+                                                              double depth, double area, double vx, double vy, double vz) {
+  NormalForce f;
+  const double keep = area > 0 ? 1.0 : 0.0;  // 0: facing away, no force, spring or energy
+  f.kna = keep * (k.perNodeNormal + k.perAreaNormal * area);  // k_n a, or the per-node k
+  f.kta = keep * (k.perNodeTangent + k.perAreaTangent * area);
+  f.vn = vx * nx + vy * ny + vz * nz;
+  f.elastic = f.kna * depth;
+  const double pushed = f.elastic - k.viscosity * area * f.vn;
+  f.fn = pushed > 0 ? pushed : 0.0;
+  return f;
+}
+
+/// What the update of a contact's tangential spring dissipated: J by sliding, and 1 if it slid.
+struct SpringUpdate {
+  double friction, sliding;
 };
 
-/// The first part of the law for one contact: its spring u turned onto the tangent plane of the
-/// normal n, keeping its length, in place: u = (s - n (n.s)) |s| / |s - n (n.s)| (a spring already
-/// in the plane is left as it is: then the ratio is exactly 1). Without branches (SIMD lanes).
-__attribute__((always_inline)) inline void turnSpring(double nx, double ny, double nz, double& ux, double& uy, double& uz) {
+/// The first part of the law for one contact: its tangential spring u, in place (normal n, depth,
+/// area, relative velocity v). Without branches, so that a loop over contacts runs it in SIMD
+/// lanes; every caller is compiled without floating-point contraction (the same bits everywhere).
+__attribute__((always_inline)) inline SpringUpdate updateSpring(const ContactLawConstants& k, double nx, double ny,
+                                                                double nz, double depth, double area, double vx,
+                                                                double vy, double vz, double& ux, double& uy, double& uz) {
+  const NormalForce n = normalForce(k, nx, ny, nz, depth, area, vx, vy, vz);
+  // Turn the spring onto the tangent plane, keeping its length: u = (s - n (n.s)) |s| / |s - n (n.s)|
+  // (a spring already in the plane is left as it is: then the ratio is exactly 1).
   const double along = nx * ux + ny * uy + nz * uz;
   const double length2 = ux * ux + uy * uy + uz * uz;
-  const double tx = ux - along * nx, ty = uy - along * ny, tz = uz - along * nz;
+  double tx = ux - along * nx, ty = uy - along * ny, tz = uz - along * nz;
   const double projected2 = tx * tx + ty * ty + tz * tz;
   const double ratio = length2 / (projected2 > 0 ? projected2 : 1.0);  // every operation in every lane:
   const double turn = std::sqrt(projected2 > 0 ? ratio : 1.0);           // then the lanes choose
-  ux = tx * turn;
-  uy = ty * turn;
-  uz = tz * turn;
+  tx *= turn;
+  ty *= turn;
+  tz *= turn;
+  // u = turned + v_t dt; the trial force -k_t a u.
+  const double dx = (vx - n.vn * nx) * k.dt, dy = (vy - n.vn * ny) * k.dt, dz = (vz - n.vn * nz) * k.dt;
+  double sx = tx + dx, sy = ty + dy, sz = tz + dz;
+  const double ftx = -n.kta * sx, fty = -n.kta * sy, ftz = -n.kta * sz;
+  const double cap = k.friction * n.fn, ft2 = ftx * ftx + fty * fty + ftz * ftz;
+  // Sliding: u scaled back to the Coulomb cap, |k_t a u| = mu f_n. Dissipated: the work put into
+  // the spring over the increment (trapezoidal, as a sticking spring stores it exactly) less what
+  // it now stores: k_t a (u_0 + u) / 2 . du - k_t a (|u|^2 - |u_0|^2) / 2.
+  const bool slides = ft2 > cap * cap;
+  const double capped = cap / std::sqrt(ft2 > 0 ? ft2 : 1.0);
+  const double scale = slides ? capped : 1.0;
+  sx *= scale;
+  sy *= scale;
+  sz *= scale;
+  const double u2 = sx * sx + sy * sy + sz * sz, turned2 = tx * tx + ty * ty + tz * tz;
+  const double work = 0.5 * ((tx + sx) * dx + (ty + sy) * dy + (tz + sz) * dz);
+  const double keep = area > 0 ? 1.0 : 0.0;
+  ux = keep * sx;
+  uy = keep * sy;
+  uz = keep * sz;
+  return {slides ? n.kta * (work - 0.5 * (u2 - turned2)) : 0.0, slides ? 1.0 : 0.0};
 }
 
-/// The law's trial state for one contact, its spring u already turned (turnSpring): normal force
-/// f_n = k_n a d - eta_n a v_n clipped at 0, the increment v_t dt, the trial spring s = u + v_t dt
-/// and its force -k_t a s, and the Coulomb cap mu f_n. Without branches (SIMD lanes).
-struct ContactTrial {
-  double keep, kna, kta, vn, elastic, fn, dx, dy, dz, sx, sy, sz, ftx, fty, ftz, cap, ft2;
+/// What one node contact gives with its spring updated (updateSpring): its force on the node's
+/// body f = f_n n - k_t a u (N), f_n (N), its stored energy 1/2 k_n a d^2 + 1/2 k_t a |u|^2 (J) and
+/// what the normal viscosity dissipated this step, (k_n a d - f_n) v_n dt (J).
+struct ContactForce {
+  double fx, fy, fz, fn, stored, viscous;
 };
-__attribute__((always_inline)) inline ContactTrial contactTrial(const ContactLawConstants& k, double nx, double ny, double nz,
-                                                                double depth, double area, double vx, double vy,
-                                                                double vz, double ux, double uy, double uz) {
-  ContactTrial t;
-  t.keep = area > 0 ? 1.0 : 0.0;  // 0: facing away, no force, spring or energy
-  t.kna = t.keep * (k.perNodeNormal + k.perAreaNormal * area);  // k_n a, or the per-node k
-  t.kta = t.keep * (k.perNodeTangent + k.perAreaTangent * area);
-  t.vn = vx * nx + vy * ny + vz * nz;
-  t.elastic = t.kna * depth;
-  const double pushed = t.elastic - k.viscosity * area * t.vn;
-  t.fn = pushed > 0 ? pushed : 0.0;
-  // s = turned + v_t dt; f_t = -k_t a s.
-  t.dx = (vx - t.vn * nx) * k.dt;
-  t.dy = (vy - t.vn * ny) * k.dt;
-  t.dz = (vz - t.vn * nz) * k.dt;
-  t.sx = ux + t.dx;
-  t.sy = uy + t.dy;
-  t.sz = uz + t.dz;
-  t.ftx = -t.kta * t.sx;
-  t.fty = -t.kta * t.sy;
-  t.ftz = -t.kta * t.sz;
-  t.cap = k.friction * t.fn;
-  t.ft2 = t.ftx * t.ftx + t.fty * t.fty + t.ftz * t.ftz;
-  return t;
-}
-
-/// What the trial spring and force are scaled by: 1 when sticking, mu f_n / |f_t| when the trial
-/// force passes the Coulomb cap (sliding).
-__attribute__((always_inline)) inline double slidingScale(const ContactTrial& t) {
-  const bool slides = t.ft2 > t.cap * t.cap;
-  const double capped = t.cap / std::sqrt(t.ft2 > 0 ? t.ft2 : 1.0);  // every operation in every lane
-  return slides ? capped : 1.0;
-}
-
-/// The rest of the law for one contact, its spring u already turned (turnSpring) and updated in
-/// place, with `scale` = slidingScale of its trial: normal n, depth, area, relative velocity v.
-/// Without branches (SIMD lanes).
-__attribute__((always_inline)) inline NodeContactForce turnedContactLaw(const ContactLawConstants& k, double nx, double ny,
-                                                                        double nz, double depth, double area, double vx,
-                                                                        double vy, double vz, double scale, double& ux,
-                                                                        double& uy, double& uz) {
-  const ContactTrial t = contactTrial(k, nx, ny, nz, depth, area, vx, vy, vz, ux, uy, uz);
-  // Sliding: f_t and u scaled back to the Coulomb cap (u = -f_t / k_t a). Dissipated: the work
-  // put into the spring over the increment (trapezoidal, as a sticking spring stores it
-  // exactly) less what it now stores: k_t a (u_0 + u) / 2 . du - k_t a (|u|^2 - |u_0|^2) / 2.
-  const bool slides = t.ft2 > t.cap * t.cap;
-  const double ftx = t.ftx * scale, fty = t.fty * scale, ftz = t.ftz * scale;
-  const double sx = t.sx * scale, sy = t.sy * scale, sz = t.sz * scale;
-  const double u2 = sx * sx + sy * sy + sz * sz, turned2 = ux * ux + uy * uy + uz * uz;
-  const double work = 0.5 * ((ux + sx) * t.dx + (uy + sy) * t.dy + (uz + sz) * t.dz);
-  NodeContactForce out;
-  out.friction = slides ? t.kta * (work - 0.5 * (u2 - turned2)) : 0.0;
-  out.sliding = slides ? 1.0 : 0.0;
-  ux = t.keep * sx;
-  uy = t.keep * sy;
-  uz = t.keep * sz;
+__attribute__((always_inline)) inline ContactForce contactForce(const ContactLawConstants& k, double nx, double ny,
+                                                                double nz, double depth, double area, double vx,
+                                                                double vy, double vz, double ux, double uy, double uz) {
+  const NormalForce n = normalForce(k, nx, ny, nz, depth, area, vx, vy, vz);
+  ContactForce f;
+  f.fn = n.fn;
+  f.fx = n.fn * nx - n.kta * ux;
+  f.fy = n.fn * ny - n.kta * uy;
+  f.fz = n.fn * nz - n.kta * uz;
+  f.stored = 0.5 * n.elastic * depth + 0.5 * n.kta * (ux * ux + uy * uy + uz * uz);
   // The non-elastic part of the normal force, f_n - k_n a d, does the work (f_n - k_n a d) v_n dt.
-  out.viscous = (t.elastic - t.fn) * t.vn * k.dt;
-  out.stored = 0.5 * t.elastic * depth + 0.5 * t.kta * u2;
-  out.fn = t.fn;
-  out.fx = t.fn * nx + ftx;
-  out.fy = t.fn * ny + fty;
-  out.fz = t.fn * nz + ftz;
-  return out;
-}
-
-/// The law of applyContactLaw for one contact (turnSpring, slidingScale, turnedContactLaw): normal n,
-/// depth, area, relative velocity v, and its spring u updated in place. Every caller is compiled
-/// without floating-point contraction (the same bits everywhere).
-__attribute__((always_inline)) inline NodeContactForce nodeContactLaw(const ContactLawConstants& k, double nx, double ny,
-                                                                      double nz, double depth, double area, double vx,
-                                                                      double vy, double vz, double& ux, double& uy,
-                                                                      double& uz) {
-  turnSpring(nx, ny, nz, ux, uy, uz);
-  const double scale = slidingScale(contactTrial(k, nx, ny, nz, depth, area, vx, vy, vz, ux, uy, uz));
-  return turnedContactLaw(k, nx, ny, nz, depth, area, vx, vy, vz, scale, ux, uy, uz);
+  f.viscous = (n.elastic - n.fn) * n.vn * k.dt;
+  return f;
 }
 
 }  // namespace tessera

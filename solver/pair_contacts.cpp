@@ -44,14 +44,14 @@ struct PairBatch {
   int count = 0;
   std::vector<std::uint32_t> key;
   std::vector<double> rx, ry, rz, nx, ny, nz, depth, area, vx, vy, vz;
-  std::vector<double> scale;  // the law's: each contact's slidingScale
+  std::vector<double> friction, sliding;  // the law's: each contact's SpringUpdate
 
   /// Room for n contacts (values unset).
   void reserve(int n) {
     if (static_cast<int>(key.size()) >= n) return;
     const std::size_t size = static_cast<std::size_t>(n + n / 2);
     key.resize(size);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &vx, &vy, &vz, &scale})
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &vx, &vy, &vz, &friction, &sliding})
       v->resize(size);
   }
   /// A new contact at the end (values unset); its index.
@@ -132,21 +132,25 @@ struct PlanesInFrame {
   std::array<double, kMax> wx, wy, wz;          // world
   int count = 0;
 
-  // R, t: the other body's frame from M's; RM: M's orientation.
+  // R, t: the other body's frame from M's; RM: M's orientation. Only the planes of `kept` (bit
+  // f: plane f), in their order.
   PlanesInFrame(const std::vector<FacePlane>& planes, const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
-                const Eigen::Matrix3d& RM)
-      : count(static_cast<int>(std::min<std::size_t>(planes.size(), kMax))) {
-    for (int f = 0; f < count; ++f) {
+                const Eigen::Matrix3d& RM, std::uint64_t kept = ~0ull) {
+    const int all = static_cast<int>(std::min<std::size_t>(planes.size(), kMax));
+    for (int f = 0; f < all; ++f) {
+      if (!(kept >> f & 1)) continue;
       const Eigen::Vector3d n = R.transpose() * planes[f].normal, w = RM * n;
-      nx[f] = n.x();
-      ny[f] = n.y();
-      nz[f] = n.z();
-      offset[f] = planes[f].offset - planes[f].normal.dot(t);
-      wx[f] = w.x();
-      wy[f] = w.y();
-      wz[f] = w.z();
+      nx[count] = n.x();
+      ny[count] = n.y();
+      nz[count] = n.z();
+      offset[count] = planes[f].offset - planes[f].normal.dot(t);
+      wx[count] = w.x();
+      wy[count] = w.y();
+      wz[count] = w.z();
+      ++count;
     }
   }
+  double value(int f, const Eigen::Vector3d& p) const { return nx[f] * p.x() + ny[f] * p.y() + nz[f] * p.z() - offset[f]; }
   double phi(const Eigen::Vector3d& p, int& best) const {
     best = 0;
     double value = nx[0] * p.x() + ny[0] * p.y() + nz[0] * p.z() - offset[0];
@@ -185,6 +189,24 @@ SideCandidates candidatesOf(const PairContacts& pair, std::uint32_t side) {
   const std::size_t at = static_cast<std::size_t>(first - begin);
   return {static_cast<int>(last - first), first,           c.x.data() + at,  c.y.data() + at,   c.z.data() + at,
           c.nx.data() + at,               c.ny.data() + at, c.nz.data() + at, c.area.data() + at};
+}
+
+// The planes of a convex other side (`all` of them, in a side's frame) that can give one of the
+// side's candidates c its level set until they are built again (PairContacts::planesKept): phi =
+// max_f v_f, and until then each candidate moves less than band / sqrt(3) relative to the other
+// side (ContactScene::candidateBand), which changes every v_f, and phi, by less than that. A plane
+// below phi by 2 band or more at every candidate stays below it; without it, phi and the best
+// plane (the first of largest value) are the same, to the bit.
+std::uint64_t planesNear(const SideCandidates& c, const PlanesInFrame& all, double band) {
+  std::uint64_t kept = 0;
+  for (int i = 0; i < c.n; ++i) {
+    const Eigen::Vector3d p(c.x[i], c.y[i], c.z[i]);
+    int best;
+    const double phi = all.phi(p, best);
+    for (int f = 0; f < all.count; ++f)
+      if (all.value(f, p) >= phi - 2 * band) kept |= 1ull << f;
+  }
+  return kept;
 }
 
 // m^2, a node's share of its area projected on the contact plane: halfArea x projection, 0 where
@@ -483,7 +505,7 @@ struct PairSums {
   }
 };
 
-// The contact law (nodeContactLaw) over the batch's entries [begin, end), one side's, with the
+// The contact law (updateSpring, contactForce) over the batch's entries [begin, end), one side's, with the
 // springs, areas and stored energies in `contacts` (the step before's, area -1 for a new contact;
 // updated in place), and what they add up to, the
 // forces on the side's own body, in the same pass and in SIMD lanes (the order of the additions
@@ -501,20 +523,21 @@ PairSums lawAndSums(const ContactLawConstants& law, PairBatch& batch, NodeContac
          *__restrict storedArea = contacts.area.data();
   // (Every value loaded and one select at a time: a load or a nested select under a condition is
   // control flow, which keeps the loop out of SIMD lanes.)
-  double* __restrict scale = batch.scale.data();
-  // The law in three passes, each short enough for the next contacts' work to overlap one's
-  // square roots and divisions (one long pass waited on them).
+  double *__restrict slid = batch.friction.data(), *__restrict atCap = batch.sliding.data();
+  // The law in two passes, the springs (with their square roots and divisions) and then the
+  // forces and sums, each short enough for the next contacts' work to overlap one's square roots
+  // and divisions (one long pass waited on them).
 #pragma omp simd
   for (int i = begin; i < end; ++i) {
-    turnSpring(nx[i], ny[i], nz[i], ux[i], uy[i], uz[i]);
-    scale[i] = slidingScale(contactTrial(law, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]));
+    const SpringUpdate u = updateSpring(law, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
+    slid[i] = u.friction;
+    atCap[i] = u.sliding;
   }
 #pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, weight, elastic, friction, viscous, \
                                sliding, projection) reduction(max : deepest)
   for (int i = begin; i < end; ++i) {
     const double a = area[i], a0 = storedArea[i], e0 = stored[i];
-    const NodeContactForce f =
-        turnedContactLaw(law, nx[i], ny[i], nz[i], depth[i], a, vx[i], vy[i], vz[i], scale[i], ux[i], uy[i], uz[i]);
+    const ContactForce f = contactForce(law, nx[i], ny[i], nz[i], depth[i], a, vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
     stored[i] = f.stored;
     storedArea[i] = a;
     // Forces on the side's body; a contact facing away (area 0) has none.
@@ -532,9 +555,9 @@ PairSums lawAndSums(const ContactLawConstants& law, PairBatch& batch, NodeContac
     wz += f.fn * rz[i];
     weight += f.fn;
     elastic += f.stored;
-    friction += f.friction;
+    friction += slid[i];
     viscous += f.viscous;
-    sliding += f.sliding;
+    sliding += atCap[i];
     // Stored energy is proportional to the area (with stiffnesses per area; per node it is not):
     // what the change of area alone removed, the energy per area times the area lost (a contact
     // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
@@ -880,16 +903,20 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
     if (!so.planes.empty()) {
       // A convex other side: its planes moved into M's frame once, n' = toO^T n, d' = d - n . shift,
       // so that a candidate is tested as it is: phi = max_f (n'_f . p - d'_f).
-      const PlanesInFrame planes(so.planes, toO, shift, RM);
-      // The candidates first, if they are being rebuilt; then every candidate's phi at once
-      // (SIMD), the ones inside listed without branches, and their contacts: one path for every
-      // step, so that a run resumed from a checkpoint (which rebuilds them) gives the same bits.
-      if (rebuild)
+      // The candidates first, if they are being rebuilt, and the planes near them; then every
+      // candidate's phi at once (SIMD), the ones inside listed without branches, and their
+      // contacts: one path for every step, so that a run resumed from a checkpoint (which rebuilds
+      // them) gives the same bits.
+      if (rebuild) {
+        const PlanesInFrame all(so.planes, toO, shift, RM);
         visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
           ++pair.evaluations;
           int best;
-          return planes.phi(sm.nodes.position[key & kRankMask], best);
+          return all.phi(sm.nodes.position[key & kRankMask], best);
         });
+        pair.planesKept[side] = planesNear(candidatesOf(pair, side), all, scene.candidateBand);
+      }
+      const PlanesInFrame planes(so.planes, toO, shift, RM, pair.planesKept[side]);
       convexSideContacts(pair, side, planes, RM, motion, scratch.batch);
     } else {
       // As for a convex side: the candidates first (if rebuilt), then the level set of all of them.

@@ -146,6 +146,10 @@ struct PairContacts {
   /// relative to each other (then they are built again).
   CandidateNodes candidates;
   bool candidatesValid = false;  ///< false: the next evaluation visits every node in range and rebuilds them
+  /// For each side's candidates against a convex other side: the other side's face planes that can
+  /// give a candidate its level set until the candidates are built again (bit f: plane f; the
+  /// others lie below by more than the sides can move meanwhile), found when they are built.
+  std::uint64_t planesKept[2] = {~0ull, ~0ull};
   /// World poses when the candidates were built: body a's centroid and orientation, and the other
   /// side's (body b's; a sphere's centre; a plane's point), for candidateMotion().
   Eigen::Vector3d builtPositionA{0, 0, 0}, builtPositionB{0, 0, 0};

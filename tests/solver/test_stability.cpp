@@ -97,7 +97,9 @@ TEST_CASE("candidate node lists: the forces are those of candidates built afresh
   // have moved band / sqrt(3) relative to each other, when they are built again; a wider band
   // only adds nodes that never touch. A margin of 1e-9 of the default rebuilds the pairs and their
   // candidates at every step: the reference. On the exact-mesh path that also drops every
-  // candidate's kept NearestFace at every step, so each evaluation is a full search.
+  // candidate's kept NearestFace at every step, so each evaluation is a full search; on the planes
+  // path it chooses the planes near the candidates (PairContacts::planesKept) at every step, with
+  // a margin of 2e-9 of the default band. (A margin of 0 there fails this test.)
   Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
   for (Shape& shape : slab.shapes) deriveExactMesh(shape);  // as a run does, for the exact-mesh path
   enum Path { Planes, ExactMesh, Grid };
