@@ -97,8 +97,9 @@ sinfo -h -o %T 2> /dev/null | grep -q idle || { show_logs; skip "slurmctld and s
 echo "[${SECONDS} s] cluster up: $host, slurmctld on 127.0.0.1:$ctld_port"
 
 # A case solves for about 3 s on one core: long enough to cancel one midway. (To 0.2 mm it took
-# 1 s after the kernel of 2026-11-24, and once under a full ctest its case ended before the cancel.)
-printf 'bundle = "%s"\n[indenter]\nspeed = 0.002\n[protocol]\ndelta_max = 0.6e-3\n[output]\ncheckpoint_seconds = 0.2\n' \
+# 1 s after the kernel of 2026-11-24, and once under a full ctest its case ended before the cancel;
+# to 0.6 mm, 2 s after the kernel's third set that day, and again once ended before the cancel.)
+printf 'bundle = "%s"\n[indenter]\nspeed = 0.002\n[protocol]\ndelta_max = 0.9e-3\n[output]\ncheckpoint_seconds = 0.2\n' \
   "$work/slab" > "$work/scene.toml"
 cases=(--set mu=0.3,0.5 --set E=4.2e9,20e9)
 
