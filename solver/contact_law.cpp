@@ -1,4 +1,5 @@
 #include "solver/contact_law.h"
+#include "solver/node_contact_law.h"
 
 namespace tessera {
 

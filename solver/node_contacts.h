@@ -17,7 +17,7 @@ struct NodeContact {
 };
 
 /// The node contacts of a pair, sorted by key, each quantity in its own array: the contact law
-/// reads and writes the springs and energies in place. Read one contact at a time as a
+/// reads and writes the springs, areas and energies in place. Read one contact at a time as a
 /// NodeContact (by value).
 struct NodeContacts {
   std::vector<std::uint32_t> key;

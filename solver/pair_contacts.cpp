@@ -1,6 +1,7 @@
 #include "solver/pair_contacts.h"
 
 #include "solver/contact_law.h"
+#include "solver/node_contact_law.h"
 
 #include <algorithm>
 #include <array>
@@ -195,7 +196,7 @@ SideCandidates candidatesOf(const PairContacts& pair, std::uint32_t side) {
 // side's candidates c its level set until they are built again (PairContacts::planesKept): phi =
 // max_f v_f, and until then each candidate moves less than band / sqrt(3) relative to the other
 // side (ContactScene::candidateBand), which changes every v_f, and phi, by less than that. A plane
-// below phi by 2 band or more at every candidate stays below it; without it, phi and the best
+// more than 2 band below phi at every candidate stays below it; without it, phi and the best
 // plane (the first of largest value) are the same, to the bit.
 std::uint64_t planesNear(const SideCandidates& c, const PlanesInFrame& all, double band) {
   std::uint64_t kept = 0;
@@ -363,9 +364,10 @@ __attribute__((always_inline)) inline void laneVelocities(const SideMotion& side
 // phi = max_f (n'_f . p - d'_f) as PlanesInFrame::phi (the first plane of largest value is the
 // best; phi and the best plane's normals kept in registers across the planes), and for the
 // candidates inside (phi < 0), packed to the front of the lanes without branches (storeKept):
-// key, lever r = RM p + (c_M - c_a) and the relative velocity (BatchSlice::setLever, same operations), the world normal of the best plane, depth -phi, and
-// area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame), clipped at
-// 0 (facingArea). The batch needs room for four entries past the last candidate.
+// key, lever r = RM p + (c_M - c_a) and the relative velocity (BatchSlice::setLever, same
+// operations), the world normal of the best plane, depth -phi, and area: half the node's,
+// projected on the contact plane, -n_i . n (taken in M's frame), clipped at 0 (facingArea). The
+// batch needs room for four entries past the last candidate.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& planes, const SideMotion& side,
                    const Eigen::Matrix3d& RM, PairBatch& batch) {
@@ -485,7 +487,7 @@ int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side,
 // What a pair's contacts add up to: force on body a, its moment about a's centroid (sum r x f),
 // the normal parts (sum f_n n), the contact points weighted by normal force (sum f_n r) and that
 // weight, the energies, sliding contacts, and the deepest penetration. A contact with area 0 adds
-// only the projection energy it had (see PairBatch).
+// only the projection energy it had (lawAndSums).
 struct PairSums {
   enum Vector { kForce = 0, kMoment = 3, kNormalForce = 6, kWeighted = 9 };
   double value[12] = {};
@@ -521,12 +523,12 @@ PairSums lawAndSums(const ContactLawConstants& law, PairBatch& batch, NodeContac
   double *__restrict ux = contacts.springX.data(), *__restrict uy = contacts.springY.data(),
          *__restrict uz = contacts.springZ.data(), *__restrict stored = contacts.energy.data(),
          *__restrict storedArea = contacts.area.data();
-  // (Every value loaded and one select at a time: a load or a nested select under a condition is
-  // control flow, which keeps the loop out of SIMD lanes.)
   double *__restrict slid = batch.friction.data(), *__restrict atCap = batch.sliding.data();
   // The law in two passes, the springs (with their square roots and divisions) and then the
   // forces and sums, each short enough for the next contacts' work to overlap one's square roots
-  // and divisions (one long pass waited on them).
+  // and divisions (one long pass waited on them). (Every value loaded and one select at a time: a
+  // load or a nested select under a condition is control flow, which keeps a loop out of SIMD
+  // lanes.)
 #pragma omp simd
   for (int i = begin; i < end; ++i) {
     const SpringUpdate u = updateSpring(law, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
@@ -847,13 +849,12 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
 
 namespace {
 
-// rad, an upper bound on the angle between two orientations, cheaper than the angle itself: the
-// rotation d = q q0^-1 turns by theta with |d.vec| = sin(theta / 2) and |d.w| = cos(theta / 2),
-// and x <= tan x on [0, pi / 2), so theta <= 2 |d.vec| / |d.w| (above theta by theta^3 / 12 at
-// most to third order; infinite at a half turn).
-double turnBound(const Eigen::Quaterniond& q, const Eigen::Quaterniond& q0) {
+// How far a rigid turn moves a point at unit distance from its axis, at most: the chord
+// 2 sin(theta / 2) of the angle theta between two orientations, 2 |d.vec| / |d| for the rotation
+// d = q q0^-1 (|d.vec| = |d| sin(theta / 2)); exact, below theta, and without a trigonometric call.
+double turnChord(const Eigen::Quaterniond& q, const Eigen::Quaterniond& q0) {
   const Eigen::Quaterniond d = q * q0.conjugate();
-  return 2 * d.vec().norm() / std::abs(d.w());
+  return 2 * d.vec().norm() / d.norm();
 }
 
 }  // namespace
@@ -862,7 +863,7 @@ double candidateMotion(const ContactScene& scene, const PairContacts& pair) {
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
   const auto moved = [](const Eigen::Vector3d& p, const Eigen::Quaterniond& q, const Eigen::Vector3d& p0,
-                        const Eigen::Quaterniond& q0, double radius) { return (p - p0).norm() + turnBound(q, q0) * radius; };
+                        const Eigen::Quaterniond& q0, double radius) { return (p - p0).norm() + turnChord(q, q0) * radius; };
   const auto [position, orientation] = otherPose(scene, pair);
   return moved(bodies.position[pair.a], bodies.orientation[pair.a], pair.builtPositionA, pair.builtOrientationA,
                shapes[bodies.shape[pair.a]].radius) +

@@ -186,9 +186,10 @@ inline PairKind pairKind(int b, int spheres) {
 
 /// m, an upper bound on how far any node of either side of the pair has moved, in the other
 /// side's frame, since its candidates were built: a rigid motion moves a point x of body M by at
-/// most |dp_M| + theta_M |x - c_M| (theta_M the angle M turned), and a point near O in O's frame
-/// by at most |dp_O| + theta_O r_O, so the bound is the sum of |dp| + theta r over both sides (r:
-/// ShapeModel::radius; an obstacle does not turn; theta itself bounded from above, cheaply).
+/// most |dp_M| + 2 sin(theta_M / 2) |x - c_M| (theta_M the angle M turned: the chord of the arc),
+/// and a point near O in O's frame by at most |dp_O| + 2 sin(theta_O / 2) r_O, so the bound is the
+/// sum of |dp| + 2 sin(theta / 2) r over both sides (r: ShapeModel::radius; an obstacle does not
+/// turn).
 double candidateMotion(const ContactScene& scene, const PairContacts& pair);
 
 /// Evaluates one pair, by its kind. Each keeps the springs of nodes still in contact and drops

@@ -99,7 +99,8 @@ TEST_CASE("candidate node lists: the forces are those of candidates built afresh
   // candidates at every step: the reference. On the exact-mesh path that also drops every
   // candidate's kept NearestFace at every step, so each evaluation is a full search; on the planes
   // path it chooses the planes near the candidates (PairContacts::planesKept) at every step, with
-  // a margin of 2e-9 of the default band. (A margin of 0 there fails this test.)
+  // a margin of 2e-9 of the default band. (planesNear with a margin of 0 instead of 2 bands fails
+  // this test.)
   Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
   for (Shape& shape : slab.shapes) deriveExactMesh(shape);  // as a run does, for the exact-mesh path
   enum Path { Planes, ExactMesh, Grid };
@@ -137,7 +138,7 @@ TEST_CASE("candidate node lists: the forces are those of candidates built afresh
   }
 }
 
-TEST_CASE("candidate motion: |dp| + theta r of each side since the candidates were built") {
+TEST_CASE("candidate motion: |dp| + 2 sin(theta/2) r of each side since the candidates were built") {
   // Two bodies of a shape whose farthest point is 5 mm from its centroid, and a sphere.
   std::vector<ShapeModel> shapes(1);
   shapes[0].radius = 5e-3;
@@ -155,16 +156,17 @@ TEST_CASE("candidate motion: |dp| + theta r of each side since the candidates we
   REQUIRE(candidateMotion(scene, pair) == 0.0);
   bodies.position[1] += Eigen::Vector3d(3e-6, -4e-6, 0);  // 5 um
   REQUIRE(candidateMotion(scene, pair) == Approx(5e-6).epsilon(1e-12));
-  // A turn theta counts theta r, bounded from above by 2 tan(theta / 2) r: at most theta^3 / 12
-  // more to third order, never less, at small and at large angles.
+  // A turn theta counts the chord 2 sin(theta / 2) r (what the farthest point moves), below the
+  // arc theta r, at small and at large angles.
   for (double theta : {1e-3, 0.3, 2.5}) {
     bodies.orientation[0] = Eigen::Quaterniond(Eigen::AngleAxisd(theta, Eigen::Vector3d(0.6, 0, 0.8)));
-    const double exact = 5e-6 + theta * 5e-3, bound = 5e-6 + 2 * std::tan(theta / 2) * 5e-3;
-    REQUIRE(candidateMotion(scene, pair) >= exact);
-    REQUIRE(candidateMotion(scene, pair) == Approx(bound).epsilon(1e-12));
+    REQUIRE(candidateMotion(scene, pair) == Approx(5e-6 + 2 * std::sin(theta / 2) * 5e-3).epsilon(1e-12));
+    REQUIRE(candidateMotion(scene, pair) <= 5e-6 + theta * 5e-3);
   }
-  bodies.orientation[0] = Eigen::Quaterniond(Eigen::AngleAxisd(1e-3, Eigen::Vector3d(0.6, 0, 0.8)));
-  REQUIRE(candidateMotion(scene, pair) == Approx(5e-6 + 1e-3 * 5e-3).epsilon(1e-7));
+  // What a point at r moves when body 0 turns: never more than the bound.
+  const Eigen::Vector3d far = Eigen::Vector3d(0, 5e-3, 0);  // at r from the centroid, off the axis
+  const Eigen::Vector3d moved = bodies.orientation[0] * far;
+  REQUIRE((moved - far).norm() <= candidateMotion(scene, pair) - 5e-6 + 1e-15);
   // A sphere moves, and does not turn: only its centre counts.
   PairContacts touch;
   touch.a = 1;
