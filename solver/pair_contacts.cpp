@@ -154,15 +154,15 @@ struct PlanesInFrame {
   double value(int f, const Eigen::Vector3d& p) const { return nx[f] * p.x() + ny[f] * p.y() + nz[f] * p.z() - offset[f]; }
   double phi(const Eigen::Vector3d& p, int& best) const {
     best = 0;
-    double value = nx[0] * p.x() + ny[0] * p.y() + nz[0] * p.z() - offset[0];
+    double highest = value(0, p);
     for (int f = 1; f < count; ++f) {
-      const double v = nx[f] * p.x() + ny[f] * p.y() + nz[f] * p.z() - offset[f];
-      if (v > value) {
-        value = v;
+      const double v = value(f, p);
+      if (v > highest) {
+        highest = v;
         best = f;
       }
     }
-    return value;
+    return highest;
   }
 };
 
@@ -507,11 +507,11 @@ struct PairSums {
   }
 };
 
-// The contact law (updateSpring, contactForce) over the batch's entries [begin, end), one side's, with the
-// springs, areas and stored energies in `contacts` (the step before's, area -1 for a new contact;
-// updated in place), and what they add up to, the
-// forces on the side's own body, in the same pass and in SIMD lanes (the order of the additions
-// follows the machine's vector width).
+// The contact law (updateSpring, contactForce) over the batch's entries [begin, end), one side's,
+// with the springs, areas and stored energies in `contacts` (the step before's, area -1 for a new
+// contact; updated in place), and what they add up to, the forces on the side's own body, in the
+// same pass as the forces and in SIMD lanes (the order of the additions follows the machine's
+// vector width).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 PairSums lawAndSums(const ContactLawConstants& law, PairBatch& batch, NodeContacts& contacts, int begin, int end) {
   double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nfx = 0, nfy = 0, nfz = 0, wx = 0, wy = 0, wz = 0;
