@@ -847,18 +847,6 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
 
 }  // namespace
 
-namespace {
-
-// How far a rigid turn moves a point at unit distance from its axis, at most: the chord
-// 2 sin(theta / 2) of the angle theta between two orientations, 2 |d.vec| / |d| for the rotation
-// d = q q0^-1 (|d.vec| = |d| sin(theta / 2)); exact, below theta, and without a trigonometric call.
-double turnChord(const Eigen::Quaterniond& q, const Eigen::Quaterniond& q0) {
-  const Eigen::Quaterniond d = q * q0.conjugate();
-  return 2 * d.vec().norm() / d.norm();
-}
-
-}  // namespace
-
 double candidateMotion(const ContactScene& scene, const PairContacts& pair) {
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;

@@ -32,6 +32,15 @@ struct RigidBodies {
   }
 };
 
+/// How far a rigid turn moves a point at unit distance from its axis: the chord 2 sin(theta / 2)
+/// of the angle theta between two orientations, 2 |d.vec| / |d| for the rotation d = q q0^-1
+/// (|d.vec| = |d| sin(theta / 2)); exact, below theta, and without a trigonometric call. A point
+/// at r from the centroid moves by at most |dp| + turnChord(q, q0) r.
+inline double turnChord(const Eigen::Quaterniond& q, const Eigen::Quaterniond& q0) {
+  const Eigen::Quaterniond d = q * q0.conjugate();
+  return 2 * d.vec().norm() / d.norm();
+}
+
 /// What every pair of a step reads of each body's rotation, computed once per step for all its
 /// pairs: its rotation matrix (body -> world) and its angular velocity (world, rad/s), the values
 /// of orientation[i].toRotationMatrix() and RigidBodies::angularVelocity(i).

@@ -206,8 +206,8 @@ int World::addPlane(const PlaneObstacle& plane) {
 }
 
 // Candidate pairs from boxes enlarged by the margin m, rebuilt only when a body (or sphere) has
-// moved or turned (angle x radius) by more than 0.4 m since the last build; contact states, and
-// node candidates, carry over by pair key. Each pair builds its node candidates again on its own,
+// moved or turned (turnChord x radius) by more than 0.4 m since the last build; contact states,
+// and node candidates, carry over by pair key. Each pair builds its node candidates again on its own,
 // when its two sides have moved relative to each other by band / sqrt(3) (evaluatePair).
 double World::candidateBand() const { return 1.25 * settings_.broadPhaseMargin; }
 
@@ -217,7 +217,7 @@ void World::updatePairs() {
     bool moved = false;
     for (std::size_t i = 0; i < state_.bodies.size() && !moved; ++i) {
       if (state_.bodies.fixed[i]) continue;
-      const double turn = state_.bodies.orientation[i].angularDistance(state_.builtOrientation[i]) * shapes_[state_.bodies.shape[i]].radius;
+      const double turn = turnChord(state_.bodies.orientation[i], state_.builtOrientation[i]) * shapes_[state_.bodies.shape[i]].radius;
       moved = (state_.bodies.position[i] - state_.builtPosition[i]).norm() + turn > 0.4 * margin;
     }
     for (std::size_t k = 0; k < state_.spheres.size() && !moved; ++k)
