@@ -1,5 +1,6 @@
 #pragma once
 #include "solver/contact_parameters.h"
+#include "solver/node_contacts.h"
 
 
 namespace tessera {
@@ -18,24 +19,24 @@ struct ContactTally {
 };
 
 /// Node contacts evaluated together by the contact law: entries 0 .. count-1, one per node contact,
-/// each quantity in its own array (world frame, SI units; the arrays belong to the caller), so
-/// that the law runs over the contacts in SIMD lanes.
+/// each quantity in its own array (world frame, SI units, ContactReal as the solver keeps them; the
+/// arrays belong to the caller), so that the law runs over the contacts in SIMD lanes.
 struct NodeContactBatch {
   int count = 0;
   // In.
-  const double *nx, *ny, *nz;  ///< unit contact normal: out of the other body, towards the node's body
-  const double* depth;         ///< m, penetration d > 0
-  const double* area;          ///< m^2, the node's effective area a (docs/physics.md); 0: facing away
-  const double *vx, *vy, *vz;  ///< m/s, relative velocity at the node: node's body minus the other
+  const ContactReal *nx, *ny, *nz;  ///< unit contact normal: out of the other body, towards the node's body
+  const ContactReal* depth;         ///< m, penetration d > 0
+  const ContactReal* area;          ///< m^2, the node's effective area a (docs/physics.md); 0: facing away
+  const ContactReal *vx, *vy, *vz;  ///< m/s, relative velocity at the node: node's body minus the other
   // In and out: the tangential spring u (m), carried from step to step.
-  double *ux, *uy, *uz;
+  ContactReal *ux, *uy, *uz;
   // Out.
-  double *fx, *fy, *fz;  ///< N, force on the node's body
-  double* fn;            ///< N, its normal part f . n
-  double* stored;        ///< J, the contact's stored energy
-  double* friction;      ///< J, dissipated by sliding this step
-  double* viscous;       ///< J, dissipated by the normal viscosity this step
-  double* sliding;       ///< 1 at the Coulomb cap, else 0
+  ContactReal *fx, *fy, *fz;  ///< N, force on the node's body
+  ContactReal* fn;            ///< N, its normal part f . n
+  ContactReal* stored;        ///< J, the contact's stored energy
+  ContactReal* friction;      ///< J, dissipated by sliding this step
+  ContactReal* viscous;       ///< J, dissipated by the normal viscosity this step
+  ContactReal* sliding;       ///< 1 at the Coulomb cap, else 0
 };
 
 /// The contact law over entries 0 .. count-1 of a batch (docs/physics.md, "Contact law"): the force on each node's body and

@@ -7,6 +7,13 @@
 
 namespace tessera {
 
+/// The precision of a node contact's state and of the contact law that updates it: float, eight
+/// SIMD lanes on AVX2 where double has four. Each input is computed in double (positions, depths,
+/// normals, velocities) and rounded once; the law's products and sums then carry a relative
+/// error of about 1e-7 per contact, far below what the answers resolve (docs/physics.md,
+/// "Precision of the contact law"). The sums over a pair are added in double.
+using ContactReal = float;
+
 /// A node in contact and its tangential spring: key = side << 31 | rank (side 0: a node of body
 /// a in b's level set; side 1: a node of b in a's).
 struct NodeContact {
@@ -21,9 +28,9 @@ struct NodeContact {
 /// NodeContact (by value).
 struct NodeContacts {
   std::vector<std::uint32_t> key;
-  std::vector<double> springX, springY, springZ;  ///< m
-  std::vector<double> energy;                     ///< J
-  std::vector<double> area;                       ///< m^2
+  std::vector<ContactReal> springX, springY, springZ;  ///< m
+  std::vector<ContactReal> energy;                     ///< J
+  std::vector<ContactReal> area;                       ///< m^2
 
   std::size_t size() const { return key.size(); }
   bool empty() const { return key.empty(); }
@@ -31,15 +38,17 @@ struct NodeContacts {
   /// n contacts (new ones unset; capacity kept).
   void resize(std::size_t n) {
     key.resize(n);
-    for (std::vector<double>* v : {&springX, &springY, &springZ, &energy, &area}) v->resize(n);
+    for (std::vector<ContactReal>* v : {&springX, &springY, &springZ, &energy, &area}) v->resize(n);
   }
+  /// A contact at the end, its values rounded to ContactReal (exact for values read from one).
   void push_back(const NodeContact& c) {
+    const auto real = [](double v) { return static_cast<ContactReal>(v); };
     key.push_back(c.key);
-    springX.push_back(c.spring.x());
-    springY.push_back(c.spring.y());
-    springZ.push_back(c.spring.z());
-    energy.push_back(c.energy);
-    area.push_back(c.area);
+    springX.push_back(real(c.spring.x()));
+    springY.push_back(real(c.spring.y()));
+    springZ.push_back(real(c.spring.z()));
+    energy.push_back(real(c.energy));
+    area.push_back(real(c.area));
   }
   NodeContact operator[](std::size_t i) const {
     return {key[i], Eigen::Vector3d(springX[i], springY[i], springZ[i]), energy[i], area[i]};

@@ -40,12 +40,13 @@ constexpr double kSqrt3 = 1.7320508075688772;
 // The node contacts of a pair being collected, in key order (side 0, a's nodes in b, then side 1),
 // for the contact law: its inputs but the springs (the pair's own NodeContacts hold them, and the
 // areas and stored energies), each contact's key and its lever r = x - c_a about body a's centroid
-// (world). Area 0: a node inside but facing away from the contact normal.
+// (world), computed in double and kept as ContactReal. Area 0: a node inside but facing away from
+// the contact normal.
 struct PairBatch {
   int count = 0;
   std::vector<std::uint32_t> key;
-  std::vector<double> rx, ry, rz, nx, ny, nz, depth, area, vx, vy, vz;
-  std::vector<double> friction, sliding;  // the law's: each contact's SpringUpdate
+  std::vector<ContactReal> rx, ry, rz, nx, ny, nz, depth, area, vx, vy, vz;
+  std::vector<ContactReal> friction, sliding;  // the law's: each contact's SpringUpdate
 
   /// Room for n contacts (values unset).
   void reserve(int n) {
@@ -222,44 +223,41 @@ __attribute__((always_inline)) inline void facingArea(Lanes& area, const Lanes& 
 // The batch's contact arrays from entry `start` on, as the listing functions write them.
 struct BatchSlice {
   std::uint32_t* __restrict key;
-  double *__restrict rx, *__restrict ry, *__restrict rz, *__restrict vx, *__restrict vy, *__restrict vz, *__restrict nx,
-      *__restrict ny, *__restrict nz, *__restrict depth, *__restrict area;
+  ContactReal *__restrict rx, *__restrict ry, *__restrict rz, *__restrict vx, *__restrict vy, *__restrict vz,
+      *__restrict nx, *__restrict ny, *__restrict nz, *__restrict depth, *__restrict area;
   BatchSlice(PairBatch& b, int start)
       : key(b.key.data() + start), rx(b.rx.data() + start), ry(b.ry.data() + start), rz(b.rz.data() + start),
         vx(b.vx.data() + start), vy(b.vy.data() + start), vz(b.vz.data() + start),
         nx(b.nx.data() + start), ny(b.ny.data() + start), nz(b.nz.data() + start), depth(b.depth.data() + start),
         area(b.area.data() + start) {}
   /// Entry k's lever r = x - c_a (world) and the relative velocity at the node, v0 + (w_M - w_O)
-  /// x r (SideMotion).
+  /// x r (SideMotion), computed in double.
   void setLever(int k, const SideMotion& side, double x, double y, double z) const {
-    rx[k] = x;
-    ry[k] = y;
-    rz[k] = z;
+    const auto real = [](double v) { return static_cast<ContactReal>(v); };
+    rx[k] = real(x);
+    ry[k] = real(y);
+    rz[k] = real(z);
     const Eigen::Vector3d &v0 = side.v0, &w = side.spin;
-    vx[k] = v0.x() + (w.y() * z - w.z() * y);
-    vy[k] = v0.y() + (w.z() * x - w.x() * z);
-    vz[k] = v0.z() + (w.x() * y - w.y() * x);
+    vx[k] = real(v0.x() + (w.y() * z - w.z() * y));
+    vy[k] = real(v0.y() + (w.z() * x - w.x() * z));
+    vz[k] = real(v0.z() + (w.x() * y - w.y() * x));
   }
 };
 
 // Lane compaction without branches: for the mask of a block of four lanes (bit j: lane j is kept),
-// the lane order that moves the kept lanes to the front, in order (the others follow, unused), as
-// the 32-bit word indices of a Lanes (two words a lane) and of four 32-bit keys.
-using Words = int __attribute__((vector_size(32)));
+// the lane order that moves the kept lanes to the front, in order (the others follow, unused), for
+// four 32-bit values (keys, or the lanes rounded to ContactReal).
 using Keys = std::uint32_t __attribute__((vector_size(16)));
+using Reals = ContactReal __attribute__((vector_size(16)));
 using KeyOrder = std::int32_t __attribute__((vector_size(16)));
+static_assert(sizeof(ContactReal) == 4, "the listing packs four lanes of 32-bit values");
 struct Compaction {
-  int words[16][8];
   int keys[16][kLanes];
-  constexpr Compaction() : words{}, keys{} {
+  constexpr Compaction() : keys{} {
     for (int mask = 0; mask < 16; ++mask) {
       int kept = 0;
       for (int lane = 0; lane < kLanes; ++lane)
-        if (mask >> lane & 1) {
-          words[mask][2 * kept] = 2 * lane;
-          words[mask][2 * kept + 1] = 2 * lane + 1;
-          keys[mask][kept++] = lane;
-        }
+        if (mask >> lane & 1) keys[mask][kept++] = lane;
     }
   }
 };
@@ -320,15 +318,15 @@ struct ContactLanes {
   Keys key;
 };
 
-// The lanes of `mask` (laneBits) of a block of contacts, packed to the front and stored in the
-// batch from entry `count` on; the new count. Whole blocks are stored: the batch needs room for
-// four entries past the last contact.
+// The lanes of `mask` (laneBits) of a block of contacts, rounded to ContactReal, packed to the
+// front and stored in the batch from entry `count` on; the new count. Whole blocks are stored: the
+// batch needs room for four entries past the last contact.
 __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, int mask, const BatchSlice& out, int count) {
-  Words order;
-  std::memcpy(&order, kCompaction.words[mask], sizeof order);
-  const auto store = [&](const Lanes& v, double* to) {
-    Words kept;
-    permute(kept, reinterpret_cast<Words>(v), order);
+  KeyOrder order;
+  std::memcpy(&order, kCompaction.keys[mask], sizeof order);
+  const auto store = [&](const Lanes& v, ContactReal* to) {
+    Reals kept;
+    permute(kept, __builtin_convertvector(v, Reals), order);
     std::memcpy(to + count, &kept, sizeof kept);
   };
   store(block.rx, out.rx);
@@ -342,10 +340,8 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
   store(block.nz, out.nz);
   store(block.depth, out.depth);
   store(block.area, out.area);
-  KeyOrder keyOrder;
-  std::memcpy(&keyOrder, kCompaction.keys[mask], sizeof keyOrder);
   Keys kept;
-  permute(kept, block.key, keyOrder);
+  permute(kept, block.key, order);
   std::memcpy(out.key + count, &kept, sizeof kept);
   return count + __builtin_popcount(static_cast<unsigned>(mask));
 }
@@ -507,41 +503,48 @@ struct PairSums {
   }
 };
 
-// The contact law (updateSpring, contactForce) over the batch's entries [begin, end), one side's,
-// with the springs, areas and stored energies in `contacts` (the step before's, area -1 for a new
-// contact; updated in place), and what they add up to, the forces on the side's own body, in the
-// same pass as the forces and in SIMD lanes (the order of the additions follows the machine's
-// vector width).
+// What the law reads and writes for a run of contacts, entry 0 on: the batch's inputs (levers,
+// normals, velocities, depths, areas), the contacts' springs, stored energies and areas (the step
+// before's on entry, updated in place; area -1 for a new contact), and two scratch arrays for
+// what each spring update dissipated and whether it slid.
+struct LawArrays {
+  const ContactReal *rx, *ry, *rz, *nx, *ny, *nz, *vx, *vy, *vz, *depth, *area;
+  ContactReal *ux, *uy, *uz, *stored, *storedArea, *slid, *atCap;
+};
+
+// The contact law (updateSpring, contactForce) over entries [0, n) of `a`, one pair side's, and
+// what they add up to, the forces on the side's own body, in the same pass as the forces and in
+// SIMD lanes (the sums in ContactReal, the order of the additions following the machine's vector
+// width).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-PairSums lawAndSums(const ContactLawConstants& law, PairBatch& batch, NodeContacts& contacts, int begin, int end) {
-  double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nfx = 0, nfy = 0, nfz = 0, wx = 0, wy = 0, wz = 0;
-  double weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, deepest = 0;
-  const double *__restrict rx = batch.rx.data(), *__restrict ry = batch.ry.data(), *__restrict rz = batch.rz.data();
-  const double *__restrict nx = batch.nx.data(), *__restrict ny = batch.ny.data(), *__restrict nz = batch.nz.data();
-  const double *__restrict vx = batch.vx.data(), *__restrict vy = batch.vy.data(), *__restrict vz = batch.vz.data();
-  const double *__restrict depth = batch.depth.data(), *__restrict area = batch.area.data();
-  double *__restrict ux = contacts.springX.data(), *__restrict uy = contacts.springY.data(),
-         *__restrict uz = contacts.springZ.data(), *__restrict stored = contacts.energy.data(),
-         *__restrict storedArea = contacts.area.data();
-  double *__restrict slid = batch.friction.data(), *__restrict atCap = batch.sliding.data();
+PairSums lawAndSumsOver(const ContactLawConstants<ContactReal>& law, const LawArrays& a, int n) {
+  using Real = ContactReal;
+  Real fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nfx = 0, nfy = 0, nfz = 0, wx = 0, wy = 0, wz = 0;
+  Real weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, deepest = 0;
+  const Real *__restrict rx = a.rx, *__restrict ry = a.ry, *__restrict rz = a.rz, *__restrict nx = a.nx,
+             *__restrict ny = a.ny, *__restrict nz = a.nz, *__restrict vx = a.vx, *__restrict vy = a.vy,
+             *__restrict vz = a.vz, *__restrict depth = a.depth, *__restrict area = a.area;
+  Real *__restrict ux = a.ux, *__restrict uy = a.uy, *__restrict uz = a.uz, *__restrict stored = a.stored,
+       *__restrict storedArea = a.storedArea, *__restrict slid = a.slid, *__restrict atCap = a.atCap;
   // The law in two passes, the springs (with their square roots and divisions) and then the
   // forces and sums, each short enough for the next contacts' work to overlap one's square roots
   // and divisions (one long pass waited on them). (Every value loaded and one select at a time: a
   // load or a nested select under a condition is control flow, which keeps a loop out of SIMD
   // lanes.)
 #pragma omp simd
-  for (int i = begin; i < end; ++i) {
-    const SpringUpdate u = updateSpring(law, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
+  for (int i = 0; i < n; ++i) {
+    const SpringUpdate<Real> u =
+        updateSpring(law, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
     slid[i] = u.friction;
     atCap[i] = u.sliding;
   }
 #pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, weight, elastic, friction, viscous, \
                                sliding, projection) reduction(max : deepest)
-  for (int i = begin; i < end; ++i) {
-    const double a = area[i], a0 = storedArea[i], e0 = stored[i];
-    const ContactForce f = contactForce(law, nx[i], ny[i], nz[i], depth[i], a, vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
+  for (int i = 0; i < n; ++i) {
+    const Real ai = area[i], a0 = storedArea[i], e0 = stored[i];
+    const ContactForce<Real> f = contactForce(law, nx[i], ny[i], nz[i], depth[i], ai, vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
     stored[i] = f.stored;
-    storedArea[i] = a;
+    storedArea[i] = ai;
     // Forces on the side's body; a contact facing away (area 0) has none.
     fx += f.fx;
     fy += f.fy;
@@ -563,17 +566,17 @@ PairSums lawAndSums(const ContactLawConstants& law, PairBatch& batch, NodeContac
     // Stored energy is proportional to the area (with stiffnesses per area; per node it is not):
     // what the change of area alone removed, the energy per area times the area lost (a contact
     // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
-    const double u2 = ux[i] * ux[i] + uy[i] * uy[i] + uz[i] * uz[i];
-    const double perArea = 0.5 * law.perAreaNormal * depth[i] * depth[i] + 0.5 * law.perAreaTangent * u2;
-    double removed = a0 > 0 ? perArea * (a0 - a) : 0.0;       // kept
-    removed = a0 == 0 ? -f.stored : removed;                  // back from a cut
-    removed = a > 0 ? removed : e0;                           // cut now
+    const Real u2 = ux[i] * ux[i] + uy[i] * uy[i] + uz[i] * uz[i];
+    const Real perArea = Real(0.5) * law.perAreaNormal * depth[i] * depth[i] + Real(0.5) * law.perAreaTangent * u2;
+    Real removed = a0 > 0 ? perArea * (a0 - ai) : Real(0);  // kept
+    removed = a0 == 0 ? -f.stored : removed;                // back from a cut
+    removed = ai > 0 ? removed : e0;                        // cut now
     projection += removed;
-    const double reached = a > 0 ? depth[i] : 0.0;
+    const Real reached = ai > 0 ? depth[i] : Real(0);
     deepest = reached > deepest ? reached : deepest;
   }
   PairSums sums;
-  const double value[12] = {fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz};
+  const Real value[12] = {fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz};
   std::copy(value, value + 12, sums.value);
   sums.weight = weight;
   sums.elastic = elastic;
@@ -582,6 +585,39 @@ PairSums lawAndSums(const ContactLawConstants& law, PairBatch& batch, NodeContac
   sums.sliding = sliding;
   sums.projection = projection;
   sums.maxDepth = deepest;
+  return sums;
+}
+
+// Contacts per block of lawAndSumsOver's loops: eight ContactReal lanes (two blocks of four on a
+// CPU with SSE only). A side's last, incomplete block runs through the same loops from a copy
+// padded with zeros: area 0, no spring, no stored energy or area, so every lane past the side's
+// end adds exactly 0 to every sum.
+constexpr int kLawBlock = 8;
+
+// The law and its sums over the batch's entries [begin, end), one side's, with the springs, areas
+// and stored energies in `contacts` (updated in place): whole blocks in place, the rest padded.
+PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, PairBatch& batch, NodeContacts& contacts, int begin,
+                    int end) {
+  const auto at = [begin](auto& v) { return v.data() + begin; };
+  const LawArrays all{at(batch.rx),          at(batch.ry),      at(batch.rz),       at(batch.nx),       at(batch.ny),
+                      at(batch.nz),          at(batch.vx),      at(batch.vy),       at(batch.vz),       at(batch.depth),
+                      at(batch.area),        at(contacts.springX), at(contacts.springY), at(contacts.springZ),
+                      at(contacts.energy),   at(contacts.area), at(batch.friction), at(batch.sliding)};
+  const int n = end - begin, full = n - n % kLawBlock;
+  PairSums sums = lawAndSumsOver(law, all, full);
+  if (full == n) return sums;
+  // The rest: each input and state array's entries [full, n), then zeros.
+  enum { RX, RY, RZ, NX, NY, NZ, VX, VY, VZ, Depth, Area, UX, UY, UZ, Stored, StoredArea, Slid, AtCap, Fields };
+  ContactReal rest[Fields][kLawBlock] = {};
+  const ContactReal* from[StoredArea + 1] = {all.rx, all.ry, all.rz, all.nx, all.ny, all.nz,     all.vx, all.vy,
+                                             all.vz, all.depth, all.area, all.ux, all.uy, all.uz, all.stored, all.storedArea};
+  for (int f = RX; f <= StoredArea; ++f) std::copy(from[f] + full, from[f] + n, rest[f]);
+  const LawArrays padded{rest[RX], rest[RY], rest[RZ],    rest[NX],     rest[NY],         rest[NZ],
+                         rest[VX], rest[VY], rest[VZ],    rest[Depth],  rest[Area],       rest[UX],
+                         rest[UY], rest[UZ], rest[Stored], rest[StoredArea], rest[Slid], rest[AtCap]};
+  sums.add(lawAndSumsOver(law, padded, kLawBlock), 1.0);
+  ContactReal* const state[] = {all.ux, all.uy, all.uz, all.stored, all.storedArea};  // UX .. StoredArea
+  for (int f = UX; f <= StoredArea; ++f) std::copy(rest[f], rest[f] + (n - full), state[f - UX] + full);
   return sums;
 }
 
@@ -633,11 +669,12 @@ struct Accumulator {
     const BatchSlice out(batch, batch.append());
     out.key[0] = key;
     out.setLever(0, side, r.x() + side.shift.x(), r.y() + side.shift.y(), r.z() + side.shift.z());
-    out.nx[0] = normal.x();
-    out.ny[0] = normal.y();
-    out.nz[0] = normal.z();
-    out.depth[0] = depth;
-    out.area[0] = facingArea(area, projection);
+    const auto real = [](double v) { return static_cast<ContactReal>(v); };
+    out.nx[0] = real(normal.x());
+    out.ny[0] = real(normal.y());
+    out.nz[0] = real(normal.z());
+    out.depth[0] = real(depth);
+    out.area[0] = real(facingArea(area, projection));
   }
 
   // The pair's contacts as they were before this step, for the batch's keys: each one's spring,
@@ -657,27 +694,27 @@ struct Accumulator {
     contacts.resize(static_cast<std::size_t>(n));
     std::copy_n(key, n, contacts.key.data());
     if (previous.empty()) {
-      std::fill_n(contacts.springX.data(), n, 0.0);
-      std::fill_n(contacts.springY.data(), n, 0.0);
-      std::fill_n(contacts.springZ.data(), n, 0.0);
-      std::fill_n(contacts.area.data(), n, -1.0);
-      std::fill_n(contacts.energy.data(), n, 0.0);
+      std::fill_n(contacts.springX.data(), n, ContactReal(0));
+      std::fill_n(contacts.springY.data(), n, ContactReal(0));
+      std::fill_n(contacts.springZ.data(), n, ContactReal(0));
+      std::fill_n(contacts.area.data(), n, ContactReal(-1));
+      std::fill_n(contacts.energy.data(), n, ContactReal(0));
       return;
     }
     const std::size_t last = previous.size() - 1;
     const std::uint32_t* __restrict keyBefore = previous.key.data();
-    const double *__restrict sx = previous.springX.data(), *__restrict sy = previous.springY.data(),
+    const ContactReal *__restrict sx = previous.springX.data(), *__restrict sy = previous.springY.data(),
                  *__restrict sz = previous.springZ.data(), *__restrict areaBefore = previous.area.data(),
                  *__restrict energyBefore = previous.energy.data();
     std::size_t before = 0;
     for (int i = 0; i < n; ++i) {
       while (before < last && keyBefore[before] < key[i]) ++before;
       const bool found = keyBefore[before] == key[i];
-      contacts.springX[i] = found ? sx[before] : 0.0;
-      contacts.springY[i] = found ? sy[before] : 0.0;
-      contacts.springZ[i] = found ? sz[before] : 0.0;
-      contacts.area[i] = found ? areaBefore[before] : -1.0;
-      contacts.energy[i] = found ? energyBefore[before] : 0.0;
+      contacts.springX[i] = found ? sx[before] : ContactReal(0);
+      contacts.springY[i] = found ? sy[before] : ContactReal(0);
+      contacts.springZ[i] = found ? sz[before] : ContactReal(0);
+      contacts.area[i] = found ? areaBefore[before] : ContactReal(-1);
+      contacts.energy[i] = found ? energyBefore[before] : ContactReal(0);
     }
   }
 
@@ -686,7 +723,7 @@ struct Accumulator {
     const int n = batch.count;
     takeHistory(n);
     NodeContacts& contacts = pair.contacts;
-    const ContactLawConstants law = ContactLawConstants::of(scene.parameters, kn, kt, scene.dt);
+    const auto law = ContactLawConstants<ContactReal>::of(scene.parameters, kn, kt, scene.dt);
     const int split = sideOne >= 0 ? sideOne : n;
     PairSums sums;
     sums.add(lawAndSums(law, batch, contacts, 0, split), 1.0);
