@@ -489,38 +489,39 @@ struct PairSums {
   double value[12] = {};
   double weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, maxDepth = 0;
   Eigen::Vector3d vector(Vector v) const { return {value[v], value[v + 1], value[v + 2]}; }
-  /// Adds one side's sums, whose forces act on a (sign +1) or on b (-1).
-  void add(const PairSums& side, double sign) {
-    for (int k = kForce; k < kWeighted; ++k) value[k] += sign * side.value[k];
-    for (int k = kWeighted; k < kWeighted + 3; ++k) value[k] += side.value[k];
-    weight += side.weight;
-    elastic += side.elastic;
-    friction += side.friction;
-    viscous += side.viscous;
-    sliding += side.sliding;
-    projection += side.projection;
-    maxDepth = std::max(maxDepth, side.maxDepth);
+  /// Adds the sums of other contacts of the pair.
+  void add(const PairSums& more) {
+    for (int k = 0; k < 12; ++k) value[k] += more.value[k];
+    weight += more.weight;
+    elastic += more.elastic;
+    friction += more.friction;
+    viscous += more.viscous;
+    sliding += more.sliding;
+    projection += more.projection;
+    maxDepth = std::max(maxDepth, more.maxDepth);
   }
 };
 
-// What the law reads and writes for a run of contacts, entry 0 on: the batch's inputs (levers,
-// normals, velocities, depths, areas), the contacts' springs, stored energies and areas (the step
+// What the law reads and writes for a run of contacts, entry 0 on: the batch's inputs (keys,
+// levers, normals, velocities, depths, areas), the contacts' springs, stored energies and areas (the step
 // before's on entry, updated in place; area -1 for a new contact), and two scratch arrays for
 // what each spring update dissipated and whether it slid.
 struct LawArrays {
+  const std::uint32_t* key;
   const ContactReal *rx, *ry, *rz, *nx, *ny, *nz, *vx, *vy, *vz, *depth, *area;
   ContactReal *ux, *uy, *uz, *stored, *storedArea, *slid, *atCap;
 };
 
-// The contact law (updateSpring, contactForce) over entries [0, n) of `a`, one pair side's, and
-// what they add up to, the forces on the side's own body, in the same pass as the forces and in
-// SIMD lanes (the sums in ContactReal, the order of the additions following the machine's vector
-// width).
+// The contact law (updateSpring, contactForce) over entries [0, n) of `a`, and what they add up
+// to, the forces on body a (a node of b, key side 1, has its force on b: -f on a), in the same
+// pass as the forces and in SIMD lanes (the sums in ContactReal, the order of the additions
+// following the machine's vector width).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 PairSums lawAndSumsOver(const ContactLawConstants<ContactReal>& law, const LawArrays& a, int n) {
   using Real = ContactReal;
   Real fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nfx = 0, nfy = 0, nfz = 0, wx = 0, wy = 0, wz = 0;
   Real weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, deepest = 0;
+  const std::uint32_t* __restrict key = a.key;
   const Real *__restrict rx = a.rx, *__restrict ry = a.ry, *__restrict rz = a.rz, *__restrict nx = a.nx,
              *__restrict ny = a.ny, *__restrict nz = a.nz, *__restrict vx = a.vx, *__restrict vy = a.vy,
              *__restrict vz = a.vz, *__restrict depth = a.depth, *__restrict area = a.area;
@@ -545,16 +546,19 @@ PairSums lawAndSumsOver(const ContactLawConstants<ContactReal>& law, const LawAr
     const ContactForce<Real> f = contactForce(law, nx[i], ny[i], nz[i], depth[i], ai, vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
     stored[i] = f.stored;
     storedArea[i] = ai;
-    // Forces on the side's body; a contact facing away (area 0) has none.
-    fx += f.fx;
-    fy += f.fy;
-    fz += f.fz;
-    mx += ry[i] * f.fz - rz[i] * f.fy;
-    my += rz[i] * f.fx - rx[i] * f.fz;
-    mz += rx[i] * f.fy - ry[i] * f.fx;
-    nfx += f.fn * nx[i];
-    nfy += f.fn * ny[i];
-    nfz += f.fn * nz[i];
+    // Forces on a: +f for a node of a, -f for a node of b (side 1); a contact facing away (area 0)
+    // has none.
+    const Real sign = Real(1) - Real(2) * static_cast<Real>(static_cast<std::int32_t>(key[i] >> 31));
+    const Real gx = sign * f.fx, gy = sign * f.fy, gz = sign * f.fz, gn = sign * f.fn;
+    fx += gx;
+    fy += gy;
+    fz += gz;
+    mx += ry[i] * gz - rz[i] * gy;
+    my += rz[i] * gx - rx[i] * gz;
+    mz += rx[i] * gy - ry[i] * gx;
+    nfx += gn * nx[i];
+    nfy += gn * ny[i];
+    nfz += gn * nz[i];
     wx += f.fn * rx[i];
     wy += f.fn * ry[i];
     wz += f.fn * rz[i];
@@ -589,35 +593,39 @@ PairSums lawAndSumsOver(const ContactLawConstants<ContactReal>& law, const LawAr
 }
 
 // Contacts per block of lawAndSumsOver's loops: eight ContactReal lanes (two blocks of four on a
-// CPU with SSE only). A side's last, incomplete block runs through the same loops from a copy
-// padded with zeros: area 0, no spring, no stored energy or area, so every lane past the side's
-// end adds exactly 0 to every sum.
+// CPU with SSE only). The last, incomplete block runs through the same loops from a copy padded
+// with zeros: key 0, area 0, no spring, no stored energy or area, so every lane past the end adds
+// exactly 0 to every sum.
 constexpr int kLawBlock = 8;
 
-// The law and its sums over the batch's entries [begin, end), one side's, with the springs, areas
-// and stored energies in `contacts` (updated in place): whole blocks in place, the rest padded.
-PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, PairBatch& batch, NodeContacts& contacts, int begin,
-                    int end) {
-  const auto at = [begin](auto& v) { return v.data() + begin; };
-  const LawArrays all{at(batch.rx),          at(batch.ry),      at(batch.rz),       at(batch.nx),       at(batch.ny),
-                      at(batch.nz),          at(batch.vx),      at(batch.vy),       at(batch.vz),       at(batch.depth),
-                      at(batch.area),        at(contacts.springX), at(contacts.springY), at(contacts.springZ),
-                      at(contacts.energy),   at(contacts.area), at(batch.friction), at(batch.sliding)};
-  const int n = end - begin, full = n - n % kLawBlock;
+// The law and its sums over the batch's n entries, with the springs, areas and stored energies in
+// `contacts` (updated in place): whole blocks in place, the rest padded.
+PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, PairBatch& b, NodeContacts& contacts, int n) {
+  const LawArrays all{b.key.data(),           b.rx.data(),           b.ry.data(),           b.rz.data(),
+                      b.nx.data(),            b.ny.data(),           b.nz.data(),           b.vx.data(),
+                      b.vy.data(),            b.vz.data(),           b.depth.data(),        b.area.data(),
+                      contacts.springX.data(), contacts.springY.data(), contacts.springZ.data(), contacts.energy.data(),
+                      contacts.area.data(),   b.friction.data(),     b.sliding.data()};
+  const int full = n - n % kLawBlock, rest = n - full;
   PairSums sums = lawAndSumsOver(law, all, full);
-  if (full == n) return sums;
-  // The rest: each input and state array's entries [full, n), then zeros.
+  if (rest == 0) return sums;
+  // The rest: each input's and state's entries [full, n), then zeros.
   enum { RX, RY, RZ, NX, NY, NZ, VX, VY, VZ, Depth, Area, UX, UY, UZ, Stored, StoredArea, Slid, AtCap, Fields };
-  ContactReal rest[Fields][kLawBlock] = {};
-  const ContactReal* from[StoredArea + 1] = {all.rx, all.ry, all.rz, all.nx, all.ny, all.nz,     all.vx, all.vy,
+  ContactReal tail[Fields][kLawBlock] = {};
+  std::uint32_t tailKey[kLawBlock] = {};
+  const ContactReal* from[StoredArea + 1] = {all.rx, all.ry, all.rz,    all.nx, all.ny, all.nz,     all.vx,     all.vy,
                                              all.vz, all.depth, all.area, all.ux, all.uy, all.uz, all.stored, all.storedArea};
-  for (int f = RX; f <= StoredArea; ++f) std::copy(from[f] + full, from[f] + n, rest[f]);
-  const LawArrays padded{rest[RX], rest[RY], rest[RZ],    rest[NX],     rest[NY],         rest[NZ],
-                         rest[VX], rest[VY], rest[VZ],    rest[Depth],  rest[Area],       rest[UX],
-                         rest[UY], rest[UZ], rest[Stored], rest[StoredArea], rest[Slid], rest[AtCap]};
-  sums.add(lawAndSumsOver(law, padded, kLawBlock), 1.0);
+  for (int k = 0; k < rest; ++k) {
+    tailKey[k] = all.key[full + k];
+    for (int f = RX; f <= StoredArea; ++f) tail[f][k] = from[f][full + k];
+  }
+  const LawArrays padded{tailKey,    tail[RX], tail[RY], tail[RZ],    tail[NX],     tail[NY],         tail[NZ],
+                         tail[VX],   tail[VY], tail[VZ], tail[Depth], tail[Area],   tail[UX],         tail[UY],
+                         tail[UZ],   tail[Stored], tail[StoredArea], tail[Slid], tail[AtCap]};
+  sums.add(lawAndSumsOver(law, padded, kLawBlock));
   ContactReal* const state[] = {all.ux, all.uy, all.uz, all.stored, all.storedArea};  // UX .. StoredArea
-  for (int f = UX; f <= StoredArea; ++f) std::copy(rest[f], rest[f] + (n - full), state[f - UX] + full);
+  for (int k = 0; k < rest; ++k)
+    for (int f = UX; f <= StoredArea; ++f) state[f - UX][full + k] = tail[f][k];
   return sums;
 }
 
@@ -648,11 +656,9 @@ struct Accumulator {
   double kn, kt;            // N/m^3, this pair's stiffnesses
   PairBatch& batch;
   SideMotion side{};  // the side being collected
-  int sideOne = -1;   // the batch entry where side 1 (b's nodes) begins; -1: not begun
 
   // Starts a side: the nodes of the body moving as `node` in the other side, moving as `other`.
-  const SideMotion& beginSide(const Motion& node, const Motion& other, bool nodeBodyIsA) {
-    if (!nodeBodyIsA) sideOne = batch.count;
+  const SideMotion& beginSide(const Motion& node, const Motion& other) {
     side.shift = node.position - centreA;
     side.spin = node.angularVelocity - other.angularVelocity;
     side.v0 = node.velocity - other.velocity + other.angularVelocity.cross(other.position - centreA) -
@@ -724,10 +730,7 @@ struct Accumulator {
     takeHistory(n);
     NodeContacts& contacts = pair.contacts;
     const auto law = ContactLawConstants<ContactReal>::of(scene.parameters, kn, kt, scene.dt);
-    const int split = sideOne >= 0 ? sideOne : n;
-    PairSums sums;
-    sums.add(lawAndSums(law, batch, contacts, 0, split), 1.0);
-    sums.add(lawAndSums(law, batch, contacts, split, n), -1.0);
+    const PairSums sums = lawAndSums(law, batch, contacts, n);
 
     pair.tally.projection = sums.projection;
     pair.tally.elastic = sums.elastic;
@@ -870,7 +873,7 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
   const ShapeModel& sm = (*scene.shapes)[bodies.shape[m]];
   const Eigen::Matrix3d& RM = scene.kinematics->rotation[m];
   const Motion node = motionOf(scene, m);
-  acc.beginSide(node, other, true);
+  acc.beginSide(node, other);
   visitSide(sm.nodes, region, 0, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
     ++pair.evaluations;
     const Eigen::Vector3d r = RM * sm.nodes.position[key];
@@ -925,7 +928,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
       region.min().array() -= scene.candidateBand;
       region.max().array() += scene.candidateBand;
     }
-    const SideMotion& motion = acc.beginSide(node, other, side == 0);
+    const SideMotion& motion = acc.beginSide(node, other);
     if (!so.planes.empty()) {
       // A convex other side: its planes moved into M's frame once, n' = toO^T n, d' = d - n . shift,
       // so that a candidate is tested as it is: phi = max_f (n'_f . p - d'_f).
