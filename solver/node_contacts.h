@@ -1,6 +1,8 @@
 #pragma once
 #include <Eigen/Core>
 
+#include <algorithm>
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -25,8 +27,13 @@ struct NodeContact {
 
 /// The node contacts of a pair, sorted by key, each quantity in its own array: the contact law
 /// reads and writes the springs, areas and energies in place. Read one contact at a time as a
-/// NodeContact (by value).
+/// NodeContact (by value). The state arrays run on to a whole number of kLawBlock entries, the
+/// entries past size() all 0, so that the law runs over whole blocks of SIMD lanes.
 struct NodeContacts {
+  static constexpr std::size_t kLawBlock = 8;  ///< eight ContactReal lanes (AVX2)
+  /// n rounded up to whole blocks.
+  static std::size_t padded(std::size_t n) { return (n + kLawBlock - 1) / kLawBlock * kLawBlock; }
+
   std::vector<std::uint32_t> key;
   std::vector<ContactReal> springX, springY, springZ;  ///< m
   std::vector<ContactReal> energy;                     ///< J
@@ -35,20 +42,25 @@ struct NodeContacts {
   std::size_t size() const { return key.size(); }
   bool empty() const { return key.empty(); }
   void clear() { resize(0); }
-  /// n contacts (new ones unset; capacity kept).
+  /// n contacts (new ones unset; capacity kept), the padding past them 0.
   void resize(std::size_t n) {
     key.resize(n);
-    for (std::vector<ContactReal>* v : {&springX, &springY, &springZ, &energy, &area}) v->resize(n);
+    for (std::vector<ContactReal>* v : {&springX, &springY, &springZ, &energy, &area}) {
+      v->resize(padded(n));
+      std::fill(v->begin() + static_cast<std::ptrdiff_t>(n), v->end(), ContactReal(0));
+    }
   }
   /// A contact at the end, its values rounded to ContactReal (exact for values read from one).
   void push_back(const NodeContact& c) {
+    const std::size_t i = size();
+    resize(i + 1);
     const auto real = [](double v) { return static_cast<ContactReal>(v); };
-    key.push_back(c.key);
-    springX.push_back(real(c.spring.x()));
-    springY.push_back(real(c.spring.y()));
-    springZ.push_back(real(c.spring.z()));
-    energy.push_back(real(c.energy));
-    area.push_back(real(c.area));
+    key[i] = c.key;
+    springX[i] = real(c.spring.x());
+    springY[i] = real(c.spring.y());
+    springZ[i] = real(c.spring.z());
+    energy[i] = real(c.energy);
+    area[i] = real(c.area);
   }
   NodeContact operator[](std::size_t i) const {
     return {key[i], Eigen::Vector3d(springX[i], springY[i], springZ[i]), energy[i], area[i]};

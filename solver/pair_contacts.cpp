@@ -61,6 +61,14 @@ struct PairBatch {
     reserve(count + 1);
     return count++;
   }
+  /// The law's padding (lawAndSums): a block of entries from `from` on set to 0.
+  void padFrom(int from) {
+    constexpr int block = static_cast<int>(NodeContacts::kLawBlock);
+    reserve(from + block);
+    std::fill_n(key.data() + from, block, 0u);
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &vx, &vy, &vz, &friction, &sliding})
+      std::fill_n(v->data() + from, block, ContactReal(0));
+  }
 };
 
 // One side of a pair being collected (its nodes on body M, in the other side O): c_M - c_a, and
@@ -592,41 +600,19 @@ PairSums lawAndSumsOver(const ContactLawConstants<ContactReal>& law, const LawAr
   return sums;
 }
 
-// Contacts per block of lawAndSumsOver's loops: eight ContactReal lanes (two blocks of four on a
-// CPU with SSE only). The last, incomplete block runs through the same loops from a copy padded
-// with zeros: key 0, area 0, no spring, no stored energy or area, so every lane past the end adds
-// exactly 0 to every sum.
-constexpr int kLawBlock = 8;
-
 // The law and its sums over the batch's n entries, with the springs, areas and stored energies in
-// `contacts` (updated in place): whole blocks in place, the rest padded.
+// `contacts` (updated in place), in whole blocks of NodeContacts::kLawBlock lanes: the padding
+// entries, all 0 in the batch and in `contacts` (key 0, area 0, no spring, no stored energy or
+// area), add exactly 0 to every sum and stay 0.
 PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, PairBatch& b, NodeContacts& contacts, int n) {
+  const int padded = static_cast<int>(NodeContacts::padded(static_cast<std::size_t>(n)));
+  b.padFrom(n);
   const LawArrays all{b.key.data(),           b.rx.data(),           b.ry.data(),           b.rz.data(),
                       b.nx.data(),            b.ny.data(),           b.nz.data(),           b.vx.data(),
                       b.vy.data(),            b.vz.data(),           b.depth.data(),        b.area.data(),
                       contacts.springX.data(), contacts.springY.data(), contacts.springZ.data(), contacts.energy.data(),
                       contacts.area.data(),   b.friction.data(),     b.sliding.data()};
-  const int full = n - n % kLawBlock, rest = n - full;
-  PairSums sums = lawAndSumsOver(law, all, full);
-  if (rest == 0) return sums;
-  // The rest: each input's and state's entries [full, n), then zeros.
-  enum { RX, RY, RZ, NX, NY, NZ, VX, VY, VZ, Depth, Area, UX, UY, UZ, Stored, StoredArea, Slid, AtCap, Fields };
-  ContactReal tail[Fields][kLawBlock] = {};
-  std::uint32_t tailKey[kLawBlock] = {};
-  const ContactReal* from[StoredArea + 1] = {all.rx, all.ry, all.rz,    all.nx, all.ny, all.nz,     all.vx,     all.vy,
-                                             all.vz, all.depth, all.area, all.ux, all.uy, all.uz, all.stored, all.storedArea};
-  for (int k = 0; k < rest; ++k) {
-    tailKey[k] = all.key[full + k];
-    for (int f = RX; f <= StoredArea; ++f) tail[f][k] = from[f][full + k];
-  }
-  const LawArrays padded{tailKey,    tail[RX], tail[RY], tail[RZ],    tail[NX],     tail[NY],         tail[NZ],
-                         tail[VX],   tail[VY], tail[VZ], tail[Depth], tail[Area],   tail[UX],         tail[UY],
-                         tail[UZ],   tail[Stored], tail[StoredArea], tail[Slid], tail[AtCap]};
-  sums.add(lawAndSumsOver(law, padded, kLawBlock));
-  ContactReal* const state[] = {all.ux, all.uy, all.uz, all.stored, all.storedArea};  // UX .. StoredArea
-  for (int k = 0; k < rest; ++k)
-    for (int f = UX; f <= StoredArea; ++f) state[f - UX][full + k] = tail[f][k];
-  return sums;
+  return lawAndSumsOver(law, all, padded);
 }
 
 // Per-thread scratch (kept from pair to pair and step to step: no allocation once grown).
