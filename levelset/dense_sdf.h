@@ -38,10 +38,10 @@ struct DenseSdf {
   }
 
   /// The cell of a point inside the grid (its lower node i0) and the weights w in [0, 1] within it.
-  /// (Scaled by 1 / voxelSize, one division: the solver's SIMD copy of value(), gridSamples, does
-  /// the same, so both give the same bits as long as neither is compiled with floating-point
-  /// contraction: the solver is built with -ffp-contract=off, and a build without -march has no
-  /// fused multiply-add to contract to.)
+  /// (Scaled by 1 / voxelSize, one division, as the solver's SIMD copy of value(), gridSamples,
+  /// does; that copy may fuse multiply-adds on CPUs that have them, so the two agree to rounding.
+  /// Nothing needs them to agree to the bit: the candidates' band has margin, and each step lists
+  /// every contact through gridSamples.)
   void locate(const Eigen::Vector3d& inside, int i0[3], double w[3]) const {
     const Eigen::Vector3d u = (inside - origin) * (1.0 / voxelSize);
     for (int a = 0; a < 3; ++a) {

@@ -6,7 +6,7 @@ namespace tessera {
 namespace {
 
 // The law over n entries in SIMD lanes; compiled for the baseline CPU and for AVX2 and AVX-512
-// machines (chosen at load time), without floating-point contraction (the same bits on each).
+// machines (chosen at load time).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 void contactLaw(const ContactLawConstants<ContactReal>& k, const NodeContactBatch& b) {
   const int n = b.count;

@@ -1,8 +1,7 @@
 #pragma once
 // The contact law of one node contact, inline, for the loops that run it in SIMD lanes
-// (solver/contact_law.cpp, solver/pair_contacts.cpp). Only for files compiled as the solver
-// library is, without floating-point contraction: elsewhere a compiler may fuse multiply-adds and
-// give other bits. The law itself: solver/contact_law.h, docs/physics.md "Contact law".
+// (solver/contact_law.cpp, solver/pair_contacts.cpp), in the precision Real they run in
+// (ContactReal). The law itself: solver/contact_law.h, docs/physics.md "Contact law".
 #include "solver/contact_parameters.h"
 
 #include <cmath>
@@ -52,7 +51,7 @@ struct SpringUpdate {
 
 /// The first part of the law for one contact: its tangential spring u, in place (normal n, depth,
 /// area, relative velocity v). Without branches, so that a loop over contacts runs it in SIMD
-/// lanes; every caller is compiled without floating-point contraction (the same bits everywhere).
+/// lanes.
 template <class Real>
 __attribute__((always_inline)) inline SpringUpdate<Real> updateSpring(const ContactLawConstants<Real>& k, Real nx, Real ny,
                                                                       Real nz, Real depth, Real area, Real vx, Real vy,

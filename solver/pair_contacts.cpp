@@ -176,8 +176,7 @@ struct PlanesInFrame {
 };
 
 // Four doubles side by side (GCC's vector extension): one AVX2 register, two SSE2 ones; the same
-// operations in every lane and on every machine. (Eight, two AVX2 registers, compile the selects
-// below to scalar code.)
+// operations in every lane. (Eight, two AVX2 registers, compile the selects below to scalar code.)
 using Lanes = double __attribute__((vector_size(32)));
 using LaneMask = long long __attribute__((vector_size(32)));
 constexpr int kLanes = 4;
