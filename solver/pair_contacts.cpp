@@ -11,6 +11,10 @@
 #include <tuple>
 #include <utility>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 namespace tessera {
 
 namespace {
@@ -314,9 +318,17 @@ struct CandidateLanes {
   }
 };
 
-// The lane mask of a block's lanes (bit j: lane j is true).
-inline int laneBits(const LaneMask& m) {
+// The lane mask of a block's lanes (bit j: lane j is true): each half's sign bits at once
+// (SSE2's movmskpd, in every x86-64 CPU; elsewhere lane by lane).
+__attribute__((always_inline)) inline int laneBits(const LaneMask& m) {
+#ifdef __SSE2__
+  __m128d low, high;
+  std::memcpy(&low, &m, sizeof low);
+  std::memcpy(&high, reinterpret_cast<const char*>(&m) + sizeof low, sizeof high);
+  return _mm_movemask_pd(low) | _mm_movemask_pd(high) << 2;
+#else
   return static_cast<int>((m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8));
+#endif
 }
 
 // Four node contacts (or none, lane by lane) as the listings compute them.
@@ -894,6 +906,10 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
 
 void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = beginEvaluation(scene, pair);
+  if (!rebuild && pair.candidates.size() == 0) {  // no node within the band: no contact until rebuilt
+    pair.contacts.clear();
+    return;
+  }
   Scratch& scratch = threadScratch;
   Accumulator acc{scene, pair, scene.bodies->position[pair.a], scene.kn, scene.kt, scratch.batch};
   const RigidBodies& bodies = *scene.bodies;
