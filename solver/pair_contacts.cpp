@@ -186,7 +186,7 @@ using LaneMask = long long __attribute__((vector_size(32)));
 constexpr int kLanes = 4;
 
 // The candidates of one side of a pair (keys side << 31 | rank): n of them, each array from the
-// side's first.
+// side's first, padded to whole blocks of four (CandidateNodes).
 struct SideCandidates {
   int n = 0;
   const std::uint32_t* key;
@@ -195,13 +195,9 @@ struct SideCandidates {
 
 SideCandidates candidatesOf(const PairContacts& pair, std::uint32_t side) {
   const CandidateNodes& c = pair.candidates;
-  const std::uint32_t* begin = c.key.data();
-  const std::uint32_t* end = begin + c.size();
-  const std::uint32_t* first = std::lower_bound(begin, end, side << 31);
-  const std::uint32_t* last = side == 0 ? std::lower_bound(first, end, 1u << 31) : end;
-  const std::size_t at = static_cast<std::size_t>(first - begin);
-  return {static_cast<int>(last - first), first,           c.x.data() + at,  c.y.data() + at,   c.z.data() + at,
-          c.nx.data() + at,               c.ny.data() + at, c.nz.data() + at, c.area.data() + at};
+  const int at = c.first[side];
+  return {c.count[side],   c.key.data() + at, c.x.data() + at,  c.y.data() + at,   c.z.data() + at,
+          c.nx.data() + at, c.ny.data() + at, c.nz.data() + at, c.area.data() + at};
 }
 
 // The planes of a convex other side (`all` of them, in a side's frame) that can give one of the
@@ -284,25 +280,17 @@ __attribute__((always_inline)) inline void permute(Vector& out, const Vector& v,
 #endif
 }
 
-// A side's candidates four at a time (SIMD lanes): a block starting at i (a multiple of four)
-// read from the candidate arrays, the last, incomplete one from a copy padded with NaN (every
-// comparison false: never inside) and key 0.
+// A side's candidates four at a time (SIMD lanes): the block starting at i (a multiple of four);
+// the last block's padding has position NaN (every comparison false: never inside).
 struct CandidateLanes {
+  static_assert(CandidateNodes::kBlock == kLanes, "candidates are padded to whole blocks of lanes");
   enum Field { X, Y, Z, NX, NY, NZ, Area };
   const SideCandidates& c;
-  int full;  // the candidates in complete blocks
   const double* field[Area + 1];
-  double tail[Area + 1][kLanes];
-  Keys tailKeys = {};
 
   explicit CandidateLanes(const SideCandidates& candidates)
-      : c(candidates), full(c.n - c.n % kLanes), field{c.x, c.y, c.z, c.nx, c.ny, c.nz, c.area} {
-    const int rest = c.n - full;
-    for (int f = X; f <= Area; ++f)
-      for (int lane = 0; lane < kLanes; ++lane) tail[f][lane] = lane < rest ? field[f][full + lane] : NAN;
-    for (int lane = 0; lane < rest; ++lane) tailKeys[lane] = c.key[full + lane];
-  }
-  void load(Lanes& v, Field f, int i) const { std::memcpy(&v, i == full ? tail[f] : field[f] + i, sizeof v); }
+      : c(candidates), field{c.x, c.y, c.z, c.nx, c.ny, c.nz, c.area} {}
+  void load(Lanes& v, Field f, int i) const { std::memcpy(&v, field[f] + i, sizeof v); }
   /// The nodes' outward normals and areas.
   void loadNormalAndArea(Lanes& nx, Lanes& ny, Lanes& nz, Lanes& area, int i) const {
     load(nx, NX, i);
@@ -310,12 +298,7 @@ struct CandidateLanes {
     load(nz, NZ, i);
     load(area, Area, i);
   }
-  void loadKeys(Keys& keys, int i) const {
-    if (i == full)
-      keys = tailKeys;
-    else
-      std::memcpy(&keys, c.key + i, sizeof keys);
-  }
+  void loadKeys(Keys& keys, int i) const { std::memcpy(&keys, c.key + i, sizeof keys); }
 };
 
 // The lane mask of a block's lanes (bit j: lane j is true): each half's sign bits at once
@@ -754,10 +737,12 @@ template <class Test>
 void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::uint32_t side, bool rebuild,
                double band, PairContacts& pair, Test&& test) {
   if (rebuild) {
+    pair.candidates.beginSide(side);
     nodes.forEachNodeIn(region, [&](int rank) {
       const std::uint32_t key = side << 31 | static_cast<std::uint32_t>(rank);
       if (test(key) < band) pair.candidates.add(key, nodes, rank);
     });
+    pair.candidates.endSide(side);
     return;
   }
   const SideCandidates c = candidatesOf(pair, side);
@@ -906,7 +891,7 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
 
 void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = beginEvaluation(scene, pair);
-  if (!rebuild && pair.candidates.size() == 0) {  // no node within the band: no contact until rebuilt
+  if (!rebuild && pair.candidates.nodes() == 0) {  // no node within the band: no contact until rebuilt
     pair.contacts.clear();
     return;
   }

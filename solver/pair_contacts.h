@@ -9,6 +9,7 @@
 #include "solver/obstacles.h"
 #include "solver/rigid_bodies.h"
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -97,8 +98,12 @@ struct ShapeModel {
 
 /// The candidate nodes of a pair, sorted by key (as in NodeContact), each quantity in its own
 /// array: what a step reads of a node, copied from its body's NodeBins when the candidates are
-/// built, so that the step reads them in order instead of gathering them by rank.
+/// built, so that the step reads them in order instead of gathering them by rank. Side s's
+/// candidates are entries [first[s], first[s] + count[s]), followed by padding to a whole block of
+/// kBlock entries (position NaN: never inside; key side << 31 | 0x7fffffff, after the side's
+/// nodes), so that a step reads them a whole block at a time.
 struct CandidateNodes {
+  static constexpr int kBlock = 4;  ///< four double lanes
   std::vector<std::uint32_t> key;
   std::vector<double> x, y, z;     ///< m, the node's position in its own body's frame
   std::vector<double> nx, ny, nz;  ///< its outward unit normal, same frame
@@ -106,12 +111,27 @@ struct CandidateNodes {
   /// Against a shape with an exact mesh: what each candidate's last exact evaluation kept for the
   /// next (MeshSdf::NearestFace); sized when first used.
   std::vector<MeshSdf::NearestFace> nearestFace;
+  int first[2] = {0, 0}, count[2] = {0, 0};
 
+  /// Entries, with the padding.
   std::size_t size() const { return key.size(); }
+  /// Candidate nodes, both sides.
+  int nodes() const { return count[0] + count[1]; }
   void clear() {
     key.clear();
     for (std::vector<double>* v : {&x, &y, &z, &nx, &ny, &nz, &area}) v->clear();
     nearestFace.clear();
+    first[0] = first[1] = count[0] = count[1] = 0;
+  }
+  /// Side `side`'s candidates begin: add() them, then endSide().
+  void beginSide(std::uint32_t side) { first[side] = static_cast<int>(size()); }
+  /// Side `side`'s candidates end: counted and padded.
+  void endSide(std::uint32_t side) {
+    count[side] = static_cast<int>(size()) - first[side];
+    while (size() % kBlock != 0) {
+      key.push_back(side << 31 | 0x7fffffffu);
+      for (std::vector<double>* v : {&x, &y, &z, &nx, &ny, &nz, &area}) v->push_back(NAN);
+    }
   }
   /// Node `rank` of `nodes`, with its key.
   void add(std::uint32_t nodeKey, const NodeBins& nodes, int rank) {

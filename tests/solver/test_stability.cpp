@@ -132,8 +132,8 @@ TEST_CASE("candidate node lists: the forces are those of candidates built afresh
     }
     REQUIRE(narrow.sphereReaction(0).z() > 1.0);  // loaded: over a newton on the indenter
     std::size_t narrowCandidates = 0, broadCandidates = 0;
-    for (const PairContacts& pair : narrow.pairs()) narrowCandidates += pair.candidates.size();
-    for (const PairContacts& pair : broad.pairs()) broadCandidates += pair.candidates.size();
+    for (const PairContacts& pair : narrow.pairs()) narrowCandidates += pair.candidates.nodes();
+    for (const PairContacts& pair : broad.pairs()) broadCandidates += pair.candidates.nodes();
     REQUIRE(narrowCandidates < broadCandidates);
   }
 }
