@@ -253,18 +253,25 @@ struct BatchSlice {
 
 // Lane compaction without branches: for the mask of a block of four lanes (bit j: lane j is kept),
 // the lane order that moves the kept lanes to the front, in order (the others follow, unused), for
-// four 32-bit values (keys, or the lanes rounded to ContactReal).
+// four 32-bit keys and for the eight 32-bit words of four doubles (permuted before they are
+// rounded to ContactReal: one permutation of a whole register, no widening).
 using Keys = std::uint32_t __attribute__((vector_size(16)));
+using Words = std::int32_t __attribute__((vector_size(32)));
 using Reals = ContactReal __attribute__((vector_size(16)));
 using KeyOrder = std::int32_t __attribute__((vector_size(16)));
 static_assert(sizeof(ContactReal) == 4, "the listing packs four lanes of 32-bit values");
 struct Compaction {
   int keys[16][kLanes];
-  constexpr Compaction() : keys{} {
+  int words[16][2 * kLanes];
+  constexpr Compaction() : keys{}, words{} {
     for (int mask = 0; mask < 16; ++mask) {
       int kept = 0;
       for (int lane = 0; lane < kLanes; ++lane)
-        if (mask >> lane & 1) keys[mask][kept++] = lane;
+        if (mask >> lane & 1) {
+          words[mask][2 * kept] = 2 * lane;
+          words[mask][2 * kept + 1] = 2 * lane + 1;
+          keys[mask][kept++] = lane;
+        }
     }
   }
 };
@@ -326,10 +333,13 @@ struct ContactLanes {
 __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, int mask, const BatchSlice& out, int count) {
   KeyOrder order;
   std::memcpy(&order, kCompaction.keys[mask], sizeof order);
-  const auto store = [&](const Lanes& v, ContactReal* to) {
-    Reals kept;
-    permute(kept, __builtin_convertvector(v, Reals), order);
-    std::memcpy(to + count, &kept, sizeof kept);
+  Words wordOrder;
+  std::memcpy(&wordOrder, kCompaction.words[mask], sizeof wordOrder);
+  const auto store = [&](const Lanes& v, ContactReal* to) {  // packed as doubles, then rounded
+    Words kept;
+    permute(kept, reinterpret_cast<const Words&>(v), wordOrder);
+    const Reals rounded = __builtin_convertvector(reinterpret_cast<const Lanes&>(kept), Reals);
+    std::memcpy(to + count, &rounded, sizeof rounded);
   };
   store(block.rx, out.rx);
   store(block.ry, out.ry);
