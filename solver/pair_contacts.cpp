@@ -835,6 +835,16 @@ std::pair<Eigen::Vector3d, Eigen::Quaterniond> otherPose(const ContactScene& sce
   return {(*scene.planes)[-1 - pair.b - static_cast<int>(scene.spheres->size())].point, Eigen::Quaterniond::Identity()};
 }
 
+// m, the two sides' summed Travel (a plane does not move).
+double sidesTravel(const Travel& t, const PairContacts& pair) {
+  switch (pair.kind) {
+    case PairKind::Bodies: return t.body[pair.a] + t.body[pair.b];
+    case PairKind::Sphere: return t.body[pair.a] + t.sphere[-1 - pair.b];
+    case PairKind::Plane: break;
+  }
+  return t.body[pair.a];
+}
+
 // Clears the pair's last evaluation (its contacts become the history) and says whether its
 // candidate nodes are to be rebuilt: when they are not valid, or the sides have moved too far
 // relative to each other since they were built (ContactScene::candidateBand).
@@ -844,8 +854,19 @@ bool beginEvaluation(const ContactScene& scene, PairContacts& pair) {
   pair.tally = ContactTally{};
   pair.maxDepth = 0.0;
   pair.evaluations = 0;
-  const bool rebuild = !pair.candidatesValid || kSqrt3 * candidateMotion(scene, pair) >= scene.candidateBand;
+  const double travel = scene.travel != nullptr ? sidesTravel(*scene.travel, pair) : 0.0;
+  const bool mayHaveMoved = scene.travel == nullptr || kSqrt3 * (pair.checkedMotion + (travel - pair.checkedTravel)) >= scene.candidateBand;
+  bool rebuild = !pair.candidatesValid;
+  // The exact motion only when the bound from the travel since it was last computed can reach the
+  // threshold: the same decisions as computing it every step.
+  if (!rebuild && mayHaveMoved) {
+    pair.checkedMotion = candidateMotion(scene, pair);
+    pair.checkedTravel = travel;
+    rebuild = kSqrt3 * pair.checkedMotion >= scene.candidateBand;
+  }
   if (rebuild) {
+    pair.checkedMotion = 0.0;
+    pair.checkedTravel = travel;
     pair.candidates.clear();
     pair.builtPositionA = scene.bodies->position[pair.a];
     pair.builtOrientationA = scene.bodies->orientation[pair.a];

@@ -8,6 +8,7 @@
 #include "solver/node_contacts.h"
 #include "solver/obstacles.h"
 #include "solver/rigid_bodies.h"
+#include "solver/travel.h"
 
 #include <cmath>
 #include <cstdint>
@@ -174,6 +175,10 @@ struct PairContacts {
   /// side's (body b's; a sphere's centre; a plane's point), for candidateMotion().
   Eigen::Vector3d builtPositionA{0, 0, 0}, builtPositionB{0, 0, 0};
   Eigen::Quaterniond builtOrientationA = Eigen::Quaterniond::Identity(), builtOrientationB = Eigen::Quaterniond::Identity();
+  /// The last exact candidateMotion(), m, and the two sides' summed Travel then: the motion since
+  /// the candidates were built is at most checkedMotion + (travel now - checkedTravel), so the
+  /// exact motion is computed again only once that bound reaches the rebuild threshold.
+  double checkedMotion = 0.0, checkedTravel = 0.0;
   Eigen::Vector3d forceA{0, 0, 0}, torqueA{0, 0, 0}, forceB{0, 0, 0}, torqueB{0, 0, 0};
   Eigen::Vector3d normalForceA{0, 0, 0};  ///< N, the part of forceA along the contact normals (forceA minus it: friction)
   Eigen::Vector3d forcePoint{0, 0, 0};  ///< m, world: contact points weighted by normal force (force chains)
@@ -197,6 +202,8 @@ struct ContactScene {
   /// it relative to each other (candidateMotion; every level set here is at most sqrt(3)-Lipschitz),
   /// so no other node can reach contact.
   double candidateBand = 0.0;
+  /// Of the bodies and spheres, to this evaluation; null: each pair computes its exact motion.
+  const Travel* travel = nullptr;
 };
 
 /// The kind of the pair (a, b) in a World with `spheres` spheres.

@@ -108,6 +108,7 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   state_.dampingTorque.assign(n, Eigen::Vector3d::Zero());
   state_.startPosition = state_.bodies.position;
   state_.retired.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) bodyRadius_.push_back(shapes_[state_.bodies.shape[i]].radius);
 }
 
 WorldState World::state() const { return state_; }
@@ -279,8 +280,9 @@ void World::updatePairs() {
 void World::evaluateForces() {
   updatePairs();
   kinematics_.update(state_.bodies);
+  travel_.update(state_.bodies, bodyRadius_, state_.spheres);
   ContactScene scene{&state_.bodies, &kinematics_, &shapes_, &state_.spheres, &state_.planes, parameters_,
-                     parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt_, candidateBand()};
+                     parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt_, candidateBand(), &travel_};
   arena_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, state_.pairs.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t p = r.begin(); p != r.end(); ++p) evaluatePair(scene, state_.pairs[p]);

@@ -129,6 +129,8 @@ private:
   struct ThreadArena;
   std::unique_ptr<ThreadArena> arena_;  // the threads the contact loop runs on
   BodyKinematics kinematics_;           // of state_.bodies at the last evaluation (derived, not state)
+  Travel travel_;                       // of the bodies and spheres, to the last evaluation (derived, not state)
+  std::vector<double> bodyRadius_;      // m, each body's ShapeModel::radius
   double penetrationLimit_ = 0.0;
   double dt_ = 0.0, automaticDt_ = 0.0;
 };

@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <random>
 
 using namespace tessera;
 using Catch::Matchers::Contains;
@@ -175,4 +176,38 @@ TEST_CASE("candidate motion: |dp| + 2 sin(theta/2) r of each side since the cand
   touch.builtPositionA = bodies.position[1];
   spheres[0].center = Eigen::Vector3d(0, 0, 2e-6);
   REQUIRE(candidateMotion(scene, touch) == Approx(2e-6).epsilon(1e-12));
+}
+
+TEST_CASE("travel: each body's summed moves bound how far any of its points has gone, poses set between steps included") {
+  // One body (its farthest point 5 mm from the centroid) drifting and turning in small random
+  // moves, then put somewhere else between two updates; and a sphere.
+  RigidBodies bodies;
+  bodies.position = {Eigen::Vector3d(0, 0, 0)};
+  bodies.orientation = {Eigen::Quaterniond::Identity()};
+  const std::vector<double> radius = {5e-3};
+  std::vector<SphereObstacle> spheres(1);
+  Travel travel;
+  travel.update(bodies, radius, spheres);
+  REQUIRE(travel.body[0] == 0.0);
+  REQUIRE(travel.sphere[0] == 0.0);
+  const Eigen::Vector3d p0 = bodies.position[0];
+  const Eigen::Quaterniond q0 = bodies.orientation[0];
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int step = 0; step < 200; ++step) {
+    bodies.position[0] += 1e-7 * Eigen::Vector3d(unit(random), unit(random), unit(random));
+    bodies.orientation[0] =
+        bodies.orientation[0] * Eigen::Quaterniond(Eigen::AngleAxisd(1e-4 * unit(random), Eigen::Vector3d(unit(random), unit(random), 1).normalized()));
+    travel.update(bodies, radius, spheres);
+    // The farthest a point at r can have gone since the start, and the travel above it.
+    const double moved = (bodies.position[0] - p0).norm() + turnChord(bodies.orientation[0], q0) * radius[0];
+    REQUIRE(moved <= travel.body[0] * (1 + 1e-12));
+  }
+  // A pose set between updates counts in full.
+  const double before = travel.body[0];
+  bodies.position[0] += Eigen::Vector3d(0, 0, 1.0);
+  spheres[0].center += Eigen::Vector3d(2e-3, 0, 0);
+  travel.update(bodies, radius, spheres);
+  REQUIRE(travel.body[0] == Approx(before + 1.0).epsilon(1e-12));
+  REQUIRE(travel.sphere[0] == Approx(2e-3).epsilon(1e-12));
 }
