@@ -337,8 +337,8 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
   std::memcpy(&wordOrder, kCompaction.words[mask], sizeof wordOrder);
   const auto store = [&](const Lanes& v, ContactReal* to) {  // packed as doubles, then rounded
     Words kept;
-    permute(kept, reinterpret_cast<const Words&>(v), wordOrder);
-    const Reals rounded = __builtin_convertvector(reinterpret_cast<const Lanes&>(kept), Reals);
+    permute(kept, reinterpret_cast<Words>(v), wordOrder);
+    const Reals rounded = __builtin_convertvector(reinterpret_cast<Lanes>(kept), Reals);
     std::memcpy(to + count, &rounded, sizeof rounded);
   };
   store(block.rx, out.rx);
