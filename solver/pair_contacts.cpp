@@ -501,44 +501,31 @@ struct PairSums {
   double value[12] = {};
   double weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, maxDepth = 0;
   Eigen::Vector3d vector(Vector v) const { return {value[v], value[v + 1], value[v + 2]}; }
-  /// Adds the sums of other contacts of the pair.
-  void add(const PairSums& more) {
-    for (int k = 0; k < 12; ++k) value[k] += more.value[k];
-    weight += more.weight;
-    elastic += more.elastic;
-    friction += more.friction;
-    viscous += more.viscous;
-    sliding += more.sliding;
-    projection += more.projection;
-    maxDepth = std::max(maxDepth, more.maxDepth);
-  }
 };
 
-// What the law reads and writes for a run of contacts, entry 0 on: the batch's inputs (keys,
-// levers, normals, velocities, depths, areas), the contacts' springs, stored energies and areas (the step
-// before's on entry, updated in place; area -1 for a new contact), and two scratch arrays for
-// what each spring update dissipated and whether it slid.
-struct LawArrays {
-  const std::uint32_t* key;
-  const ContactReal *rx, *ry, *rz, *nx, *ny, *nz, *vx, *vy, *vz, *depth, *area;
-  ContactReal *ux, *uy, *uz, *stored, *storedArea, *slid, *atCap;
-};
-
-// The contact law (updateSpring, contactForce) over entries [0, n) of `a`, and what they add up
-// to, the forces on body a (a node of b, key side 1, has its force on b: -f on a), in the same
-// pass as the forces and in SIMD lanes (the sums in ContactReal, the order of the additions
-// following the machine's vector width).
+// The contact law (updateSpring, contactForce) over the batch's n entries, with the springs, areas
+// and stored energies in `contacts` (the step before's, area -1 for a new contact; updated in
+// place), and what they add up to, the forces on body a (a node of b, key side 1, has its force
+// on b: -f on a), in the same pass as the forces and in SIMD lanes (the sums in ContactReal, the
+// order of the additions following the machine's vector width). In whole blocks of
+// NodeContacts::kLawBlock lanes: the padding entries, all 0 in the batch and in `contacts` (key 0,
+// area 0, no spring, no stored energy or area), add exactly 0 to every sum and stay 0.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-PairSums lawAndSumsOver(const ContactLawConstants<ContactReal>& law, const LawArrays& a, int n) {
+PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, PairBatch& b, NodeContacts& contacts, int count) {
   using Real = ContactReal;
+  b.padFrom(count);
+  const int n = static_cast<int>(NodeContacts::padded(static_cast<std::size_t>(count)));
   Real fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nfx = 0, nfy = 0, nfz = 0, wx = 0, wy = 0, wz = 0;
   Real weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, deepest = 0;
-  const std::uint32_t* __restrict key = a.key;
-  const Real *__restrict rx = a.rx, *__restrict ry = a.ry, *__restrict rz = a.rz, *__restrict nx = a.nx,
-             *__restrict ny = a.ny, *__restrict nz = a.nz, *__restrict vx = a.vx, *__restrict vy = a.vy,
-             *__restrict vz = a.vz, *__restrict depth = a.depth, *__restrict area = a.area;
-  Real *__restrict ux = a.ux, *__restrict uy = a.uy, *__restrict uz = a.uz, *__restrict stored = a.stored,
-       *__restrict storedArea = a.storedArea, *__restrict slid = a.slid, *__restrict atCap = a.atCap;
+  const std::uint32_t* __restrict key = b.key.data();
+  const Real *__restrict rx = b.rx.data(), *__restrict ry = b.ry.data(), *__restrict rz = b.rz.data(),
+             *__restrict nx = b.nx.data(), *__restrict ny = b.ny.data(), *__restrict nz = b.nz.data(),
+             *__restrict vx = b.vx.data(), *__restrict vy = b.vy.data(), *__restrict vz = b.vz.data(),
+             *__restrict depth = b.depth.data(), *__restrict area = b.area.data();
+  Real *__restrict ux = contacts.springX.data(), *__restrict uy = contacts.springY.data(),
+       *__restrict uz = contacts.springZ.data(), *__restrict stored = contacts.energy.data(),
+       *__restrict storedArea = contacts.area.data(), *__restrict slid = b.friction.data(),
+       *__restrict atCap = b.sliding.data();
   // The law in two passes, the springs (with their square roots and divisions) and then the
   // forces and sums, each short enough for the next contacts' work to overlap one's square roots
   // and divisions (one long pass waited on them). (Every value loaded and one select at a time: a
@@ -602,21 +589,6 @@ PairSums lawAndSumsOver(const ContactLawConstants<ContactReal>& law, const LawAr
   sums.projection = projection;
   sums.maxDepth = deepest;
   return sums;
-}
-
-// The law and its sums over the batch's n entries, with the springs, areas and stored energies in
-// `contacts` (updated in place), in whole blocks of NodeContacts::kLawBlock lanes: the padding
-// entries, all 0 in the batch and in `contacts` (key 0, area 0, no spring, no stored energy or
-// area), add exactly 0 to every sum and stay 0.
-PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, PairBatch& b, NodeContacts& contacts, int n) {
-  const int padded = static_cast<int>(NodeContacts::padded(static_cast<std::size_t>(n)));
-  b.padFrom(n);
-  const LawArrays all{b.key.data(),           b.rx.data(),           b.ry.data(),           b.rz.data(),
-                      b.nx.data(),            b.ny.data(),           b.nz.data(),           b.vx.data(),
-                      b.vy.data(),            b.vz.data(),           b.depth.data(),        b.area.data(),
-                      contacts.springX.data(), contacts.springY.data(), contacts.springZ.data(), contacts.energy.data(),
-                      contacts.area.data(),   b.friction.data(),     b.sliding.data()};
-  return lawAndSumsOver(law, all, padded);
 }
 
 // Per-thread scratch (kept from pair to pair and step to step: no allocation once grown).

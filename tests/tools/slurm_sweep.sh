@@ -96,10 +96,11 @@ for _ in $(seq 100); do sinfo -h -o %T 2> /dev/null | grep -q idle && break; sle
 sinfo -h -o %T 2> /dev/null | grep -q idle || { show_logs; skip "slurmctld and slurmd did not start a node here"; }
 echo "[${SECONDS} s] cluster up: $host, slurmctld on 127.0.0.1:$ctld_port"
 
-# A case solves for about 3 s on one core: long enough to cancel one midway. (To 0.2 mm it took
-# 1 s after the kernel of 2026-11-24, and once under a full ctest its case ended before the cancel;
-# to 0.6 mm, 2 s after the kernel's third set that day, and again once ended before the cancel.)
-printf 'bundle = "%s"\n[indenter]\nspeed = 0.002\n[protocol]\ndelta_max = 0.9e-3\n[output]\ncheckpoint_seconds = 0.2\n' \
+# A case solves for about 4 s on one core: long enough to cancel one midway. (Each faster kernel
+# has shortened it: to 0.2 mm at 2 mm/s it took 1 s after the kernel of 2026-11-24, to 0.6 mm 2 s
+# after its third set, to 0.9 mm 2 s after its fourth; each time a case once ended before its
+# cancel under a full ctest. Now 0.9 mm at 1 mm/s.)
+printf 'bundle = "%s"\n[indenter]\nspeed = 0.001\n[protocol]\ndelta_max = 0.9e-3\n[output]\ncheckpoint_seconds = 0.2\n' \
   "$work/slab" > "$work/scene.toml"
 cases=(--set mu=0.3,0.5 --set E=4.2e9,20e9)
 
