@@ -2,7 +2,6 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -13,7 +12,7 @@ namespace tessera {
 /// SIMD lanes on AVX2 where double has four. Each input is computed in double (positions, depths,
 /// normals, velocities) and rounded once; the law's products and sums then carry a relative
 /// error of about 1e-7 per contact, far below what the answers resolve (docs/physics.md,
-/// "Precision of the contact law"). The sums over a pair are added in double.
+/// "Precision of the contact law"). A pair's sums are added in float, the pairs' in double.
 using ContactReal = float;
 
 /// A node in contact and its tangential spring: key = side << 31 | rank (side 0: a node of body
