@@ -48,8 +48,8 @@ struct NodeContactBatch {
 /// with its stored energy 1/2 k_n a d^2 + 1/2 k_t a |u|^2 and what it dissipated. kn and kt in
 /// N/m^3; with a per-node stiffness k (perNodeStiffness > 0) the products k_n a and k_t a become k
 /// and (k_t/k_n) k. An entry with area 0 (a node inside but facing away from the contact normal)
-/// gets no force, no spring and no energy. Each entry is computed on its own, in ContactReal, by
-/// the same operations whatever the CPU's vector width.
+/// gets no force, no spring and no energy. Each entry is computed on its own, in ContactReal: a
+/// batch gives each entry the bits it gets alone.
 void applyContactLaw(const ContactParameters& p, double kn, double kt, double dt, const NodeContactBatch& batch);
 
 }  // namespace tessera

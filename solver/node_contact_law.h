@@ -76,8 +76,8 @@ __attribute__((always_inline)) inline SpringUpdate<Real> updateSpring(const Cont
   // Sliding: u scaled back to the Coulomb cap, |k_t a u| = mu f_n. Dissipated: the work put into
   // the spring over the increment (trapezoidal, as a sticking spring stores it exactly) less what
   // it now stores, k_t a (t + u) / 2 . du - k_t a (|u|^2 - |t|^2) / 2 (t: the turned spring, du =
-  // v_t dt), which with u = c (t + du) is k_t a (1 - c) (t + u) . (t + du) / 2: a product of
-  // positive terms, no difference of nearly equal energies to lose digits to (0 when sticking, c = 1).
+  // v_t dt), which with u = c (t + du) is k_t a (1 - c) (t + u) . (t + du) / 2: fewer operations,
+  // exactly 0 when sticking (c = 1); either form rounds to about eps k_t a |u|^2.
   const bool slides = ft2 > cap * cap;
   const Real capped = cap / std::sqrt(ft2 > 0 ? ft2 : Real(1));
   const Real scale = slides ? capped : Real(1);

@@ -358,7 +358,7 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
   return count + __builtin_popcount(static_cast<unsigned>(mask));
 }
 
-// The relative velocity at levers r (BatchSlice::setLever, same operations).
+// The relative velocity at levers r (as BatchSlice::setLever).
 __attribute__((always_inline)) inline void laneVelocities(const SideMotion& side, ContactLanes& b) {
   const double ax = side.v0.x(), ay = side.v0.y(), az = side.v0.z();
   const double wx = side.spin.x(), wy = side.spin.y(), wz = side.spin.z();
@@ -372,8 +372,8 @@ __attribute__((always_inline)) inline void laneVelocities(const SideMotion& side
 // phi = max_f (n'_f . p - d'_f) as PlanesInFrame::phi (the first plane of largest value is the
 // best; phi and the best plane's normals kept in registers across the planes), and for the
 // candidates inside (phi < 0), packed to the front of the lanes without branches (storeKept):
-// key, lever r = RM p + (c_M - c_a) and the relative velocity (BatchSlice::setLever, same
-// operations), the world normal of the best plane, depth -phi, and area: half the node's,
+// key, lever r = RM p + (c_M - c_a) and the relative velocity (as BatchSlice::setLever), the
+// world normal of the best plane, depth -phi, and area: half the node's,
 // projected on the contact plane, -n_i . n (taken in M's frame), clipped at 0 (facingArea). The
 // batch needs room for four entries past the last candidate.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
@@ -444,8 +444,8 @@ void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double*
 // phi and unit normal g in O's frame, n of them, with room for four more: phi NaN there) as
 // contacts of the batch from entry `start` on; their count. Four candidates at a time
 // (CandidateLanes), those inside (phi < 0) packed to the front of the lanes (storeKept): key,
-// lever r = RO o + (c_O - c_M) + (c_M - c_a) and the relative velocity (BatchSlice::setLever,
-// same operations), the world normal RO g, depth -phi, and area:
+// lever r = RO o + (c_O - c_M) + (c_M - c_a) and the relative velocity (as
+// BatchSlice::setLever), the world normal RO g, depth -phi, and area:
 // half the node's, projected on the contact plane, -(RM n_i) . (RO g), clipped at 0 (facingArea).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side, const double* __restrict ox,
@@ -508,8 +508,9 @@ struct PairSums {
 // place), and what they add up to, the forces on body a (a node of b, key side 1, has its force
 // on b: -f on a), in the same pass as the forces and in SIMD lanes (the sums in ContactReal, the
 // order of the additions following the machine's vector width). In whole blocks of
-// NodeContacts::kLawBlock lanes: the padding entries, all 0 in the batch and in `contacts` (key 0,
-// area 0, no spring, no stored energy or area), add exactly 0 to every sum and stay 0.
+// NodeContacts::kLawBlock entries: the padding entries, all 0 in the batch (key 0, area 0) and in
+// the contacts' state arrays (no spring, stored energy or area), add exactly 0 to every sum and
+// stay 0.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, PairBatch& b, NodeContacts& contacts, int count) {
   using Real = ContactReal;

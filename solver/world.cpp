@@ -171,7 +171,12 @@ void World::checkState(const WorldState& s) const {
 void World::restore(const WorldState& s) {
   checkState(s);
   state_ = s;
-  for (PairContacts& p : state_.pairs) p.kind = pairKind(p.b, static_cast<int>(state_.spheres.size()));
+  // Each pair's checked travel was measured by the World the state came from, not by this one's
+  // Travel: every pair computes its exact candidate motion at its next evaluation.
+  for (PairContacts& p : state_.pairs) {
+    p.kind = pairKind(p.b, static_cast<int>(state_.spheres.size()));
+    p.checkedTravel = -std::numeric_limits<double>::infinity();
+  }
 }
 
 void World::retireBody(int i) {
@@ -232,6 +237,7 @@ void World::updatePairs() {
                                 : worldBox(shapes_[state_.bodies.shape[i]].box, state_.bodies.orientation[i], state_.bodies.position[i], margin));
   std::vector<std::pair<int, int>> wanted = sweepPairs(boxes, state_.bodies.fixed);
   const int sphereCount = static_cast<int>(state_.spheres.size());
+  const bool spheresAdded = static_cast<int>(state_.builtSphereCentre.size()) != sphereCount;  // since the last build
   for (int k = 0; k < sphereCount; ++k) {
     const Eigen::AlignedBox3d box(state_.spheres[k].center.array() - state_.spheres[k].radius - margin,
                                   state_.spheres[k].center.array() + state_.spheres[k].radius + margin);
@@ -255,8 +261,10 @@ void World::updatePairs() {
     if (old < state_.pairs.size() && state_.pairs[old].a == a && state_.pairs[old].b == b) {
       next.push_back(std::move(state_.pairs[old]));
       // An obstacle's number shifts when a sphere is added before the planes: its kind is
-      // found again, and a pair that changed kind starts without contact history.
-      if (next.back().kind != pairKind(b, sphereCount)) {
+      // found again, and a pair that changed kind, or names another plane, starts without contact
+      // history or candidates.
+      const bool otherPlane = next.back().kind == PairKind::Plane && spheresAdded;
+      if (next.back().kind != pairKind(b, sphereCount) || otherPlane) {
         next.back().kind = pairKind(b, sphereCount);
         next.back().contacts.clear();
         next.back().candidatesValid = false;
