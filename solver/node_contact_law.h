@@ -23,30 +23,30 @@ struct ContactLawConstants {
   }
 };
 
-/// The normal force of one contact: f_n = k_n a d - eta_n a v_n clipped at 0, with its elastic part
-/// k_n a d, the approach speed v_n = v . n, and k_t a (0 for a node facing away, area 0).
+/// The normal force of one contact at the approach speed v_n = v . n: f_n = k_n a d - eta_n a v_n
+/// clipped at 0, with its elastic part k_n a d, and k_t a (0 for a node facing away, area 0).
 template <class Real>
 struct NormalForce {
-  Real kna, kta, vn, elastic, fn;
+  Real kna, kta, elastic, fn;
 };
 template <class Real>
-__attribute__((always_inline)) inline NormalForce<Real> normalForce(const ContactLawConstants<Real>& k, Real nx, Real ny, Real nz,
-                                                                    Real depth, Real area, Real vx, Real vy, Real vz) {
+__attribute__((always_inline)) inline NormalForce<Real> normalForce(const ContactLawConstants<Real>& k, Real depth, Real area,
+                                                                    Real vn) {
   NormalForce<Real> f;
   const Real keep = area > 0 ? Real(1) : Real(0);  // 0: facing away, no force, spring or energy
   f.kna = keep * (k.perNodeNormal + k.perAreaNormal * area);  // k_n a, or the per-node k
   f.kta = keep * (k.perNodeTangent + k.perAreaTangent * area);
-  f.vn = vx * nx + vy * ny + vz * nz;
   f.elastic = f.kna * depth;
-  const Real pushed = f.elastic - k.viscosity * area * f.vn;
+  const Real pushed = f.elastic - k.viscosity * area * vn;
   f.fn = pushed > 0 ? pushed : Real(0);
   return f;
 }
 
-/// What the update of a contact's tangential spring dissipated: J by sliding, and 1 if it slid.
+/// What the update of a contact's tangential spring dissipated: J by sliding, 1 if it slid, and
+/// the approach speed v_n = v . n (m/s) that contactForce takes.
 template <class Real>
 struct SpringUpdate {
-  Real friction, sliding;
+  Real friction, sliding, approach;
 };
 
 /// The first part of the law for one contact: its tangential spring u, in place (normal n, depth,
@@ -56,7 +56,8 @@ template <class Real>
 __attribute__((always_inline)) inline SpringUpdate<Real> updateSpring(const ContactLawConstants<Real>& k, Real nx, Real ny,
                                                                       Real nz, Real depth, Real area, Real vx, Real vy,
                                                                       Real vz, Real& ux, Real& uy, Real& uz) {
-  const NormalForce<Real> n = normalForce(k, nx, ny, nz, depth, area, vx, vy, vz);
+  const Real vn = vx * nx + vy * ny + vz * nz;
+  const NormalForce<Real> n = normalForce(k, depth, area, vn);
   // Turn the spring onto the tangent plane, keeping its length: u = (s - n (n.s)) |s| / |s - n (n.s)|
   // (a spring already in the plane is left as it is: then the ratio is exactly 1).
   const Real along = nx * ux + ny * uy + nz * uz;
@@ -69,7 +70,7 @@ __attribute__((always_inline)) inline SpringUpdate<Real> updateSpring(const Cont
   ty *= turn;
   tz *= turn;
   // u = turned + v_t dt; the trial force -k_t a u.
-  const Real dx = (vx - n.vn * nx) * k.dt, dy = (vy - n.vn * ny) * k.dt, dz = (vz - n.vn * nz) * k.dt;
+  const Real dx = (vx - vn * nx) * k.dt, dy = (vy - vn * ny) * k.dt, dz = (vz - vn * nz) * k.dt;
   Real sx = tx + dx, sy = ty + dy, sz = tz + dz;
   const Real ftx = -n.kta * sx, fty = -n.kta * sy, ftz = -n.kta * sz;
   const Real cap = k.friction * n.fn, ft2 = ftx * ftx + fty * fty + ftz * ftz;
@@ -91,10 +92,10 @@ __attribute__((always_inline)) inline SpringUpdate<Real> updateSpring(const Cont
   ux = keep * sx;
   uy = keep * sy;
   uz = keep * sz;
-  return {dissipated, slides ? Real(1) : Real(0)};
+  return {dissipated, slides ? Real(1) : Real(0), vn};
 }
 
-/// What one node contact gives with its spring updated (updateSpring): its force on the node's
+/// What one node contact gives with its spring updated (updateSpring, which gave v_n): its force on the node's
 /// body f = f_n n - k_t a u (N), f_n (N), its stored energy 1/2 k_n a d^2 + 1/2 k_t a |u|^2 (J) and
 /// what the normal viscosity dissipated this step, (k_n a d - f_n) v_n dt (J).
 template <class Real>
@@ -103,9 +104,9 @@ struct ContactForce {
 };
 template <class Real>
 __attribute__((always_inline)) inline ContactForce<Real> contactForce(const ContactLawConstants<Real>& k, Real nx, Real ny,
-                                                                      Real nz, Real depth, Real area, Real vx, Real vy,
-                                                                      Real vz, Real ux, Real uy, Real uz) {
-  const NormalForce<Real> n = normalForce(k, nx, ny, nz, depth, area, vx, vy, vz);
+                                                                      Real nz, Real depth, Real area, Real vn, Real ux,
+                                                                      Real uy, Real uz) {
+  const NormalForce<Real> n = normalForce(k, depth, area, vn);
   ContactForce<Real> f;
   f.fn = n.fn;
   f.fx = n.fn * nx - n.kta * ux;
@@ -113,7 +114,7 @@ __attribute__((always_inline)) inline ContactForce<Real> contactForce(const Cont
   f.fz = n.fn * nz - n.kta * uz;
   f.stored = Real(0.5) * n.elastic * depth + Real(0.5) * n.kta * (ux * ux + uy * uy + uz * uz);
   // The non-elastic part of the normal force, f_n - k_n a d, does the work (f_n - k_n a d) v_n dt.
-  f.viscous = (n.elastic - n.fn) * n.vn * k.dt;
+  f.viscous = (n.elastic - n.fn) * vn * k.dt;
   return f;
 }
 

@@ -43,22 +43,22 @@ constexpr double kSqrt3 = 1.7320508075688772;
 
 // The node contacts of a pair being collected, in key order (side 0, a's nodes in b, then side 1),
 // for the contact law: its inputs but the springs (the pair's own NodeContacts hold them, and the
-// areas and stored energies), each contact's key and its lever r = x - c_a about body a's centroid
-// (world), computed in double and kept as ContactReal. Area 0: a node inside but facing away from
-// the contact normal.
+// areas and stored energies) and the velocities (the law takes them from the levers and its side's
+// SideMotion), each contact's key and its lever r = x - c_a about body a's centroid (world),
+// computed in double and kept as ContactReal. Area 0: a node inside but facing away from the
+// contact normal.
 struct PairBatch {
   int count = 0;
   std::vector<std::uint32_t> key;
-  std::vector<ContactReal> rx, ry, rz, nx, ny, nz, depth, area, vx, vy, vz;
-  std::vector<ContactReal> friction, sliding;  // the law's: each contact's SpringUpdate
+  std::vector<ContactReal> rx, ry, rz, nx, ny, nz, depth, area;
+  std::vector<ContactReal> friction, sliding, approach;  // the law's: each contact's SpringUpdate
 
   /// Room for n contacts (values unset).
   void reserve(int n) {
     if (static_cast<int>(key.size()) >= n) return;
     const std::size_t size = static_cast<std::size_t>(n + n / 2);
     key.resize(size);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &vx, &vy, &vz, &friction, &sliding})
-      v->resize(size);
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &friction, &sliding, &approach}) v->resize(size);
   }
   /// A new contact at the end (values unset); its index.
   int append() {
@@ -70,7 +70,7 @@ struct PairBatch {
     constexpr int block = static_cast<int>(NodeContacts::kLawBlock);
     reserve(from + block);
     std::fill_n(key.data() + from, block, 0u);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &vx, &vy, &vz, &friction, &sliding})
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &friction, &sliding, &approach})
       std::fill_n(v->data() + from, block, ContactReal(0));
   }
 };
@@ -139,28 +139,24 @@ void gridSamples(const DenseSdf& sdf, int n, const double* __restrict x, const d
 
 // The face planes of a convex body expressed in another body's frame (x_O = R x_M + t), in hot
 // arrays: phi(p) = max_f (n_f . p - d_f), the exact level set of a convex polyhedron (1-Lipschitz),
-// evaluated without transforming p. With each plane's normal in the world frame.
+// evaluated without transforming p.
 struct PlanesInFrame {
   static constexpr int kMax = 64;  // ConvexFitOptions::maxPlanes' default
   std::array<double, kMax> nx, ny, nz, offset;  // M's frame
-  std::array<double, kMax> wx, wy, wz;          // world
   int count = 0;
 
-  // R, t: the other body's frame from M's; RM: M's orientation. Only the planes of `kept` (bit
-  // f: plane f), in their order.
+  // R, t: the other body's frame from M's. Only the planes of `kept` (bit f: plane f), in their
+  // order.
   PlanesInFrame(const std::vector<FacePlane>& planes, const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
-                const Eigen::Matrix3d& RM, std::uint64_t kept = ~0ull) {
+                std::uint64_t kept = ~0ull) {
     const int all = static_cast<int>(std::min<std::size_t>(planes.size(), kMax));
     for (int f = 0; f < all; ++f) {
       if (!(kept >> f & 1)) continue;
-      const Eigen::Vector3d n = R.transpose() * planes[f].normal, w = RM * n;
+      const Eigen::Vector3d n = R.transpose() * planes[f].normal;
       nx[count] = n.x();
       ny[count] = n.y();
       nz[count] = n.z();
       offset[count] = planes[f].offset - planes[f].normal.dot(t);
-      wx[count] = w.x();
-      wy[count] = w.y();
-      wz[count] = w.z();
       ++count;
     }
   }
@@ -230,25 +226,12 @@ __attribute__((always_inline)) inline void facingArea(Lanes& area, const Lanes& 
 // The batch's contact arrays from entry `start` on, as the listing functions write them.
 struct BatchSlice {
   std::uint32_t* __restrict key;
-  ContactReal *__restrict rx, *__restrict ry, *__restrict rz, *__restrict vx, *__restrict vy, *__restrict vz,
-      *__restrict nx, *__restrict ny, *__restrict nz, *__restrict depth, *__restrict area;
+  ContactReal *__restrict rx, *__restrict ry, *__restrict rz, *__restrict nx, *__restrict ny, *__restrict nz,
+      *__restrict depth, *__restrict area;
   BatchSlice(PairBatch& b, int start)
       : key(b.key.data() + start), rx(b.rx.data() + start), ry(b.ry.data() + start), rz(b.rz.data() + start),
-        vx(b.vx.data() + start), vy(b.vy.data() + start), vz(b.vz.data() + start),
         nx(b.nx.data() + start), ny(b.ny.data() + start), nz(b.nz.data() + start), depth(b.depth.data() + start),
         area(b.area.data() + start) {}
-  /// Entry k's lever r = x - c_a (world) and the relative velocity at the node, v0 + (w_M - w_O)
-  /// x r (SideMotion), computed in double.
-  void setLever(int k, const SideMotion& side, double x, double y, double z) const {
-    const auto real = [](double v) { return static_cast<ContactReal>(v); };
-    rx[k] = real(x);
-    ry[k] = real(y);
-    rz[k] = real(z);
-    const Eigen::Vector3d &v0 = side.v0, &w = side.spin;
-    vx[k] = real(v0.x() + (w.y() * z - w.z() * y));
-    vy[k] = real(v0.y() + (w.z() * x - w.x() * z));
-    vz[k] = real(v0.z() + (w.x() * y - w.y() * x));
-  }
 };
 
 // Lane compaction without branches: for the mask of a block of four lanes (bit j: lane j is kept),
@@ -323,7 +306,7 @@ __attribute__((always_inline)) inline int laneBits(const LaneMask& m) {
 
 // Four node contacts (or none, lane by lane) as the listings compute them.
 struct ContactLanes {
-  Lanes rx, ry, rz, vx, vy, vz, nx, ny, nz, depth, area;
+  Lanes rx, ry, rz, nx, ny, nz, depth, area;
   Keys key;
 };
 
@@ -344,9 +327,6 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
   store(block.rx, out.rx);
   store(block.ry, out.ry);
   store(block.rz, out.rz);
-  store(block.vx, out.vx);
-  store(block.vy, out.vy);
-  store(block.vz, out.vz);
   store(block.nx, out.nx);
   store(block.ny, out.ny);
   store(block.nz, out.nz);
@@ -358,24 +338,14 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
   return count + __builtin_popcount(static_cast<unsigned>(mask));
 }
 
-// The relative velocity at levers r (as BatchSlice::setLever).
-__attribute__((always_inline)) inline void laneVelocities(const SideMotion& side, ContactLanes& b) {
-  const double ax = side.v0.x(), ay = side.v0.y(), az = side.v0.z();
-  const double wx = side.spin.x(), wy = side.spin.y(), wz = side.spin.z();
-  b.vx = ax + (wy * b.rz - wz * b.ry);
-  b.vy = ay + (wz * b.rx - wx * b.rz);
-  b.vz = az + (wx * b.ry - wy * b.rx);
-}
-
 // The contacts of one side's candidates c in a convex other side, listed into the batch from
 // entry `start` on; their count. In one pass, four candidates at a time (CandidateLanes):
 // phi = max_f (n'_f . p - d'_f) as PlanesInFrame::phi (the first plane of largest value is the
-// best; phi and the best plane's normals kept in registers across the planes), and for the
-// candidates inside (phi < 0), packed to the front of the lanes without branches (storeKept):
-// key, lever r = RM p + (c_M - c_a) and the relative velocity (as BatchSlice::setLever), the
-// world normal of the best plane, depth -phi, and area: half the node's,
-// projected on the contact plane, -n_i . n (taken in M's frame), clipped at 0 (facingArea). The
-// batch needs room for four entries past the last candidate.
+// best; phi and the best plane's normal in M's frame kept in registers across the planes), and
+// for the candidates inside (phi < 0), packed to the front of the lanes without branches
+// (storeKept): key, lever r = RM p + (c_M - c_a), the best plane's world normal RM n, depth -phi,
+// and area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame),
+// clipped at 0 (facingArea). The batch needs room for four entries past the last candidate.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& planes, const SideMotion& side,
                    const Eigen::Matrix3d& RM, PairBatch& batch) {
@@ -392,10 +362,6 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
     lanes.load(z, CandidateLanes::Z, i);
     Lanes value = planes.nx[0] * x + planes.ny[0] * y + planes.nz[0] * z - planes.offset[0];
     Lanes nnx = Lanes{} + planes.nx[0], nny = Lanes{} + planes.ny[0], nnz = Lanes{} + planes.nz[0];
-    ContactLanes b;
-    b.nx = Lanes{} + planes.wx[0];
-    b.ny = Lanes{} + planes.wy[0];
-    b.nz = Lanes{} + planes.wz[0];
     for (int f = 1; f < planes.count; ++f) {
       const Lanes v = planes.nx[f] * x + planes.ny[f] * y + planes.nz[f] * z - planes.offset[f];
       const LaneMask higher = v > value;
@@ -403,16 +369,16 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
       nnx = higher ? planes.nx[f] : nnx;
       nny = higher ? planes.ny[f] : nny;
       nnz = higher ? planes.nz[f] : nnz;
-      b.nx = higher ? planes.wx[f] : b.nx;
-      b.ny = higher ? planes.wy[f] : b.ny;
-      b.nz = higher ? planes.wz[f] : b.nz;
     }
     const int mask = laneBits(value < 0);
     if (mask == 0) continue;
+    ContactLanes b;
+    b.nx = r00 * nnx + r01 * nny + r02 * nnz;
+    b.ny = r10 * nnx + r11 * nny + r12 * nnz;
+    b.nz = r20 * nnx + r21 * nny + r22 * nnz;
     b.rx = (r00 * x + r01 * y + r02 * z) + sx;
     b.ry = (r10 * x + r11 * y + r12 * z) + sy;
     b.rz = (r20 * x + r21 * y + r22 * z) + sz;
-    laneVelocities(side, b);
     b.depth = -value;
     Lanes nx, ny, nz, nodeArea;
     lanes.loadNormalAndArea(nx, ny, nz, nodeArea, i);
@@ -444,9 +410,8 @@ void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double*
 // phi and unit normal g in O's frame, n of them, with room for four more: phi NaN there) as
 // contacts of the batch from entry `start` on; their count. Four candidates at a time
 // (CandidateLanes), those inside (phi < 0) packed to the front of the lanes (storeKept): key,
-// lever r = RO o + (c_O - c_M) + (c_M - c_a) and the relative velocity (as
-// BatchSlice::setLever), the world normal RO g, depth -phi, and area:
-// half the node's, projected on the contact plane, -(RM n_i) . (RO g), clipped at 0 (facingArea).
+// lever r = RO o + (c_O - c_M) + (c_M - c_a), the world normal RO g, depth -phi, and area: half
+// the node's, projected on the contact plane, -(RM n_i) . (RO g), clipped at 0 (facingArea).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side, const double* __restrict ox,
                      const double* __restrict oy, const double* __restrict oz, const double* __restrict phi,
@@ -477,7 +442,6 @@ int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side,
     b.rx = ((o00 * x + o01 * y + o02 * z) + tx) + sx;
     b.ry = ((o10 * x + o11 * y + o12 * z) + ty) + sy;
     b.rz = ((o20 * x + o21 * y + o22 * z) + tz) + sz;
-    laneVelocities(side, b);
     b.nx = o00 * g0 + o01 * g1 + o02 * g2;
     b.ny = o10 * g0 + o11 * g1 + o12 * g2;
     b.nz = o20 * g0 + o21 * g1 + o22 * g2;
@@ -505,15 +469,22 @@ struct PairSums {
 
 // The contact law (updateSpring, contactForce) over the batch's n entries, with the springs, areas
 // and stored energies in `contacts` (the step before's, area -1 for a new contact; updated in
-// place), and what they add up to, the forces on body a (a node of b, key side 1, has its force
+// place) and the relative velocity at each node from its lever and its side's motion (side s:
+// key bit 31), v = v0_s + w_s x r (SideMotion, in ContactReal), and what they add up to, the forces on body a (a node of b, key side 1, has its force
 // on b: -f on a), in the same pass as the forces and in SIMD lanes (the sums in ContactReal, the
 // order of the additions following the machine's vector width). In whole blocks of
 // NodeContacts::kLawBlock entries: the padding entries, all 0 in the batch (key 0, area 0) and in
 // the contacts' state arrays (no spring, stored energy or area), add exactly 0 to every sum and
 // stay 0.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, PairBatch& b, NodeContacts& contacts, int count) {
+PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotion (&sides)[2], PairBatch& b,
+                    NodeContacts& contacts, int count) {
   using Real = ContactReal;
+  const auto real = [](double v) { return static_cast<Real>(v); };
+  const Real ax0 = real(sides[0].v0.x()), ay0 = real(sides[0].v0.y()), az0 = real(sides[0].v0.z());
+  const Real ax1 = real(sides[1].v0.x()), ay1 = real(sides[1].v0.y()), az1 = real(sides[1].v0.z());
+  const Real sx0 = real(sides[0].spin.x()), sy0 = real(sides[0].spin.y()), sz0 = real(sides[0].spin.z());
+  const Real sx1 = real(sides[1].spin.x()), sy1 = real(sides[1].spin.y()), sz1 = real(sides[1].spin.z());
   b.padFrom(count);
   const int n = static_cast<int>(NodeContacts::padded(static_cast<std::size_t>(count)));
   Real fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nfx = 0, nfy = 0, nfz = 0, wx = 0, wy = 0, wz = 0;
@@ -521,12 +492,11 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, PairBatch& b, N
   const std::uint32_t* __restrict key = b.key.data();
   const Real *__restrict rx = b.rx.data(), *__restrict ry = b.ry.data(), *__restrict rz = b.rz.data(),
              *__restrict nx = b.nx.data(), *__restrict ny = b.ny.data(), *__restrict nz = b.nz.data(),
-             *__restrict vx = b.vx.data(), *__restrict vy = b.vy.data(), *__restrict vz = b.vz.data(),
              *__restrict depth = b.depth.data(), *__restrict area = b.area.data();
   Real *__restrict ux = contacts.springX.data(), *__restrict uy = contacts.springY.data(),
        *__restrict uz = contacts.springZ.data(), *__restrict stored = contacts.energy.data(),
        *__restrict storedArea = contacts.area.data(), *__restrict slid = b.friction.data(),
-       *__restrict atCap = b.sliding.data();
+       *__restrict atCap = b.sliding.data(), *__restrict approach = b.approach.data();
   // The law in two passes, the springs (with their square roots and divisions) and then the
   // forces and sums, each short enough for the next contacts' work to overlap one's square roots
   // and divisions (one long pass waited on them). (Every value loaded and one select at a time: a
@@ -534,16 +504,20 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, PairBatch& b, N
   // lanes.)
 #pragma omp simd
   for (int i = 0; i < n; ++i) {
-    const SpringUpdate<Real> u =
-        updateSpring(law, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
+    const bool one = key[i] >> 31;
+    const Real ax = one ? ax1 : ax0, ay = one ? ay1 : ay0, az = one ? az1 : az0;
+    const Real sx = one ? sx1 : sx0, sy = one ? sy1 : sy0, sz = one ? sz1 : sz0;
+    const Real vx = ax + (sy * rz[i] - sz * ry[i]), vy = ay + (sz * rx[i] - sx * rz[i]), vz = az + (sx * ry[i] - sy * rx[i]);
+    const SpringUpdate<Real> u = updateSpring(law, nx[i], ny[i], nz[i], depth[i], area[i], vx, vy, vz, ux[i], uy[i], uz[i]);
     slid[i] = u.friction;
     atCap[i] = u.sliding;
+    approach[i] = u.approach;
   }
 #pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, weight, elastic, friction, viscous, \
                                sliding, projection) reduction(max : deepest)
   for (int i = 0; i < n; ++i) {
     const Real ai = area[i], a0 = storedArea[i], e0 = stored[i];
-    const ContactForce<Real> f = contactForce(law, nx[i], ny[i], nz[i], depth[i], ai, vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
+    const ContactForce<Real> f = contactForce(law, nx[i], ny[i], nz[i], depth[i], ai, approach[i], ux[i], uy[i], uz[i]);
     stored[i] = f.stored;
     storedArea[i] = ai;
     // Forces on a: +f for a node of a, -f for a node of b (side 1); a contact facing away (area 0)
@@ -618,15 +592,18 @@ struct Accumulator {
   Eigen::Vector3d centreA;  // m, body a's centroid
   double kn, kt;            // N/m^3, this pair's stiffnesses
   PairBatch& batch;
-  SideMotion side{};  // the side being collected
+  SideMotion sides[2]{};  // each side's motion (an obstacle pair has side 0 only)
+  std::uint32_t side = 0;  // the side being collected
 
-  // Starts a side: the nodes of the body moving as `node` in the other side, moving as `other`.
-  const SideMotion& beginSide(const Motion& node, const Motion& other) {
-    side.shift = node.position - centreA;
-    side.spin = node.angularVelocity - other.angularVelocity;
-    side.v0 = node.velocity - other.velocity + other.angularVelocity.cross(other.position - centreA) -
-              node.angularVelocity.cross(side.shift);
-    return side;
+  // Starts side s: the nodes of the body moving as `node` in the other side, moving as `other`.
+  const SideMotion& beginSide(std::uint32_t s, const Motion& node, const Motion& other) {
+    side = s;
+    SideMotion& m = sides[s];
+    m.shift = node.position - centreA;
+    m.spin = node.angularVelocity - other.angularVelocity;
+    m.v0 = node.velocity - other.velocity + other.angularVelocity.cross(other.position - centreA) -
+           node.angularVelocity.cross(m.shift);
+    return m;
   }
   // One node of the side's body at r = x - c_M (world), inside the other side by depth along
   // `normal` (world, out of the other side), with its share of its node's area and the projection
@@ -637,8 +614,11 @@ struct Accumulator {
            double depth) {
     const BatchSlice out(batch, batch.append());
     out.key[0] = key;
-    out.setLever(0, side, r.x() + side.shift.x(), r.y() + side.shift.y(), r.z() + side.shift.z());
     const auto real = [](double v) { return static_cast<ContactReal>(v); };
+    const Eigen::Vector3d lever = r + sides[side].shift;
+    out.rx[0] = real(lever.x());
+    out.ry[0] = real(lever.y());
+    out.rz[0] = real(lever.z());
     out.nx[0] = real(normal.x());
     out.ny[0] = real(normal.y());
     out.nz[0] = real(normal.z());
@@ -693,7 +673,7 @@ struct Accumulator {
     takeHistory(n);
     NodeContacts& contacts = pair.contacts;
     const auto law = ContactLawConstants<ContactReal>::of(scene.parameters, kn, kt, scene.dt);
-    const PairSums sums = lawAndSums(law, batch, contacts, n);
+    const PairSums sums = lawAndSums(law, sides, batch, contacts, n);
 
     pair.tally.projection = sums.projection;
     pair.tally.elastic = sums.elastic;
@@ -859,7 +839,7 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
   const ShapeModel& sm = (*scene.shapes)[bodies.shape[m]];
   const Eigen::Matrix3d& RM = scene.kinematics->rotation[m];
   const Motion node = motionOf(scene, m);
-  acc.beginSide(node, other);
+  acc.beginSide(0, node, other);
   visitSide(sm.nodes, region, 0, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
     ++pair.evaluations;
     const Eigen::Vector3d r = RM * sm.nodes.position[key];
@@ -918,7 +898,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
       region.min().array() -= scene.candidateBand;
       region.max().array() += scene.candidateBand;
     }
-    const SideMotion& motion = acc.beginSide(node, other);
+    const SideMotion& motion = acc.beginSide(side, node, other);
     if (!so.planes.empty()) {
       // A convex other side: its planes moved into M's frame once, n' = toO^T n, d' = d - n . shift,
       // so that a candidate is tested as it is: phi = max_f (n'_f . p - d'_f).
@@ -927,7 +907,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
       // contacts: one path for every step, so that a run resumed from a checkpoint (which rebuilds
       // them) gives the same bits.
       if (rebuild) {
-        const PlanesInFrame all(so.planes, toO, shift, RM);
+        const PlanesInFrame all(so.planes, toO, shift);
         visitSide(sm.nodes, region, side, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
           ++pair.evaluations;
           int best;
@@ -935,7 +915,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
         });
         pair.planesKept[side] = planesNear(candidatesOf(pair, side), all, scene.candidateBand);
       }
-      const PlanesInFrame planes(so.planes, toO, shift, RM, pair.planesKept[side]);
+      const PlanesInFrame planes(so.planes, toO, shift, pair.planesKept[side]);
       convexSideContacts(pair, side, planes, RM, motion, scratch.batch);
     } else {
       // As for a convex side: the candidates first (if rebuilt), then the level set of all of them.
