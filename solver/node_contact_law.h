@@ -49,15 +49,13 @@ struct SpringUpdate {
   Real friction, sliding, approach;
 };
 
-/// The first part of the law for one contact: its tangential spring u, in place (normal n, depth,
-/// area, relative velocity v). Without branches, so that a loop over contacts runs it in SIMD
-/// lanes.
+/// The spring's trial value for one contact, in place: its tangential spring u turned onto the
+/// tangent plane of normal n, keeping its length (t), plus the tangential increment v_t dt (v_n =
+/// v . n given); t . (t + v_t dt), which capSpring takes. Without branches, so that a loop over
+/// contacts runs it in SIMD lanes.
 template <class Real>
-__attribute__((always_inline)) inline SpringUpdate<Real> updateSpring(const ContactLawConstants<Real>& k, Real nx, Real ny,
-                                                                      Real nz, Real depth, Real area, Real vx, Real vy,
-                                                                      Real vz, Real& ux, Real& uy, Real& uz) {
-  const Real vn = vx * nx + vy * ny + vz * nz;
-  const NormalForce<Real> n = normalForce(k, depth, area, vn);
+__attribute__((always_inline)) inline Real trialSpring(const ContactLawConstants<Real>& k, Real nx, Real ny, Real nz, Real vx,
+                                                       Real vy, Real vz, Real vn, Real& ux, Real& uy, Real& uz) {
   // Turn the spring onto the tangent plane, keeping its length: u = (s - n (n.s)) |s| / |s - n (n.s)|
   // (a spring already in the plane is left as it is: then the ratio is exactly 1).
   const Real along = nx * ux + ny * uy + nz * uz;
@@ -69,30 +67,49 @@ __attribute__((always_inline)) inline SpringUpdate<Real> updateSpring(const Cont
   tx *= turn;
   ty *= turn;
   tz *= turn;
-  // u = turned + v_t dt; the trial force -k_t a u.
-  const Real dx = (vx - vn * nx) * k.dt, dy = (vy - vn * ny) * k.dt, dz = (vz - vn * nz) * k.dt;
-  Real sx = tx + dx, sy = ty + dy, sz = tz + dz;
-  const Real ftx = -n.kta * sx, fty = -n.kta * sy, ftz = -n.kta * sz;
-  const Real cap = k.friction * n.fn, ft2 = ftx * ftx + fty * fty + ftz * ftz;
-  // Sliding: u scaled back to the Coulomb cap, |k_t a u| = mu f_n. Dissipated: the work put into
-  // the spring over the increment (trapezoidal, as a sticking spring stores it exactly) less what
-  // it now stores, k_t a (t + u) / 2 . du - k_t a (|u|^2 - |t|^2) / 2 (t: the turned spring, du =
-  // v_t dt), which with u = c (t + du) is k_t a (1 - c) (t + u) . (t + du) / 2: fewer operations,
-  // exactly 0 when sticking (c = 1); either form rounds to about eps k_t a |u|^2.
+  // The trial spring t + v_t dt.
+  ux = tx + (vx - vn * nx) * k.dt;
+  uy = ty + (vy - vn * ny) * k.dt;
+  uz = tz + (vz - vn * nz) * k.dt;
+  return tx * ux + ty * uy + tz * uz;
+}
+
+/// The spring after its trial (trialSpring, which gave t . s for the trial s in u), in place: cut
+/// back to the Coulomb cap |k_t a u| <= mu f_n, and 0 for a node facing away (area 0); what it
+/// dissipated. Without branches.
+template <class Real>
+__attribute__((always_inline)) inline SpringUpdate<Real> capSpring(const ContactLawConstants<Real>& k, Real depth, Real area,
+                                                                   Real vn, Real turnedDotTrial, Real& ux, Real& uy, Real& uz) {
+  const NormalForce<Real> n = normalForce(k, depth, area, vn);
+  const Real trial2 = ux * ux + uy * uy + uz * uz;
+  const Real cap = k.friction * n.fn, ft2 = n.kta * n.kta * trial2;  // |k_t a s|^2
+  // Sliding: u scaled back to the Coulomb cap, u = c s with |k_t a u| = mu f_n. Dissipated: the
+  // work put into the spring over the increment (trapezoidal, as a sticking spring stores it
+  // exactly) less what it now stores, k_t a (t + u) / 2 . du - k_t a (|u|^2 - |t|^2) / 2 (t: the
+  // turned spring, du = v_t dt), which with u = c (t + du) = c s is k_t a (1 - c) (t . s + c |s|^2)
+  // / 2: fewer operations, exactly 0 when sticking (c = 1); either form rounds to about
+  // eps k_t a |u|^2.
   const bool slides = ft2 > cap * cap;
   const Real capped = cap / std::sqrt(ft2 > 0 ? ft2 : Real(1));
   const Real scale = slides ? capped : Real(1);
-  const Real cut = Real(1) - scale;
-  const Real trialX = sx, trialY = sy, trialZ = sz;
-  sx *= scale;
-  sy *= scale;
-  sz *= scale;
-  const Real dissipated = Real(0.5) * n.kta * cut * ((tx + sx) * trialX + (ty + sy) * trialY + (tz + sz) * trialZ);
-  const Real keep = area > 0 ? Real(1) : Real(0);
-  ux = keep * sx;
-  uy = keep * sy;
-  uz = keep * sz;
+  const Real dissipated = Real(0.5) * n.kta * (Real(1) - scale) * (turnedDotTrial + scale * trial2);
+  const Real keep = area > 0 ? scale : Real(0);
+  ux *= keep;
+  uy *= keep;
+  uz *= keep;
   return {dissipated, slides ? Real(1) : Real(0), vn};
+}
+
+/// The first part of the law for one contact: its tangential spring u, in place (normal n, depth,
+/// area, relative velocity v): trialSpring, then capSpring. Without branches, so that a loop over
+/// contacts runs it in SIMD lanes.
+template <class Real>
+__attribute__((always_inline)) inline SpringUpdate<Real> updateSpring(const ContactLawConstants<Real>& k, Real nx, Real ny,
+                                                                      Real nz, Real depth, Real area, Real vx, Real vy,
+                                                                      Real vz, Real& ux, Real& uy, Real& uz) {
+  const Real vn = vx * nx + vy * ny + vz * nz;
+  const Real turnedDotTrial = trialSpring(k, nx, ny, nz, vx, vy, vz, vn, ux, uy, uz);
+  return capSpring(k, depth, area, vn, turnedDotTrial, ux, uy, uz);
 }
 
 /// What one node contact gives with its spring updated (updateSpring, which gave v_n): its force on the node's

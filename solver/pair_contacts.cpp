@@ -51,14 +51,14 @@ struct PairBatch {
   int count = 0;
   std::vector<std::uint32_t> key;
   std::vector<ContactReal> rx, ry, rz, nx, ny, nz, depth, area;
-  std::vector<ContactReal> friction, sliding, approach;  // the law's: each contact's SpringUpdate
+  std::vector<ContactReal> friction, sliding, approach, turned;  // the law's: each contact's SpringUpdate, t . s
 
   /// Room for n contacts (values unset).
   void reserve(int n) {
     if (static_cast<int>(key.size()) >= n) return;
     const std::size_t size = static_cast<std::size_t>(n + n / 2);
     key.resize(size);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &friction, &sliding, &approach}) v->resize(size);
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &friction, &sliding, &approach, &turned}) v->resize(size);
   }
   /// A new contact at the end (values unset); its index.
   int append() {
@@ -70,7 +70,7 @@ struct PairBatch {
     constexpr int block = static_cast<int>(NodeContacts::kLawBlock);
     reserve(from + block);
     std::fill_n(key.data() + from, block, 0u);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &friction, &sliding, &approach})
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &friction, &sliding, &approach, &turned})
       std::fill_n(v->data() + from, block, ContactReal(0));
   }
 };
@@ -467,12 +467,13 @@ struct PairSums {
   Eigen::Vector3d vector(Vector v) const { return {value[v], value[v + 1], value[v + 2]}; }
 };
 
-// The contact law (updateSpring, contactForce) over the batch's n entries, with the springs, areas
-// and stored energies in `contacts` (the step before's, area -1 for a new contact; updated in
-// place) and the relative velocity at each node from its lever and its side's motion (side s:
-// key bit 31), v = v0_s + w_s x r (SideMotion, in ContactReal), and what they add up to, the forces on body a (a node of b, key side 1, has its force
-// on b: -f on a), in the same pass as the forces and in SIMD lanes (the sums in ContactReal, the
-// order of the additions following the machine's vector width). In whole blocks of
+// The contact law (trialSpring and capSpring, as updateSpring; contactForce) over the batch's n
+// entries, with the springs, areas and stored energies in `contacts` (the step before's, area -1
+// for a new contact; updated in place) and the relative velocity at each node from its lever and
+// its side's motion (side s: key bit 31), v = v0_s + w_s x r (SideMotion, in ContactReal), and
+// what they add up to, the forces on body a (a node of b, key side 1, has its force on b: -f on
+// a), in the same pass as the forces and in SIMD lanes (the sums in ContactReal, the order of the
+// additions following the machine's vector width). In whole blocks of
 // NodeContacts::kLawBlock entries: the padding entries, all 0 in the batch (key 0, area 0) and in
 // the contacts' state arrays (no spring, stored energy or area), add exactly 0 to every sum and
 // stay 0.
@@ -496,22 +497,27 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
   Real *__restrict ux = contacts.springX.data(), *__restrict uy = contacts.springY.data(),
        *__restrict uz = contacts.springZ.data(), *__restrict stored = contacts.energy.data(),
        *__restrict storedArea = contacts.area.data(), *__restrict slid = b.friction.data(),
-       *__restrict atCap = b.sliding.data(), *__restrict approach = b.approach.data();
-  // The law in two passes, the springs (with their square roots and divisions) and then the
-  // forces and sums, each short enough for the next contacts' work to overlap one's square roots
-  // and divisions (one long pass waited on them). (Every value loaded and one select at a time: a
-  // load or a nested select under a condition is control flow, which keeps a loop out of SIMD
-  // lanes.)
+       *__restrict atCap = b.sliding.data(), *__restrict approach = b.approach.data(), *__restrict turned = b.turned.data();
+  // The law in three passes, the springs' trial (a division and a square root), their cap
+  // (another of each), then the forces and sums: each short enough for the next contacts' work to
+  // overlap one's square root and division (in one pass, or two, each contact waited on them).
+  // (Every value loaded and one select at a time: a load or a nested select under a condition is
+  // control flow, which keeps a loop out of SIMD lanes.)
 #pragma omp simd
   for (int i = 0; i < n; ++i) {
     const bool one = key[i] >> 31;
     const Real ax = one ? ax1 : ax0, ay = one ? ay1 : ay0, az = one ? az1 : az0;
     const Real sx = one ? sx1 : sx0, sy = one ? sy1 : sy0, sz = one ? sz1 : sz0;
     const Real vx = ax + (sy * rz[i] - sz * ry[i]), vy = ay + (sz * rx[i] - sx * rz[i]), vz = az + (sx * ry[i] - sy * rx[i]);
-    const SpringUpdate<Real> u = updateSpring(law, nx[i], ny[i], nz[i], depth[i], area[i], vx, vy, vz, ux[i], uy[i], uz[i]);
+    const Real vn = vx * nx[i] + vy * ny[i] + vz * nz[i];
+    approach[i] = vn;
+    turned[i] = trialSpring(law, nx[i], ny[i], nz[i], vx, vy, vz, vn, ux[i], uy[i], uz[i]);
+  }
+#pragma omp simd
+  for (int i = 0; i < n; ++i) {
+    const SpringUpdate<Real> u = capSpring(law, depth[i], area[i], approach[i], turned[i], ux[i], uy[i], uz[i]);
     slid[i] = u.friction;
     atCap[i] = u.sliding;
-    approach[i] = u.approach;
   }
 #pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, weight, elastic, friction, viscous, \
                                sliding, projection) reduction(max : deepest)
