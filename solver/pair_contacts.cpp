@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -49,16 +50,20 @@ constexpr double kSqrt3 = 1.7320508075688772;
 // contact normal.
 struct PairBatch {
   int count = 0;
+  /// Of a pair listed by blocks of candidates (convexContacts, levelSetContacts): 0 when every
+  /// block's inside lanes were as at the pair's last evaluation (CandidateNodes::inside), so that
+  /// its contacts are the last evaluation's, in the same order; -1: listed otherwise.
+  int changed = -1;
   std::vector<std::uint32_t> key;
   std::vector<ContactReal> rx, ry, rz, nx, ny, nz, depth, area;
-  std::vector<ContactReal> friction, sliding, approach, turned;  // the law's: each contact's SpringUpdate, t . s
+  std::vector<ContactReal> approach, turned;  // the law's: each contact's v_n and t . s (trialSpring)
 
   /// Room for n contacts (values unset).
   void reserve(int n) {
     if (static_cast<int>(key.size()) >= n) return;
     const std::size_t size = static_cast<std::size_t>(n + n / 2);
     key.resize(size);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &friction, &sliding, &approach, &turned}) v->resize(size);
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &approach, &turned}) v->resize(size);
   }
   /// A new contact at the end (values unset); its index.
   int append() {
@@ -70,7 +75,7 @@ struct PairBatch {
     constexpr int block = static_cast<int>(NodeContacts::kLawBlock);
     reserve(from + block);
     std::fill_n(key.data() + from, block, 0u);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &friction, &sliding, &approach, &turned})
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &approach, &turned})
       std::fill_n(v->data() + from, block, ContactReal(0));
   }
 };
@@ -186,14 +191,16 @@ constexpr int kLanes = 4;
 struct SideCandidates {
   int n = 0;
   const std::uint32_t* key;
-  const double *x, *y, *z, *nx, *ny, *nz, *area;
+  const double *x, *y, *z, *ax, *ay, *az;
+  std::uint8_t* inside;  // per block (CandidateNodes::inside), read and written by the listings
 };
 
-SideCandidates candidatesOf(const PairContacts& pair, std::uint32_t side) {
-  const CandidateNodes& c = pair.candidates;
+SideCandidates candidatesOf(PairContacts& pair, std::uint32_t side) {
+  CandidateNodes& c = pair.candidates;
   const int at = c.first[side];
-  return {c.count[side],   c.key.data() + at, c.x.data() + at,  c.y.data() + at,   c.z.data() + at,
-          c.nx.data() + at, c.ny.data() + at, c.nz.data() + at, c.area.data() + at};
+  return {c.count[side],    c.key.data() + at, c.x.data() + at,  c.y.data() + at,
+          c.z.data() + at, c.ax.data() + at,  c.ay.data() + at, c.az.data() + at,
+          c.inside.data() + at / CandidateNodes::kBlock};
 }
 
 // The planes of a convex other side (`all` of them, in a side's frame) that can give one of the
@@ -218,9 +225,10 @@ std::uint64_t planesNear(const SideCandidates& c, const PlanesInFrame& all, doub
 // the node faces away (projection <= 0, or NaN).
 inline double facingArea(double halfArea, double projection) { return halfArea * (projection > 0 ? projection : 0.0); }
 
-// facingArea of four nodes (the same operations lane by lane).
-__attribute__((always_inline)) inline void facingArea(Lanes& area, const Lanes& halfArea, const Lanes& projection) {
-  area = halfArea * (projection > 0 ? projection : Lanes{});
+// Four nodes' facingArea with half their areas, from their areas projected on the contact plane,
+// -a n_i . n (each node's area a times its outward normal n_i: CandidateNodes).
+__attribute__((always_inline)) inline void facingHalfArea(Lanes& area, const Lanes& projectedArea) {
+  area = 0.5 * (projectedArea > 0 ? projectedArea : Lanes{});
 }
 
 // The batch's contact arrays from entry `start` on, as the listing functions write them.
@@ -274,19 +282,17 @@ __attribute__((always_inline)) inline void permute(Vector& out, const Vector& v,
 // the last block's padding has position NaN (every comparison false: never inside).
 struct CandidateLanes {
   static_assert(CandidateNodes::kBlock == kLanes, "candidates are padded to whole blocks of lanes");
-  enum Field { X, Y, Z, NX, NY, NZ, Area };
+  enum Field { X, Y, Z, AX, AY, AZ };
   const SideCandidates& c;
-  const double* field[Area + 1];
+  const double* field[AZ + 1];
 
-  explicit CandidateLanes(const SideCandidates& candidates)
-      : c(candidates), field{c.x, c.y, c.z, c.nx, c.ny, c.nz, c.area} {}
+  explicit CandidateLanes(const SideCandidates& candidates) : c(candidates), field{c.x, c.y, c.z, c.ax, c.ay, c.az} {}
   void load(Lanes& v, Field f, int i) const { std::memcpy(&v, field[f] + i, sizeof v); }
-  /// The nodes' outward normals and areas.
-  void loadNormalAndArea(Lanes& nx, Lanes& ny, Lanes& nz, Lanes& area, int i) const {
-    load(nx, NX, i);
-    load(ny, NY, i);
-    load(nz, NZ, i);
-    load(area, Area, i);
+  /// The nodes' areas times their outward normals.
+  void loadAreaNormals(Lanes& ax, Lanes& ay, Lanes& az, int i) const {
+    load(ax, AX, i);
+    load(ay, AY, i);
+    load(az, AZ, i);
   }
   void loadKeys(Keys& keys, int i) const { std::memcpy(&keys, c.key + i, sizeof keys); }
 };
@@ -345,7 +351,7 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
 // for the candidates inside (phi < 0), packed to the front of the lanes without branches
 // (storeKept): key, lever r = RM p + (c_M - c_a), the best plane's world normal RM n, depth -phi,
 // and area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame),
-// clipped at 0 (facingArea). The batch needs room for four entries past the last candidate.
+// clipped at 0 (facingHalfArea). The batch needs room for four entries past the last candidate.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& planes, const SideMotion& side,
                    const Eigen::Matrix3d& RM, PairBatch& batch) {
@@ -354,7 +360,7 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
   const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
                r21 = RM(2, 1), r22 = RM(2, 2);
   const CandidateLanes lanes(c);
-  int count = 0;
+  int count = 0, changed = 0;
   for (int i = 0; i < c.n; i += kLanes) {
     Lanes x, y, z;
     lanes.load(x, CandidateLanes::X, i);
@@ -371,6 +377,8 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
       nnz = higher ? planes.nz[f] : nnz;
     }
     const int mask = laneBits(value < 0);
+    changed |= c.inside[i / kLanes] ^ mask;
+    c.inside[i / kLanes] = static_cast<std::uint8_t>(mask);
     if (mask == 0) continue;
     ContactLanes b;
     b.nx = r00 * nnx + r01 * nny + r02 * nnz;
@@ -380,12 +388,13 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
     b.ry = (r10 * x + r11 * y + r12 * z) + sy;
     b.rz = (r20 * x + r21 * y + r22 * z) + sz;
     b.depth = -value;
-    Lanes nx, ny, nz, nodeArea;
-    lanes.loadNormalAndArea(nx, ny, nz, nodeArea, i);
-    facingArea(b.area, 0.5 * nodeArea, -(nx * nnx + ny * nny + nz * nnz));
+    Lanes ax, ay, az;
+    lanes.loadAreaNormals(ax, ay, az, i);
+    facingHalfArea(b.area, -(ax * nnx + ay * nny + az * nnz));
     lanes.loadKeys(b.key, i);
     count = storeKept(b, mask, out, count);
   }
+  batch.changed |= changed;
   return count;
 }
 
@@ -411,7 +420,7 @@ void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double*
 // contacts of the batch from entry `start` on; their count. Four candidates at a time
 // (CandidateLanes), those inside (phi < 0) packed to the front of the lanes (storeKept): key,
 // lever r = RO o + (c_O - c_M) + (c_M - c_a), the world normal RO g, depth -phi, and area: half
-// the node's, projected on the contact plane, -(RM n_i) . (RO g), clipped at 0 (facingArea).
+// the node's, projected on the contact plane, -(RM n_i) . (RO g), clipped at 0 (facingHalfArea).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side, const double* __restrict ox,
                      const double* __restrict oy, const double* __restrict oz, const double* __restrict phi,
@@ -425,11 +434,13 @@ int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side,
   const double tx = offset.x(), ty = offset.y(), tz = offset.z(), sx = side.shift.x(), sy = side.shift.y(),
                sz = side.shift.z();
   const CandidateLanes lanes(c);
-  int count = 0;
+  int count = 0, changed = 0;
   for (int i = 0; i < c.n; i += kLanes) {
     Lanes value;
     std::memcpy(&value, phi + i, sizeof value);
     const int mask = laneBits(value < 0);
+    changed |= c.inside[i / kLanes] ^ mask;
+    c.inside[i / kLanes] = static_cast<std::uint8_t>(mask);
     if (mask == 0) continue;
     Lanes x, y, z, g0, g1, g2;
     std::memcpy(&x, ox + i, sizeof x);
@@ -446,13 +457,14 @@ int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side,
     b.ny = o10 * g0 + o11 * g1 + o12 * g2;
     b.nz = o20 * g0 + o21 * g1 + o22 * g2;
     b.depth = -value;
-    Lanes nx, ny, nz, nodeArea;
-    lanes.loadNormalAndArea(nx, ny, nz, nodeArea, i);
-    const Lanes mx = m00 * nx + m01 * ny + m02 * nz, my = m10 * nx + m11 * ny + m12 * nz, mz = m20 * nx + m21 * ny + m22 * nz;
-    facingArea(b.area, 0.5 * nodeArea, -(mx * b.nx + my * b.ny + mz * b.nz));
+    Lanes ax, ay, az;
+    lanes.loadAreaNormals(ax, ay, az, i);
+    const Lanes mx = m00 * ax + m01 * ay + m02 * az, my = m10 * ax + m11 * ay + m12 * az, mz = m20 * ax + m21 * ay + m22 * az;
+    facingHalfArea(b.area, -(mx * b.nx + my * b.ny + mz * b.nz));
     lanes.loadKeys(b.key, i);
     count = storeKept(b, mask, out, count);
   }
+  batch.changed |= changed;
   return count;
 }
 
@@ -496,8 +508,8 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
              *__restrict depth = b.depth.data(), *__restrict area = b.area.data();
   Real *__restrict ux = contacts.springX.data(), *__restrict uy = contacts.springY.data(),
        *__restrict uz = contacts.springZ.data(), *__restrict stored = contacts.energy.data(),
-       *__restrict storedArea = contacts.area.data(), *__restrict slid = b.friction.data(),
-       *__restrict atCap = b.sliding.data(), *__restrict approach = b.approach.data(), *__restrict turned = b.turned.data();
+       *__restrict storedArea = contacts.area.data(), *__restrict approach = b.approach.data(),
+       *__restrict turned = b.turned.data();
   // The law in three passes, the springs' trial (a division and a square root), their cap
   // (another of each), then the forces and sums: each short enough for the next contacts' work to
   // overlap one's square root and division (in one pass, or two, each contact waited on them).
@@ -513,14 +525,14 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
     approach[i] = vn;
     turned[i] = trialSpring(law, nx[i], ny[i], nz[i], vx, vy, vz, vn, ux[i], uy[i], uz[i]);
   }
-#pragma omp simd
+#pragma omp simd reduction(+ : friction, sliding)
   for (int i = 0; i < n; ++i) {
     const SpringUpdate<Real> u = capSpring(law, depth[i], area[i], approach[i], turned[i], ux[i], uy[i], uz[i]);
-    slid[i] = u.friction;
-    atCap[i] = u.sliding;
+    friction += u.friction;
+    sliding += u.sliding;
   }
-#pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, weight, elastic, friction, viscous, \
-                               sliding, projection) reduction(max : deepest)
+#pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, weight, elastic, viscous, projection) \
+    reduction(max : deepest)
   for (int i = 0; i < n; ++i) {
     const Real ai = area[i], a0 = storedArea[i], e0 = stored[i];
     const ContactForce<Real> f = contactForce(law, nx[i], ny[i], nz[i], depth[i], ai, approach[i], ux[i], uy[i], uz[i]);
@@ -544,9 +556,7 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
     wz += f.fn * rz[i];
     weight += f.fn;
     elastic += f.stored;
-    friction += slid[i];
     viscous += f.viscous;
-    sliding += atCap[i];
     // Stored energy is proportional to the area (with stiffnesses per area; per node it is not):
     // what the change of area alone removed, the energy per area times the area lost (a contact
     // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
@@ -635,13 +645,17 @@ struct Accumulator {
   // The pair's contacts as they were before this step, for the batch's keys: each one's spring,
   // area and stored energy from the previous evaluation's contacts (pair.previous; new contacts:
   // no spring, area -1, no energy); the law updates them in place. Most steps a pair's node
-  // contacts are the same as before: then the previous arrays become the contacts' as they are.
-  // Otherwise the two key-sorted lists are merged: `before` stays on an entry (the last at most),
-  // so that every load is made and `found` only selects, no branch but the merge's own.
+  // contacts are the same as before (known from the listing's blocks, PairBatch::changed, or
+  // else from the keys): then the previous arrays become the contacts' as they are. Otherwise the
+  // two key-sorted lists are merged: `before` stays on an entry (the last at most), so that every
+  // load is made and `found` only selects, no branch but the merge's own.
   void takeHistory(int n) {
     const NodeContacts& previous = pair.previous;
     const std::uint32_t* key = batch.key.data();
-    if (!previous.empty() && previous.size() == static_cast<std::size_t>(n) && std::equal(key, key + n, previous.key.data())) {
+    const bool sameSize = previous.size() == static_cast<std::size_t>(n);
+    const bool same = batch.changed == 0 ? sameSize : batch.changed < 0 && sameSize && std::equal(key, key + n, previous.key.data());
+    assert(!same || std::equal(key, key + n, previous.key.data()));
+    if (same) {
       std::swap(pair.contacts, pair.previous);
       return;
     }
@@ -696,6 +710,7 @@ struct Accumulator {
     pair.forceB = -pair.forceA;
     if (pair.b >= 0) pair.torqueB = -(pair.torqueA + (centreA - scene.bodies->position[pair.b]).cross(pair.forceA));
     batch.count = 0;
+    batch.changed = -1;
   }
 };
 
@@ -887,6 +902,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
   }
   Scratch& scratch = threadScratch;
   Accumulator acc{scene, pair, scene.bodies->position[pair.a], scene.kn, scene.kt, scratch.batch};
+  scratch.batch.changed = 0;  // listed by blocks (both sides)
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
   for (std::uint32_t side = 0; side < 2; ++side) {

@@ -107,11 +107,14 @@ struct CandidateNodes {
   static constexpr int kBlock = 4;  ///< four double lanes
   std::vector<std::uint32_t> key;
   std::vector<double> x, y, z;     ///< m, the node's position in its own body's frame
-  std::vector<double> nx, ny, nz;  ///< its outward unit normal, same frame
-  std::vector<double> area;        ///< m^2, its whole area
+  std::vector<double> ax, ay, az;  ///< m^2, its whole area times its outward unit normal, same frame
   /// Against a shape with an exact mesh: what each candidate's last exact evaluation kept for the
   /// next (MeshSdf::NearestFace); sized when first used.
   std::vector<MeshSdf::NearestFace> nearestFace;
+  /// Per block of kBlock entries: which of them were inside the other side at the last evaluation
+  /// (bit j: entry j of the block; 0xff before the first). The same bits every block at the next
+  /// evaluation: the same contacts as then, in the same order.
+  std::vector<std::uint8_t> inside;
   int first[2] = {0, 0}, count[2] = {0, 0};
 
   /// Entries, with the padding.
@@ -120,8 +123,9 @@ struct CandidateNodes {
   int nodes() const { return count[0] + count[1]; }
   void clear() {
     key.clear();
-    for (std::vector<double>* v : {&x, &y, &z, &nx, &ny, &nz, &area}) v->clear();
+    for (std::vector<double>* v : {&x, &y, &z, &ax, &ay, &az}) v->clear();
     nearestFace.clear();
+    inside.clear();
     first[0] = first[1] = count[0] = count[1] = 0;
   }
   /// Side `side`'s candidates begin: add() them, then endSide().
@@ -131,8 +135,9 @@ struct CandidateNodes {
     count[side] = static_cast<int>(size()) - first[side];
     while (size() % kBlock != 0) {
       key.push_back(side << 31 | 0x7fffffffu);
-      for (std::vector<double>* v : {&x, &y, &z, &nx, &ny, &nz, &area}) v->push_back(NAN);
+      for (std::vector<double>* v : {&x, &y, &z, &ax, &ay, &az}) v->push_back(NAN);
     }
+    inside.resize(size() / kBlock, 0xff);
   }
   /// Node `rank` of `nodes`, with its key.
   void add(std::uint32_t nodeKey, const NodeBins& nodes, int rank) {
@@ -141,10 +146,10 @@ struct CandidateNodes {
     x.push_back(p.x());
     y.push_back(p.y());
     z.push_back(p.z());
-    nx.push_back(n.x());
-    ny.push_back(n.y());
-    nz.push_back(n.z());
-    area.push_back(nodes.area[rank]);
+    const double area = nodes.area[rank];
+    ax.push_back(area * n.x());
+    ay.push_back(area * n.y());
+    az.push_back(area * n.z());
   }
 };
 

@@ -32,10 +32,16 @@ cluster=$work/cluster
 mkdir -p "$cluster"/{munge,spool,state,log}
 chmod 700 "$cluster/munge"
 daemons=()
-shutdown() {
+shutdown() {  # bounded: a daemon still up 10 s after SIGTERM gets SIGKILL
   [ -z "${SLURM_CONF:-}" ] || scancel --me > /dev/null 2>&1 || true
   for pid in "${daemons[@]}"; do kill "$pid" 2> /dev/null || true; done
-  for pid in "${daemons[@]}"; do wait "$pid" 2> /dev/null || true; done
+  for _ in $(seq 100); do
+    alive=0
+    for pid in "${daemons[@]}"; do kill -0 "$pid" 2> /dev/null && alive=1; done
+    [ "$alive" -eq 0 ] && break
+    sleep 0.1
+  done
+  for pid in "${daemons[@]}"; do kill -9 "$pid" 2> /dev/null || true; wait "$pid" 2> /dev/null || true; done
   rm -rf "$work"
 }
 trap shutdown EXIT
@@ -107,13 +113,14 @@ cases=(--set mu=0.3,0.5 --set E=4.2e9,20e9)
 count() {  # count FOLDER STATE: cases of the sweep in that state
   "$tessera" sweep "$1" --status --json | $python -c "import json, sys; print(json.load(sys.stdin)['counts']['$2'])"
 }
-wait_complete() {  # wait_complete FOLDER: until every case is complete; fails on a failed case
+wait_complete() {  # wait_complete FOLDER: until every case is complete and every task has left
+  # the queue (a task rewrites the sweep's tables after its case completes); fails on a failed case
   for _ in $(seq 600); do
-    [ "$(count "$1" complete)" -eq 4 ] && return 0
+    [ "$(count "$1" complete)" -eq 4 ] && [ -z "$(squeue -h 2> /dev/null)" ] && return 0
     [ "$(count "$1" failed)" -eq 0 ] || { "$tessera" sweep "$1" --status; cat "$1"/case_*/log.txt; show_logs; exit 1; }
     sleep 0.5
   done
-  echo "the Slurm sweep $1 did not finish in 300 s"; "$tessera" sweep "$1" --status; show_logs; exit 1
+  echo "the Slurm sweep $1 did not finish in 300 s"; "$tessera" sweep "$1" --status; squeue; show_logs; exit 1
 }
 same_results() {  # same_results A B: equal tables (all but the wall time) and equal final states
   $python - "$1" "$2" <<'PY'
