@@ -25,7 +25,7 @@ void contactLaw(const ContactLawConstants<ContactReal>& k, const NodeContactBatc
     fn[i] = f.fn;
     stored[i] = f.stored;
     friction[i] = u.friction;
-    viscous[i] = f.viscous;
+    viscous[i] = u.viscous;
     sliding[i] = u.sliding;
   }
 }

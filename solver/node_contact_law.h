@@ -42,11 +42,12 @@ __attribute__((always_inline)) inline NormalForce<Real> normalForce(const Contac
   return f;
 }
 
-/// What the update of a contact's tangential spring dissipated: J by sliding, 1 if it slid, and
-/// the approach speed v_n = v . n (m/s) that contactForce takes.
+/// What the update of a contact's tangential spring dissipated: J by sliding, 1 if it slid, the
+/// approach speed v_n = v . n (m/s) that contactForce takes, the normal force f_n (N) and what
+/// the normal viscosity dissipated this step, (k_n a d - f_n) v_n dt (J).
 template <class Real>
 struct SpringUpdate {
-  Real friction, sliding, approach;
+  Real friction, sliding, approach, normal, viscous;
 };
 
 /// The spring's trial value for one contact, in place: its tangential spring u turned onto the
@@ -97,7 +98,8 @@ __attribute__((always_inline)) inline SpringUpdate<Real> capSpring(const Contact
   ux *= keep;
   uy *= keep;
   uz *= keep;
-  return {dissipated, slides ? Real(1) : Real(0), vn};
+  // The non-elastic part of the normal force, f_n - k_n a d, does the work (f_n - k_n a d) v_n dt.
+  return {dissipated, slides ? Real(1) : Real(0), vn, n.fn, (n.elastic - n.fn) * vn * k.dt};
 }
 
 /// The first part of the law for one contact: its tangential spring u, in place (normal n, depth,
@@ -113,11 +115,10 @@ __attribute__((always_inline)) inline SpringUpdate<Real> updateSpring(const Cont
 }
 
 /// What one node contact gives with its spring updated (updateSpring, which gave v_n): its force on the node's
-/// body f = f_n n - k_t a u (N), f_n (N), its stored energy 1/2 k_n a d^2 + 1/2 k_t a |u|^2 (J) and
-/// what the normal viscosity dissipated this step, (k_n a d - f_n) v_n dt (J).
+/// body f = f_n n - k_t a u (N), f_n (N) and its stored energy 1/2 k_n a d^2 + 1/2 k_t a |u|^2 (J).
 template <class Real>
 struct ContactForce {
-  Real fx, fy, fz, fn, stored, viscous;
+  Real fx, fy, fz, fn, stored;
 };
 template <class Real>
 __attribute__((always_inline)) inline ContactForce<Real> contactForce(const ContactLawConstants<Real>& k, Real nx, Real ny,
@@ -130,8 +131,6 @@ __attribute__((always_inline)) inline ContactForce<Real> contactForce(const Cont
   f.fy = n.fn * ny - n.kta * uy;
   f.fz = n.fn * nz - n.kta * uz;
   f.stored = Real(0.5) * n.elastic * depth + Real(0.5) * n.kta * (ux * ux + uy * uy + uz * uz);
-  // The non-elastic part of the normal force, f_n - k_n a d, does the work (f_n - k_n a d) v_n dt.
-  f.viscous = (n.elastic - n.fn) * vn * k.dt;
   return f;
 }
 

@@ -525,14 +525,19 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
     approach[i] = vn;
     turned[i] = trialSpring(law, nx[i], ny[i], nz[i], vx, vy, vz, vn, ux[i], uy[i], uz[i]);
   }
-#pragma omp simd reduction(+ : friction, sliding)
+  // (The sums that need only the cap pass's values are taken there: fewer in the last pass than
+  // registers.)
+#pragma omp simd reduction(+ : friction, sliding, weight, viscous) reduction(max : deepest)
   for (int i = 0; i < n; ++i) {
     const SpringUpdate<Real> u = capSpring(law, depth[i], area[i], approach[i], turned[i], ux[i], uy[i], uz[i]);
     friction += u.friction;
     sliding += u.sliding;
+    weight += u.normal;
+    viscous += u.viscous;
+    const Real reached = area[i] > 0 ? depth[i] : Real(0);
+    deepest = reached > deepest ? reached : deepest;
   }
-#pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, weight, elastic, viscous, projection) \
-    reduction(max : deepest)
+#pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, elastic, projection)
   for (int i = 0; i < n; ++i) {
     const Real ai = area[i], a0 = storedArea[i], e0 = stored[i];
     const ContactForce<Real> f = contactForce(law, nx[i], ny[i], nz[i], depth[i], ai, approach[i], ux[i], uy[i], uz[i]);
@@ -554,9 +559,7 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
     wx += f.fn * rx[i];
     wy += f.fn * ry[i];
     wz += f.fn * rz[i];
-    weight += f.fn;
     elastic += f.stored;
-    viscous += f.viscous;
     // Stored energy is proportional to the area (with stiffnesses per area; per node it is not):
     // what the change of area alone removed, the energy per area times the area lost (a contact
     // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
@@ -566,8 +569,6 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
     removed = a0 == 0 ? -f.stored : removed;                // back from a cut
     removed = ai > 0 ? removed : e0;                        // cut now
     projection += removed;
-    const Real reached = ai > 0 ? depth[i] : Real(0);
-    deepest = reached > deepest ? reached : deepest;
   }
   PairSums sums;
   const Real value[12] = {fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz};
