@@ -320,6 +320,22 @@ struct ContactLanes {
 // front and stored in the batch from entry `count` on; the new count. Whole blocks are stored: the
 // batch needs room for four entries past the last contact.
 __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, int mask, const BatchSlice& out, int count) {
+  if (mask == 0xf) {  // every lane kept (most blocks): in order, no permutation
+    const auto store = [&](const Lanes& v, ContactReal* to) {
+      const Reals rounded = __builtin_convertvector(v, Reals);
+      std::memcpy(to + count, &rounded, sizeof rounded);
+    };
+    store(block.rx, out.rx);
+    store(block.ry, out.ry);
+    store(block.rz, out.rz);
+    store(block.nx, out.nx);
+    store(block.ny, out.ny);
+    store(block.nz, out.nz);
+    store(block.depth, out.depth);
+    store(block.area, out.area);
+    std::memcpy(out.key + count, &block.key, sizeof block.key);
+    return count + kLanes;
+  }
   KeyOrder order;
   std::memcpy(&order, kCompaction.keys[mask], sizeof order);
   Words wordOrder;
