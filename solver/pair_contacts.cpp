@@ -52,7 +52,9 @@ struct PairBatch {
   int count = 0;
   /// Of a pair listed by blocks of candidates (convexContacts, levelSetContacts): 0 when every
   /// block's inside lanes were as at the pair's last evaluation (CandidateNodes::inside), so that
-  /// its contacts are the last evaluation's, in the same order; -1: listed otherwise.
+  /// its contacts are the last evaluation's, in the same order; above 0 when some block's were
+  /// not (or the candidates were rebuilt): the history is merged. -1: listed otherwise (an
+  /// obstacle pair): the keys are compared.
   int changed = -1;
   std::vector<std::uint32_t> key;
   std::vector<ContactReal> rx, ry, rz, nx, ny, nz, depth, area;
@@ -85,7 +87,7 @@ struct PairBatch {
 //   v_M - v_O + w_M x (x - c_M) - w_O x (x - c_O) = v0 + (w_M - w_O) x r,
 // with the lever r = x - c_a and v0 = v_M - v_O + w_O x (c_O - c_a) - w_M x (c_M - c_a).
 struct SideMotion {
-  Eigen::Vector3d shift, v0, spin;
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero(), v0 = Eigen::Vector3d::Zero(), spin = Eigen::Vector3d::Zero();
 };
 
 // Points moved into another frame, x' = R x + t, n at once (SIMD).
@@ -316,36 +318,9 @@ struct ContactLanes {
   Keys key;
 };
 
-// The lanes of `mask` (laneBits) of a block of contacts, rounded to ContactReal, packed to the
-// front and stored in the batch from entry `count` on; the new count. Whole blocks are stored: the
-// batch needs room for four entries past the last contact.
-__attribute__((always_inline)) inline int storeKept(const ContactLanes& block, int mask, const BatchSlice& out, int count) {
-  if (mask == 0xf) {  // every lane kept (most blocks): in order, no permutation
-    const auto store = [&](const Lanes& v, ContactReal* to) {
-      const Reals rounded = __builtin_convertvector(v, Reals);
-      std::memcpy(to + count, &rounded, sizeof rounded);
-    };
-    store(block.rx, out.rx);
-    store(block.ry, out.ry);
-    store(block.rz, out.rz);
-    store(block.nx, out.nx);
-    store(block.ny, out.ny);
-    store(block.nz, out.nz);
-    store(block.depth, out.depth);
-    store(block.area, out.area);
-    std::memcpy(out.key + count, &block.key, sizeof block.key);
-    return count + kLanes;
-  }
-  KeyOrder order;
-  std::memcpy(&order, kCompaction.keys[mask], sizeof order);
-  Words wordOrder;
-  std::memcpy(&wordOrder, kCompaction.words[mask], sizeof wordOrder);
-  const auto store = [&](const Lanes& v, ContactReal* to) {  // packed as doubles, then rounded
-    Words kept;
-    permute(kept, reinterpret_cast<Words>(v), wordOrder);
-    const Reals rounded = __builtin_convertvector(reinterpret_cast<Lanes>(kept), Reals);
-    std::memcpy(to + count, &rounded, sizeof rounded);
-  };
+// store(lanes, array) for each quantity of a block of contacts and its array in the batch.
+template <class Store>
+__attribute__((always_inline)) inline void eachQuantity(const ContactLanes& block, const BatchSlice& out, Store&& store) {
   store(block.rx, out.rx);
   store(block.ry, out.ry);
   store(block.rz, out.rz);
@@ -354,6 +329,30 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
   store(block.nz, out.nz);
   store(block.depth, out.depth);
   store(block.area, out.area);
+}
+
+// The lanes of `mask` (laneBits) of a block of contacts, rounded to ContactReal, packed to the
+// front and stored in the batch from entry `count` on; the new count. Whole blocks are stored: the
+// batch needs room for four entries past the last contact.
+__attribute__((always_inline)) inline int storeKept(const ContactLanes& block, int mask, const BatchSlice& out, int count) {
+  if (mask == 0xf) {  // every lane kept (most blocks): in order, no permutation
+    eachQuantity(block, out, [&](const Lanes& v, ContactReal* to) {
+      const Reals rounded = __builtin_convertvector(v, Reals);
+      std::memcpy(to + count, &rounded, sizeof rounded);
+    });
+    std::memcpy(out.key + count, &block.key, sizeof block.key);
+    return count + kLanes;
+  }
+  KeyOrder order;
+  std::memcpy(&order, kCompaction.keys[mask], sizeof order);
+  Words wordOrder;
+  std::memcpy(&wordOrder, kCompaction.words[mask], sizeof wordOrder);
+  eachQuantity(block, out, [&](const Lanes& v, ContactReal* to) {  // packed as doubles, then rounded
+    Words kept;
+    permute(kept, reinterpret_cast<Words>(v), wordOrder);
+    const Reals rounded = __builtin_convertvector(reinterpret_cast<Lanes>(kept), Reals);
+    std::memcpy(to + count, &rounded, sizeof rounded);
+  });
   Keys kept;
   permute(kept, block.key, order);
   std::memcpy(out.key + count, &kept, sizeof kept);
@@ -500,8 +499,8 @@ struct PairSums {
 // for a new contact; updated in place) and the relative velocity at each node from its lever and
 // its side's motion (side s: key bit 31), v = v0_s + w_s x r (SideMotion, in ContactReal), and
 // what they add up to, the forces on body a (a node of b, key side 1, has its force on b: -f on
-// a), in the same pass as the forces and in SIMD lanes (the sums in ContactReal, the order of the
-// additions following the machine's vector width). In whole blocks of
+// a), each in the pass that computes it, in SIMD lanes (the sums in ContactReal, the order of the
+// additions following the machine's vector width; no force is stored). In whole blocks of
 // NodeContacts::kLawBlock entries: the padding entries, all 0 in the batch (key 0, area 0) and in
 // the contacts' state arrays (no spring, stored energy or area), add exactly 0 to every sum and
 // stay 0.
@@ -625,7 +624,7 @@ struct Accumulator {
   Eigen::Vector3d centreA;  // m, body a's centroid
   double kn, kt;            // N/m^3, this pair's stiffnesses
   PairBatch& batch;
-  SideMotion sides[2]{};  // each side's motion (an obstacle pair has side 0 only)
+  SideMotion sides[2]{};  // each side's motion (an obstacle pair has side 0 only: side 1 stays 0)
   std::uint32_t side = 0;  // the side being collected
 
   // Starts side s: the nodes of the body moving as `node` in the other side, moving as `other`.
@@ -877,6 +876,7 @@ void visitObstacle(const ContactScene& scene, PairContacts& pair, Accumulator& a
   const ShapeModel& sm = (*scene.shapes)[bodies.shape[m]];
   const Eigen::Matrix3d& RM = scene.kinematics->rotation[m];
   const Motion node = motionOf(scene, m);
+  acc.batch.changed = -1;  // listed node by node: the history by its keys
   acc.beginSide(0, node, other);
   visitSide(sm.nodes, region, 0, rebuild, scene.candidateBand, pair, [&](std::uint32_t key) {
     ++pair.evaluations;

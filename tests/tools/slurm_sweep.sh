@@ -116,11 +116,11 @@ count() {  # count FOLDER STATE: cases of the sweep in that state
 wait_complete() {  # wait_complete FOLDER: until every case is complete and every task has left
   # the queue (a task rewrites the sweep's tables after its case completes); fails on a failed case
   for _ in $(seq 600); do
-    [ "$(count "$1" complete)" -eq 4 ] && [ -z "$(squeue -h 2> /dev/null)" ] && return 0
+    [ "$(count "$1" complete)" -eq 4 ] && queue=$(squeue -h) && [ -z "$queue" ] && return 0
     [ "$(count "$1" failed)" -eq 0 ] || { "$tessera" sweep "$1" --status; cat "$1"/case_*/log.txt; show_logs; exit 1; }
     sleep 0.5
   done
-  echo "the Slurm sweep $1 did not finish in 300 s"; "$tessera" sweep "$1" --status; squeue; show_logs; exit 1
+  echo "the Slurm sweep $1 did not finish in 300 s"; "$tessera" sweep "$1" --status; squeue || true; show_logs; exit 1
 }
 same_results() {  # same_results A B: equal tables (all but the wall time) and equal final states
   $python - "$1" "$2" <<'PY'
