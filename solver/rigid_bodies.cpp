@@ -23,33 +23,88 @@ RigidBodies makeRigidBodies(const Bundle& bundle, double density) {
 
 namespace {
 
+// The sine and cosine of each lane's x; below 1/16 rad (a step turns a body by far less) their
+// Taylor series by Horner's rule, the reciprocals as constants: the first left-out terms,
+// x^11/11! and x^12/12!, are below 1e-20 of sin x and 1e-22 of cos x, under half an ulp.
+template <int N>
+void sinesAndCosines(const double (&x)[N], double (&sine)[N], double (&cosine)[N]) {
+  for (int l = 0; l < N; ++l) {
+    const double x2 = x[l] * x[l];
+    sine[l] = x[l] * (1 - x2 * (1.0 / 6) * (1 - x2 * (1.0 / 20) * (1 - x2 * (1.0 / 42) * (1 - x2 * (1.0 / 72)))));
+    cosine[l] = 1 - x2 * 0.5 * (1 - x2 * (1.0 / 12) * (1 - x2 * (1.0 / 30) * (1 - x2 * (1.0 / 56) * (1 - x2 * (1.0 / 90)))));
+  }
+  for (int l = 0; l < N; ++l)
+    if (!(std::abs(x[l]) < 0.0625)) {
+      sine[l] = std::sin(x[l]);
+      cosine[l] = std::cos(x[l]);
+    }
+}
+
+// Bodies turned together, as arrays of their components (lanes): quaternion q = (w, v), body-frame
+// angular momentum Pi, principal moments I.
+constexpr int kLanes = 8;
+struct RotationLanes {
+  double w[kLanes], v[3][kLanes], pi[3][kLanes], inertia[3][kLanes];
+};
+
 // Flow of H_k = Pi_k^2 / (2 I_k) for time t: the body turns by phi = t Pi_k / I_k about its axis
-// k (q <- q rot_k(phi)) and Pi turns by -phi about the same axis (Pi_k unchanged). One sine and
-// cosine, of the half angle (the quaternion's): cos phi = 1 - 2 sin^2(phi/2) and
-// sin phi = 2 sin(phi/2) cos(phi/2).
-void rotateAboutAxis(int k, Eigen::Quaterniond& q, Eigen::Vector3d& pi, const Eigen::Vector3d& inertia, double t) {
-  const double phi = t * pi[k] / inertia[k];
-  const double halfCos = std::cos(0.5 * phi), halfSin = std::sin(0.5 * phi);
-  const double c = 1 - 2 * halfSin * halfSin, s = 2 * halfSin * halfCos;
-  const int i = (k + 1) % 3, j = (k + 2) % 3;
-  const double pi_i = pi[i], pi_j = pi[j];
-  pi[i] = c * pi_i + s * pi_j;
-  pi[j] = -s * pi_i + c * pi_j;
-  Eigen::Quaterniond turn(halfCos, 0, 0, 0);
-  turn.vec()[k] = halfSin;
-  q = q * turn;
+// k (q <- q r, r = (cos(phi/2), sin(phi/2) e_k)) and Pi turns by -phi about the same axis (Pi_k
+// unchanged). One sine and cosine, of the half angle: cos phi = 1 - 2 sin^2(phi/2) and
+// sin phi = 2 sin(phi/2) cos(phi/2). With (i, j, k) cyclic, q r = (c w - s v_k, v') where
+// v'_i = c v_i + s v_j, v'_j = c v_j - s v_i, v'_k = c v_k + s w (c, s: the half angle's).
+template <int k>
+void rotateAboutAxis(RotationLanes& b, double t) {
+  constexpr int i = (k + 1) % 3, j = (k + 2) % 3;
+  double half[kLanes], hs[kLanes], hc[kLanes];
+  for (int l = 0; l < kLanes; ++l) half[l] = 0.5 * (t * b.pi[k][l] / b.inertia[k][l]);
+  sinesAndCosines(half, hs, hc);
+  for (int l = 0; l < kLanes; ++l) {
+    const double c = 1 - 2 * hs[l] * hs[l], s = 2 * hs[l] * hc[l];
+    const double pi_i = b.pi[i][l], pi_j = b.pi[j][l];
+    b.pi[i][l] = c * pi_i + s * pi_j;
+    b.pi[j][l] = -s * pi_i + c * pi_j;
+    const double w = b.w[l], vi = b.v[i][l], vj = b.v[j][l], vk = b.v[k][l];
+    b.w[l] = hc[l] * w - hs[l] * vk;
+    b.v[i][l] = hc[l] * vi + hs[l] * vj;
+    b.v[j][l] = hc[l] * vj - hs[l] * vi;
+    b.v[k][l] = hc[l] * vk + hs[l] * w;
+  }
 }
 
 }  // namespace
 
-void rotateFreely(Eigen::Quaterniond& orientation, Eigen::Vector3d& angularMomentum, const Eigen::Vector3d& inertia,
-                  double dt) {
-  rotateAboutAxis(0, orientation, angularMomentum, inertia, 0.5 * dt);
-  rotateAboutAxis(1, orientation, angularMomentum, inertia, 0.5 * dt);
-  rotateAboutAxis(2, orientation, angularMomentum, inertia, dt);
-  rotateAboutAxis(1, orientation, angularMomentum, inertia, 0.5 * dt);
-  rotateAboutAxis(0, orientation, angularMomentum, inertia, 0.5 * dt);
-  orientation.normalize();
+void rotateFreely(RigidBodies& bodies, double dt) {
+  std::size_t next = 0;
+  while (true) {
+    // Up to kLanes free bodies; unused lanes turn a body at rest.
+    std::size_t body[kLanes];
+    int used = 0;
+    for (; next < bodies.size() && used < kLanes; ++next)
+      if (!bodies.fixed[next]) body[used++] = next;
+    if (used == 0) return;
+    RotationLanes b;
+    for (int l = 0; l < kLanes; ++l) {
+      const bool real = l < used;
+      const Eigen::Quaterniond q = real ? bodies.orientation[body[l]] : Eigen::Quaterniond::Identity();
+      b.w[l] = q.w();
+      for (int a = 0; a < 3; ++a) {
+        b.v[a][l] = q.vec()[a];
+        b.pi[a][l] = real ? bodies.angularMomentum[body[l]][a] : 0.0;
+        b.inertia[a][l] = real ? bodies.inertia[body[l]][a] : 1.0;
+      }
+    }
+    rotateAboutAxis<0>(b, 0.5 * dt);
+    rotateAboutAxis<1>(b, 0.5 * dt);
+    rotateAboutAxis<2>(b, dt);
+    rotateAboutAxis<1>(b, 0.5 * dt);
+    rotateAboutAxis<0>(b, 0.5 * dt);
+    double norm[kLanes];
+    for (int l = 0; l < kLanes; ++l) norm[l] = std::sqrt(b.w[l] * b.w[l] + b.v[0][l] * b.v[0][l] + b.v[1][l] * b.v[1][l] + b.v[2][l] * b.v[2][l]);
+    for (int l = 0; l < used; ++l) {
+      bodies.orientation[body[l]] = Eigen::Quaterniond(b.w[l] / norm[l], b.v[0][l] / norm[l], b.v[1][l] / norm[l], b.v[2][l] / norm[l]);
+      bodies.angularMomentum[body[l]] = Eigen::Vector3d(b.pi[0][l], b.pi[1][l], b.pi[2][l]);
+    }
+  }
 }
 
 }  // namespace tessera

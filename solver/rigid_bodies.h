@@ -65,7 +65,8 @@ RigidBodies makeRigidBodies(const Bundle& bundle, double density);
 /// J. Chem. Phys. 107, 1997): H1(dt/2) H2(dt/2) H3(dt) H2(dt/2) H1(dt/2), where Hk turns the body
 /// about its axis k by the angle t Pi_k / I_k and the body-frame momentum Pi the other way.
 /// Symplectic and time-reversible; |Pi| and the world angular momentum q Pi are conserved exactly.
-void rotateFreely(Eigen::Quaterniond& orientation, Eigen::Vector3d& angularMomentum, const Eigen::Vector3d& inertia,
-                  double dt);
+/// Turns every body that is not fixed, eight at a time as arrays of their components (each body's
+/// result the same as alone): the bodies' chains of dependent operations run side by side.
+void rotateFreely(RigidBodies& bodies, double dt);
 
 }  // namespace tessera

@@ -368,8 +368,8 @@ void World::step() {
     if (state_.bodies.fixed[i]) continue;
     kick(i);
     state_.bodies.position[i] += dt_ * state_.bodies.velocity[i];
-    rotateFreely(state_.bodies.orientation[i], state_.bodies.angularMomentum[i], state_.bodies.inertia[i], dt_);
   }
+  rotateFreely(state_.bodies, dt_);
   for (std::size_t k = 0; k < state_.spheres.size(); ++k) {
     // Work of the prescribed motion on the bodies over this step (reaction from the last evaluation).
     state_.obstacleWork += -state_.sphereReaction[k].dot(state_.spheres[k].velocity) * dt_;

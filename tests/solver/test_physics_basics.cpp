@@ -201,6 +201,70 @@ TEST_CASE("free rotation near the intermediate axis: the block flips, energy and
   REQUIRE(momentumError < 1e-4);
 }
 
+TEST_CASE("free rotation of many bodies: each turns as the splitting with library sines says, alone or among others, and fixed ones stay") {
+  // Bodies turned in lanes of several (rotateFreely) against the five sub-rotations written with
+  // Eigen's AngleAxis (std::sin, std::cos). The half angles per sub-step span 1e-10 to 0.3 rad: the
+  // Taylor series below 1/16 rad and the library above.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  RigidBodies bodies;
+  const int count = 21;
+  const double dt = 1e-3;
+  for (int i = 0; i < count; ++i) {
+    bodies.position.push_back(Eigen::Vector3d::Zero());
+    bodies.velocity.push_back(Eigen::Vector3d::Zero());
+    bodies.orientation.push_back(Eigen::Quaterniond(unit(random), unit(random), unit(random), unit(random)).normalized());
+    const Eigen::Vector3d inertia(2e-8 + 1e-8 * unit(random), 3e-8 + 1e-8 * unit(random), 5e-8 + 1e-8 * unit(random));
+    bodies.inertia.push_back(inertia);
+    const double halfAngle = std::pow(10.0, -10 + 9.5 * i / (count - 1));  // about each axis, per full step
+    bodies.angularMomentum.push_back(inertia.cwiseProduct(Eigen::Vector3d(unit(random), unit(random), unit(random))) * (2 * halfAngle / dt));
+    bodies.mass.push_back(1e-3);
+    bodies.fixed.push_back(i % 7 == 3 ? 1 : 0);
+    bodies.shape.push_back(0);
+    bodies.name.push_back("b" + std::to_string(i));
+  }
+  const RigidBodies before = bodies;
+  rotateFreely(bodies, dt);
+
+  const auto subRotation = [](Eigen::Quaterniond& q, Eigen::Vector3d& pi, const Eigen::Vector3d& inertia, int k, double t) {
+    const double phi = t * pi[k] / inertia[k];
+    const Eigen::AngleAxisd turn(phi, Eigen::Vector3d::Unit(k));
+    q = q * Eigen::Quaterniond(turn);
+    pi = turn.inverse() * pi;
+  };
+  for (int i = 0; i < count; ++i) {
+    INFO("body " << i);
+    if (before.fixed[i]) {
+      REQUIRE(bodies.orientation[i].coeffs() == before.orientation[i].coeffs());
+      REQUIRE(bodies.angularMomentum[i] == before.angularMomentum[i]);
+      continue;
+    }
+    Eigen::Quaterniond q = before.orientation[i];
+    Eigen::Vector3d pi = before.angularMomentum[i];
+    for (const auto& [k, t] : {std::pair{0, 0.5 * dt}, {1, 0.5 * dt}, {2, dt}, {1, 0.5 * dt}, {0, 0.5 * dt}})
+      subRotation(q, pi, before.inertia[i], k, t);
+    q.normalize();
+    REQUIRE((bodies.orientation[i].coeffs() - q.coeffs()).norm() < 1e-14);
+    REQUIRE((bodies.angularMomentum[i] - pi).norm() < 1e-13 * pi.norm());
+    REQUIRE(std::abs(bodies.angularMomentum[i].norm() / before.angularMomentum[i].norm() - 1) < 1e-14);  // |Pi| kept
+
+    // Alone: the same bits as among the others.
+    RigidBodies alone;
+    alone.position = {before.position[i]};
+    alone.velocity = {before.velocity[i]};
+    alone.orientation = {before.orientation[i]};
+    alone.angularMomentum = {before.angularMomentum[i]};
+    alone.inertia = {before.inertia[i]};
+    alone.mass = {before.mass[i]};
+    alone.fixed = {0};
+    alone.shape = {0};
+    alone.name = {before.name[i]};
+    rotateFreely(alone, dt);
+    REQUIRE(alone.orientation[0].coeffs() == bodies.orientation[i].coeffs());
+    REQUIRE(alone.angularMomentum[0] == bodies.angularMomentum[i]);
+  }
+}
+
 TEST_CASE("instability is caught: 5x the automatic time step stops the run with a diagnostic") {
   // A cube clamped on all six faces by fixed cubes (overlapping by 1 um, sticking: mu = 100):
   // 5x the automatic step is 2.5x the stability estimate 2 / omega_max (allowed here only for the
