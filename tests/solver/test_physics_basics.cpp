@@ -265,6 +265,34 @@ TEST_CASE("free rotation of many bodies: each turns as the splitting with librar
   }
 }
 
+TEST_CASE("restore: a World given another's state mid-slide goes on bit-identically, finding the nodes the block slides onto") {
+  // A block overhanging a fixed one by 2.5 mm slides back over it without friction for about
+  // 1.3 mm, is handed to a new World, and both go on for about 1 mm more: more than a node spacing,
+  // so the new World must rebuild the candidates from the travel it measures itself (restore resets
+  // each pair's checked travel); trusting the first World's travel, it would miss the fixed block's
+  // nodes the block slides onto.
+  ContactParameters p;
+  p.friction = 0;
+  Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
+  bundle.bodies[1].position.x() -= 2.5e-3;
+  World first(bundle, p, SolverSettings{});
+  first.bodies().velocity[1] = Eigen::Vector3d(0.1, 0, 0);
+  const int before = static_cast<int>(1.3e-3 / 0.1 / first.timeStep()), after = static_cast<int>(1e-3 / 0.1 / first.timeStep());
+  for (int i = 0; i < before; ++i) first.step();
+  World second(bundle, p, SolverSettings{});
+  second.restore(first.state());
+  for (int i = 0; i < after; ++i) {
+    first.step();
+    second.step();
+  }
+  INFO("slid " << (first.bodies().position[1].x() - bundle.bodies[1].position.x()) * 1e3 << " mm");
+  REQUIRE(first.bodies().position[1].x() - bundle.bodies[1].position.x() > 2e-3);
+  REQUIRE(second.bodies().position[1] == first.bodies().position[1]);
+  REQUIRE(second.bodies().velocity[1] == first.bodies().velocity[1]);
+  REQUIRE(second.bodies().orientation[1].coeffs() == first.bodies().orientation[1].coeffs());
+  REQUIRE(second.contactForces()[1] == first.contactForces()[1]);
+}
+
 TEST_CASE("instability is caught: 5x the automatic time step stops the run with a diagnostic") {
   // A cube clamped on all six faces by fixed cubes (overlapping by 1 um, sticking: mu = 100):
   // 5x the automatic step is 2.5x the stability estimate 2 / omega_max (allowed here only for the
