@@ -1,7 +1,8 @@
 // Solver speed on the default slab (7 x 7 planar blocks, 0.6 mm nodes, 0.25 mm voxels) and on
 // 15 x 15 and 31 x 31 slabs of the same block during indentation: time per step, per node contact
 // and node-vs-level-set evaluations per second per core, with 1 and 2 threads, for the exact
-// convex level sets (default), the exact mesh level sets and the grids.
+// convex level sets (default), the exact mesh level sets and the grids; and the free rotation of
+// every body, the largest serial part of a step.
 // Run: build/bench/bench_solver --benchmark_min_time=3   (results: bench/README.md)
 #include "bench/default_slab.h"
 #include "solver/world.h"
@@ -56,8 +57,24 @@ void IndentationStep(benchmark::State& state) {
   state.counters["pairs"] = static_cast<double>(world.pairs().size());
 }
 
+// The free rotation of every body of a slab (serial, once a step): ns per body. Argument: blocks
+// per side. Each body spins at 2 rad/s about a tilted axis.
+void FreeRotation(benchmark::State& state) {
+  RigidBodies bodies = makeRigidBodies(slab(static_cast<int>(state.range(0))), 2500.0);
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    bodies.angularMomentum[i] = bodies.inertia[i].cwiseProduct(Eigen::Vector3d(1.0, 0.5, -1.5));
+  const double dt = 1.28e-6;  // s, the paper slab's step
+  for (auto _ : state) {
+    rotateFreely(bodies, dt);
+    benchmark::DoNotOptimize(bodies.orientation.data());
+  }
+  state.counters["ns_per_body"] =
+      benchmark::Counter(static_cast<double>(bodies.size()) * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
 
+BENCHMARK(FreeRotation)->ArgName("side")->Arg(7)->Arg(31)->Unit(benchmark::kMicrosecond);
 BENCHMARK(IndentationStep)
     ->ArgNames({"threads", "path", "side"})
     ->Args({1, 0, 7})->Args({2, 0, 7})->Args({1, 1, 7})->Args({2, 1, 7})->Args({1, 2, 7})->Args({2, 2, 7})
