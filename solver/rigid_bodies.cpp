@@ -23,26 +23,27 @@ RigidBodies makeRigidBodies(const Bundle& bundle, double density) {
 
 namespace {
 
+// Bodies turned together, as arrays of their components (lanes): quaternion q = (w, v), body-frame
+// angular momentum Pi, principal moments I.
+constexpr int kLanes = 8;
+
 // The sine and cosine of each lane's x; below 1/16 rad (a step turns a body by far less) their
 // Taylor series by Horner's rule, the reciprocals as constants: the first left-out terms,
-// x^11/11! and x^12/12!, are below 1e-20 of sin x and 1e-22 of cos x, under half an ulp.
-template <int N>
-void sinesAndCosines(const double (&x)[N], double (&sine)[N], double (&cosine)[N]) {
-  for (int l = 0; l < N; ++l) {
+// x^11/11! and x^12/12!, are below 3e-20 of sin x and 1e-23 of cos x, under half an ulp. NaN and
+// infinity take the library's path (NaN out, as before: the stability check sees it).
+void sinesAndCosines(const double (&x)[kLanes], double (&sine)[kLanes], double (&cosine)[kLanes]) {
+  for (int l = 0; l < kLanes; ++l) {
     const double x2 = x[l] * x[l];
     sine[l] = x[l] * (1 - x2 * (1.0 / 6) * (1 - x2 * (1.0 / 20) * (1 - x2 * (1.0 / 42) * (1 - x2 * (1.0 / 72)))));
     cosine[l] = 1 - x2 * 0.5 * (1 - x2 * (1.0 / 12) * (1 - x2 * (1.0 / 30) * (1 - x2 * (1.0 / 56) * (1 - x2 * (1.0 / 90)))));
   }
-  for (int l = 0; l < N; ++l)
+  for (int l = 0; l < kLanes; ++l)
     if (!(std::abs(x[l]) < 0.0625)) {
       sine[l] = std::sin(x[l]);
       cosine[l] = std::cos(x[l]);
     }
 }
 
-// Bodies turned together, as arrays of their components (lanes): quaternion q = (w, v), body-frame
-// angular momentum Pi, principal moments I.
-constexpr int kLanes = 8;
 struct RotationLanes {
   double w[kLanes], v[3][kLanes], pi[3][kLanes], inertia[3][kLanes];
 };
