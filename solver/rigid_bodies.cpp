@@ -26,6 +26,9 @@ namespace {
 // Bodies turned together, as arrays of their components (lanes): quaternion q = (w, v), body-frame
 // angular momentum Pi, principal moments I.
 constexpr int kLanes = 8;
+struct RotationLanes {
+  double w[kLanes], v[3][kLanes], pi[3][kLanes], inertia[3][kLanes];
+};
 
 // The sine and cosine of each lane's x; below 1/16 rad (a step turns a body by far less) their
 // Taylor series by Horner's rule, the reciprocals as constants: the first left-out terms,
@@ -43,10 +46,6 @@ void sinesAndCosines(const double (&x)[kLanes], double (&sine)[kLanes], double (
       cosine[l] = std::cos(x[l]);
     }
 }
-
-struct RotationLanes {
-  double w[kLanes], v[3][kLanes], pi[3][kLanes], inertia[3][kLanes];
-};
 
 // Flow of H_k = Pi_k^2 / (2 I_k) for time t: the body turns by phi = t Pi_k / I_k about its axis
 // k (q <- q r, r = (cos(phi/2), sin(phi/2) e_k)) and Pi turns by -phi about the same axis (Pi_k
