@@ -28,6 +28,14 @@ int syncPath(const fs::path& path, int flags) {
   return status;
 }
 
+// This machine's name: a temporary carries it with its writer's pid (.tmp-<pid>@<host>@<name>),
+// because on a folder shared between machines (a cluster's file system) a pid means something
+// only on the machine that wrote it.
+std::string thisHost() {
+  char host[256] = {};
+  return ::gethostname(host, sizeof host - 1) == 0 && host[0] != '\0' ? host : "localhost";
+}
+
 bool diskFull(int error) { return error == ENOSPC || error == EDQUOT || error == EFBIG; }
 
 std::string cause(int error, const std::string& detail) {
@@ -40,14 +48,22 @@ std::string cause(int error, const std::string& detail) {
 }  // namespace
 
 void removeStaleTemporaries(const fs::path& directory) {
+  const std::string host = thisHost();
   std::error_code error;
   for (fs::directory_iterator it(directory, error), end; !error && it != end; it.increment(error)) {
     const std::string name = it->path().filename().string();
     if (name.rfind(kPrefix, 0) != 0) continue;
+    // Only this machine's: .tmp-<pid>@<host>@<name>, or .tmp-<pid>-<name> as written before the host was.
     const std::string rest = name.substr(std::strlen(kPrefix));
-    const auto dash = rest.find('-');
-    if (dash == 0 || dash == std::string::npos || rest.find_first_not_of("0123456789") != dash) continue;
-    const long pid = std::stol(rest.substr(0, dash));
+    const auto digits = rest.find_first_not_of("0123456789");
+    if (digits == 0 || digits > 9 || digits == std::string::npos) continue;  // no pid has more digits
+    if (rest[digits] == '@') {
+      const auto hostEnd = rest.find('@', digits + 1);
+      if (hostEnd == std::string::npos || rest.compare(digits + 1, hostEnd - digits - 1, host) != 0) continue;
+    } else if (rest[digits] != '-') {
+      continue;
+    }
+    const long pid = std::stol(rest.substr(0, digits));
     if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
       std::error_code ignored;
       fs::remove(it->path(), ignored);
@@ -59,7 +75,7 @@ void writeFileSafely(const fs::path& target, const std::function<void(const fs::
                      const std::function<void(const fs::path&)>& verify) {
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   removeStaleTemporaries(dir);
-  const fs::path temporary = dir / (kPrefix + std::to_string(::getpid()) + "-" + target.filename().string());
+  const fs::path temporary = dir / (kPrefix + std::to_string(::getpid()) + "@" + thisHost() + "@" + target.filename().string());
   const auto fail = [&](int error, const std::string& detail) {
     std::error_code ignored;
     fs::remove(temporary, ignored);

@@ -61,17 +61,42 @@ TEST_CASE("a failed safe write leaves the previous file whole and no temporary b
   REQUIRE(read(target) == "second");
 }
 
-TEST_CASE("temporaries of killed writers are removed, a live writer's are kept") {
+TEST_CASE("temporaries of killed writers are removed, a live writer's and another machine's are kept") {
   test::TempDir dir;
   pid_t gone = 4194303;  // above any pid in use here, checked below
   while (::kill(gone, 0) == 0) --gone;
-  test::writeFile(dir / (".tmp-" + std::to_string(gone) + "-bundle.h5"), "stale");
-  test::writeFile(dir / (".tmp-" + std::to_string(::getpid()) + "-other.h5"), "being written");
+  char hostName[256] = {};
+  REQUIRE(::gethostname(hostName, sizeof hostName - 1) == 0);
+  const std::string host = hostName[0] != '\0' ? hostName : "localhost";
+  const auto temporary = [&](pid_t pid, const std::string& on, const std::string& name) {
+    return dir / (".tmp-" + std::to_string(pid) + "@" + on + "@" + name);
+  };
+  const fs::path stale = temporary(gone, host, "bundle.h5"), live = temporary(::getpid(), host, "other.h5"),
+                 elsewhere = temporary(gone, host + "-node7", "sweep.csv"), before = dir / (".tmp-" + std::to_string(gone) + "-old.h5");
+  for (const fs::path& p : {stale, live, elsewhere, before}) test::writeFile(p, "x");
   test::writeFile(dir / ".tmp-notapid-x", "not ours");
+  test::writeFile(dir / ".tmp-99999999999999999999-x", "no pid has this many digits");
   writeTextFileSafely(dir.path() / "new.txt", "x");
-  REQUIRE_FALSE(fs::exists(dir / (".tmp-" + std::to_string(gone) + "-bundle.h5")));
-  REQUIRE(fs::exists(dir / (".tmp-" + std::to_string(::getpid()) + "-other.h5")));
+  REQUIRE_FALSE(fs::exists(stale));
+  REQUIRE_FALSE(fs::exists(before));  // the form before the host was written: this machine's
+  REQUIRE(fs::exists(live));
+  REQUIRE(fs::exists(elsewhere));  // a pid of another machine says nothing here
   REQUIRE(fs::exists(dir / ".tmp-notapid-x"));
+  REQUIRE(fs::exists(dir / ".tmp-99999999999999999999-x"));
+}
+
+TEST_CASE("a temporary carries its writer's pid and this machine's name") {
+  test::TempDir dir;
+  char hostName[256] = {};
+  REQUIRE(::gethostname(hostName, sizeof hostName - 1) == 0);
+  const std::string expected = ".tmp-" + std::to_string(::getpid()) + "@" + (hostName[0] != '\0' ? hostName : "localhost") + "@out.txt";
+  std::string seen;
+  writeFileSafely(dir.path() / "out.txt", [&](const fs::path& p) {
+    seen = p.filename().string();
+    std::ofstream(p) << "x";
+  });
+  REQUIRE(seen == expected);
+  REQUIRE(read(dir.path() / "out.txt") == "x");
 }
 
 TEST_CASE("writing into a folder that is not writable is a WriteError naming the file") {
