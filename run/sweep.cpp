@@ -109,36 +109,47 @@ std::vector<SweepCase> placeCases(const fs::path& dir, const std::vector<std::st
 // "KEY=v1,v2,..." or "KEY=first:last:count" (count values evenly spaced, ends included).
 SweepAxis parseSweepAxis(const std::string& text, long maxCases) {
   const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) throw InputError("--set '" + text + "': give KEY=v1,v2,... or KEY=first:last:count");
+  const std::string form = "give KEY=v1,v2,... or KEY=first:last:count, numbers in SI units (e.g. E=3.3e9,4.2e9 or mu=0.2:1:5)";
+  if (eq == std::string::npos || eq == 0) throw InputError("--set '" + text + "': " + form);
   SweepAxis axis;
   axis.key = text.substr(0, eq);
   if (kAliases.count(axis.key)) axis.key = kAliases.at(axis.key);
   const std::string values = text.substr(eq + 1);
-  try {
-    if (std::count(values.begin(), values.end(), ':') == 2) {
-      std::stringstream in(values);
-      std::string a, b, n;
-      std::getline(in, a, ':');
-      std::getline(in, b, ':');
-      std::getline(in, n);
-      const double first = std::stod(a), last = std::stod(b);
-      const long count = std::stol(n);
-      if (count < 1) throw std::invalid_argument("count");
-      if (count > maxCases)
-        throw InputError("--set '" + text + "': " + std::to_string(count) + " values, more than --max-cases " +
-                         std::to_string(maxCases) + "; give fewer, or raise --max-cases if you mean it");
-      for (int k = 0; k < count; ++k) axis.values.push_back(count == 1 ? first : first + (last - first) * k / (count - 1));
-    } else {
-      std::stringstream in(values);
-      std::string v;
-      while (std::getline(in, v, ',')) axis.values.push_back(std::stod(v));
+  // Each value whole, or refused: "2.5mm", "0.2;0.3" or "0.2:0.3" would otherwise be read as
+  // their first number and sweep values nobody asked for.
+  const auto part = [&](const std::string& word, bool integer) {
+    const auto begin = word.find_first_not_of(" \t"), end = word.find_last_not_of(" \t");
+    const std::string trimmed = begin == std::string::npos ? "" : word.substr(begin, end - begin + 1);
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = integer ? static_cast<double>(std::stol(trimmed, &used)) : std::stod(trimmed, &used);
+    } catch (const std::exception&) {
+      used = 0;
     }
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception&) {
-    throw InputError("--set '" + text + "': values must be numbers (SI units), e.g. E=3.3e9,4.2e9 or mu=0.2:1:5");
+    if (trimmed.empty() || used != trimmed.size())
+      throw InputError("--set '" + text + "': '" + word + "' is not " + (integer ? "a whole count" : "a number") + "; " + form);
+    return v;
+  };
+  if (std::count(values.begin(), values.end(), ':') == 2) {
+    std::stringstream in(values);
+    std::string a, b, n;
+    std::getline(in, a, ':');
+    std::getline(in, b, ':');
+    std::getline(in, n);
+    const double first = part(a, false), last = part(b, false);
+    const long count = static_cast<long>(part(n, true));
+    if (count < 1) throw InputError("--set '" + text + "': the count must be at least 1; " + form);
+    if (count > maxCases)
+      throw InputError("--set '" + text + "': " + std::to_string(count) + " values, more than --max-cases " +
+                       std::to_string(maxCases) + "; give fewer, or raise --max-cases if you mean it");
+    for (int k = 0; k < count; ++k) axis.values.push_back(count == 1 ? first : first + (last - first) * k / (count - 1));
+  } else {
+    std::stringstream in(values);
+    std::string v;
+    while (std::getline(in, v, ',')) axis.values.push_back(part(v, false));
   }
-  if (axis.values.empty()) throw InputError("--set '" + text + "': no values");
+  if (axis.values.empty()) throw InputError("--set '" + text + "': no values; " + form);
   for (double v : axis.values)
     if (!std::isfinite(v)) throw InputError("--set '" + text + "': " + formatValue(v) + " is not a finite number");
   return axis;

@@ -1,5 +1,6 @@
 // The sweep folder as any runner leaves it: case states from the files alone, the Slurm batch
-// script and array specification, the record of submissions, and refused Slurm settings.
+// script and array specification, the record of submissions, and refused Slurm settings; the
+// values of --set, read whole or refused.
 #include "io/folder_lock.h"
 #include "io/input_error.h"
 #include "run/slurm_sweep.h"
@@ -22,6 +23,22 @@ void writeText(const fs::path& path, const std::string& text) {
 }
 
 }  // namespace
+
+TEST_CASE("sweep values are read whole, a list or first:last:count, and anything else is refused") {
+  REQUIRE(parseSweepAxis("E=3.3e9, 4.2e9", 1000).values == std::vector<double>{3.3e9, 4.2e9});
+  REQUIRE(parseSweepAxis("mu=0.2:0.4:3", 1000).values == std::vector<double>{0.2, 0.2 + 0.2 * 1 / 2, 0.4});
+  REQUIRE(parseSweepAxis("mu=0.3:0.3:1", 1000).values == std::vector<double>{0.3});
+  REQUIRE(parseSweepAxis("mu=0.2", 1000).key == "material.friction");
+  // Each of these used to be read as its first number, or a truncated count, and swept in silence.
+  for (const std::string bad : {"radius=2.5mm,3mm", "E=4.2e9Pa", "mu=0.2:0.3", "mu=0.2:0.3:2.7", "mu=0.2;0.3",
+                                "mu=0.2:0.3:3:9", "mu=1e-1x", "mu=0.2,,0.3", "mu=", "mu=abc", "mu=0.2:0.3:0", "=0.2"}) {
+    INFO(bad);
+    REQUIRE_THROWS_AS(parseSweepAxis(bad, 1000), InputError);
+  }
+  REQUIRE_THROWS_WITH(parseSweepAxis("radius=2.5mm", 1000), Catch::Contains("'2.5mm' is not a number") && Catch::Contains("SI units"));
+  REQUIRE_THROWS_WITH(parseSweepAxis("mu=0.2:0.3:2.7", 1000), Catch::Contains("'2.7' is not a whole count"));
+  REQUIRE_THROWS_WITH(parseSweepAxis("mu=0.1:0.5:1000000", 1000), Catch::Contains("more than --max-cases 1000"));
+}
 
 TEST_CASE("a case's state is read from its files: missing, failed, interrupted, running, complete") {
   test::TempDir folder;
