@@ -124,7 +124,9 @@ std::unique_ptr<RunSession> RunSession::start(const RunRequest& request, const R
     if (!request.bundle.empty())
       origin += "\n# run on the bundle " + fs::absolute(request.bundle).lexically_normal().string() + " (in place of the one below)";
     source.sceneText = "# " + origin + "\n" + sceneWithOverrides(request.scene, overrides);
-    s.scene_ = readSceneText(source.sceneText, s.output_.empty() ? request.scene : keptScenePath(s.output_));
+    s.messageName_ = request.scene + " (with " + (request.preset.empty() ? "overrides" : "--preset " + request.preset) + ")";
+    const std::string kept = s.output_.empty() ? request.scene : keptScenePath(s.output_);
+    s.namedForUser(kept, [&] { s.scene_ = readSceneText(source.sceneText, kept); });
   } else {
     source.sceneText = sceneText;
     s.scene_ = readSceneText(sceneText, request.scene);
@@ -145,7 +147,7 @@ std::unique_ptr<RunSession> RunSession::start(const RunRequest& request, const R
                                             : fs::path(source.bundle).lexically_relative(fs::absolute(s.output_).lexically_normal()).string();
   source.bundleDigest = fs::exists(bundleFile(s.scene_.bundle)) ? fileDigest(bundleFile(s.scene_.bundle)) : "";
   source.threads = s.scene_.solver.threads;
-  s.prepare(log);
+  s.namedForUser(s.scene_.path, [&] { s.prepare(log); });
   if (!s.output_.empty()) {
     s.lock_ = std::make_unique<FolderLock>(s.output_, "a run");  // after every check: a refused run leaves no folder
     if (fs::exists(checkpointFile(s.output_)))
@@ -208,6 +210,16 @@ std::unique_ptr<RunSession> RunSession::resume(const std::string& folder, const 
 }
 
 RunSession::~RunSession() = default;
+
+void RunSession::namedForUser(const std::string& path, const std::function<void()>& work) const {
+  try {
+    work();
+  } catch (const InputError& e) {
+    const std::string message = e.what(), named = path + ": ";
+    if (messageName_.empty() || message.rfind(named, 0) != 0) throw;
+    throw InputError(messageName_ + ": " + message.substr(named.size()));
+  }
+}
 
 void RunSession::prepare(const RunLog& log) {
   bundle_ = loadRunBundle(scene_, log);

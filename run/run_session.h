@@ -91,6 +91,10 @@ private:
   IndentationRecord record_;
   IndentationState state_;
   std::string output_;
+  /// A scene changed by a preset or overrides is written beside the results (OUT/scene.toml) only
+  /// once they are: until then its messages name the file the user wrote, and what changed it.
+  std::string messageName_;
+  void namedForUser(const std::string& path, const std::function<void()>& work) const;
   std::unique_ptr<FolderLock> lock_;
   bool resumed_ = false;
 };

@@ -105,6 +105,16 @@ TEST_CASE("bad scenes give one clear error and write nothing") {
   refused("bundle = \"slab\"\n[indenter]\npoint = [0.01, 0.0]\n", "lies on the fixed body 'r1c2'");
   refused("bundle = \"slab\"\n[indenter]\ntarget = \"r1c1\"\noffset = [0.009, 0.0]\n", "off the body 'r1c1'");
   refused("bundle = \"slab\"\n[indenter]\npoint = [0.0, 0.0]\ntarget = \"r1c1\"\n", "not both");
+  {
+    // With a preset the scene read is a derived one, written beside the results only once they
+    // are: the message names the user's file and the preset, not a file that does not exist.
+    test::writeFile(dir / "bad.toml", "bundle = \"slab\"\n[indenter]\ntarget = \"r0c0\"\n");
+    const test::CliResult r = test::runTessera("run " + quoted(dir / "bad.toml") + " --preset fast -o " + quoted(dir / "none"));
+    INFO(r.err);
+    REQUIRE(r.status == 2);
+    REQUIRE_THAT(r.err, Contains(std::string(dir / "bad.toml") + " (with --preset fast): indenter.target 'r0c0' is a fixed body"));
+    REQUIRE_FALSE(fs::exists(dir / "none"));
+  }
 
   // A bundle of another format version.
   fs::copy(dir / "slab", dir / "old", fs::copy_options::recursive);
