@@ -86,6 +86,10 @@ struct IndentationRecord {
   long steps = 0;          ///< all steps, settling included
   double timeStep = 0;     ///< s
   double wallSeconds = 0;
+
+  /// The run has ended for good: at delta_max, on failure, or as its sample hook asked (not when
+  /// interrupted, unstable, or still running).
+  bool finished() const { return stopReason == "delta_max" || stopReason == "failure" || stopReason == "requested"; }
 };
 
 /// Progress while running (called every output.progressSeconds of wall time).

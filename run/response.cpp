@@ -114,8 +114,7 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   const int fallen = static_cast<int>(record.fallen.size());
   const bool loadedOut = std::any_of(record.fallen.begin(), record.fallen.end(),
                                      [&](const FallenBody& f) { return f.name == record.targetName; });
-  const bool finished = record.stopReason == "delta_max" || record.stopReason == "failure" || record.stopReason == "requested";
-  if (fallen == 0) r.failureMode = finished ? "no failure" : "none yet (run incomplete)";
+  if (fallen == 0) r.failureMode = record.finished() ? "no failure" : "none yet (run incomplete)";
   else if (settings.freeBodies > 1 && fallen >= settings.freeBodies) r.failureMode = "collapse";
   else if (fallen == 1 && loadedOut) r.failureMode = "loaded block out";
   else r.failureMode = std::to_string(fallen) + (fallen == 1 ? " block out" : " blocks out");

@@ -12,6 +12,8 @@
 #include "run/run_output.h"
 #include "run/state_digest.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -246,6 +248,16 @@ void RunSession::writeOutputs() const {
   // A scene changed by a preset or overrides is kept beside its results (its name in them).
   if (derivedScene(source_) && !fs::exists(scene_.path)) writeTextFileSafely(scene_.path, source_.sceneText);
   writeRunOutputs(output_, scene_, bundle_, contact_, record_, response(), {source_.sceneText, stateDigest(*world_)});
+}
+
+bool RunSession::finishedAndWritten() const {
+  if (!resumed_ || !record_.finished()) return false;
+  try {
+    const nlohmann::json summary = nlohmann::json::parse(readText((fs::path(output_) / "summary.json").string()));
+    return summary.at("stop_reason").get<std::string>() == record_.stopReason;
+  } catch (const std::exception&) {
+    return false;  // missing or unreadable: written again by the resumed run
+  }
 }
 
 void RunSession::run(RunHooks hooks) {

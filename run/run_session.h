@@ -66,6 +66,9 @@ public:
 
   /// Writes the result files into the run folder (nothing without one).
   void writeOutputs() const;
+  /// A resumed run that had finished and whose result files were all written at its stop (its
+  /// summary.json, written last, says how it stopped): there is nothing to resume or rewrite.
+  bool finishedAndWritten() const;
   ResponseParameters response() const;
 
   const Scene& scene() const { return scene_; }

@@ -97,6 +97,10 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
 int runTest(const RunArguments& a) {
   if (a.resume.empty() == a.scene.empty()) throw InputError("give either a SCENE file (with -o OUTDIR) or --resume OUTDIR");
   if (a.resume.empty() && a.output.empty()) throw InputError("-o OUTDIR is required with a scene");
+  if (!a.resume.empty() && !a.output.empty() &&
+      !(fs::exists(a.output) && fs::exists(a.resume) && fs::equivalent(a.output, a.resume)))
+    throw InputError("-o " + a.output + " with --resume " + a.resume + ": a run resumes in its own folder; leave out -o, or start "
+                     "a new run in another folder from the scene with -o");
   if (a.threads < -1) throw InputError("--threads must be 0 (all cores) or a positive number, got " + std::to_string(a.threads));
   const RunLog log = [](const std::string& line) { std::cerr << "run: " << line << "\n"; };
   std::unique_ptr<RunSession> session;
@@ -114,6 +118,11 @@ int runTest(const RunArguments& a) {
   const std::string& out = session->output();
   const World& world = session->world();
   const ContactParameters& contact = session->contact();
+  if (session->finishedAndWritten()) {  // its results are in place: left as they are
+    std::fprintf(stderr, "run: %s is complete (stopped: %s at delta = %.4g mm); nothing to resume\n", out.c_str(),
+                 session->record().stopReason.c_str(), session->record().curve.empty() ? 0.0 : session->record().curve.back().delta * 1e3);
+    return 0;
+  }
   if (session->resumed())
     std::fprintf(stderr, "run: resuming %s at t = %.6g s (step %ld)\n", out.c_str(), world.time(), world.stepCount());
   std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, dt = %.3g s (automatic %.3g s)\n",

@@ -238,6 +238,32 @@ TEST_CASE("reliability 3: a damaged checkpoint is one clear error, never a crash
   REQUIRE(test::runTessera("run --resume " + quoted(dir / "run") + " --no-plot").status == 0);
 }
 
+TEST_CASE("reliability 4a: a finished run resumed is left as it is, and a resume elsewhere is refused") {
+  test::TempDir dir;
+  finishedRun(dir);
+  const std::string summary = fileDigest(dir / "run/summary.json"), results = fileDigest(dir / "run/results.h5");
+  test::CliResult r = test::runTessera("run --resume " + quoted(dir / "run"));  // without --no-plot: still no plots
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.err, Contains("is complete (stopped: delta_max") && Contains("nothing to resume"));
+  REQUIRE(fileDigest(dir / "run/summary.json") == summary);
+  REQUIRE(fileDigest(dir / "run/results.h5") == results);
+  REQUIRE_FALSE(fs::exists(dir / "run/curve.png"));
+  // -o names another folder: refused, nothing made there.
+  r = test::runTessera("run --resume " + quoted(dir / "run") + " --no-plot -o " + quoted(dir / "other"));
+  REQUIRE(r.status == 2);
+  REQUIRE_THAT(r.err, Contains("a run resumes in its own folder"));
+  REQUIRE_FALSE(fs::exists(dir / "other"));
+  REQUIRE(test::runTessera("run --resume " + quoted(dir / "run") + " --no-plot -o " + quoted(dir / "run")).status == 0);
+  // Its results lost after the stop (a full disk at the last write): resuming writes them again.
+  fs::remove(dir / "run/summary.json");
+  r = test::runTessera("run --resume " + quoted(dir / "run") + " --no-plot");
+  REQUIRE(r.status == 0);
+  std::ifstream written(dir / "run/summary.json");
+  const std::string text((std::istreambuf_iterator<char>(written)), std::istreambuf_iterator<char>());
+  REQUIRE_THAT(text, Contains("\"stop_reason\": \"delta_max\""));
+}
+
 TEST_CASE("reliability 4: resume refuses a changed scene, bundle or preset, and finds a run folder moved with its bundle") {
   test::TempDir dir;
   finishedRun(dir);
@@ -260,7 +286,7 @@ TEST_CASE("reliability 4: resume refuses a changed scene, bundle or preset, and 
   r = test::runTessera("run --resume " + quoted(dir / "moved/run") + " --no-plot");
   INFO(r.err);
   REQUIRE(r.status == 0);
-  REQUIRE_THAT(r.err, Contains("resuming"));
+  REQUIRE_THAT(r.err, Contains("is complete"));  // found its bundle and scene; it had finished
 
   REQUIRE(test::runTessera(tile(dir / "slab", " --replace --gap 0.01")).status == 0);
   r = test::runTessera(resume);
