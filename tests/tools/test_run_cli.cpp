@@ -105,6 +105,10 @@ TEST_CASE("bad scenes give one clear error and write nothing") {
   refused("bundle = \"slab\"\n[indenter]\npoint = [0.01, 0.0]\n", "lies on the fixed body 'r1c2'");
   refused("bundle = \"slab\"\n[indenter]\ntarget = \"r1c1\"\noffset = [0.009, 0.0]\n", "off the body 'r1c1'");
   refused("bundle = \"slab\"\n[indenter]\npoint = [0.0, 0.0]\ntarget = \"r1c1\"\n", "not both");
+  // Values in mm where metres are meant: against the slab (h = 3.18 mm), before any work.
+  refused("bundle = \"slab\"\n[indenter]\nradius = 2.5\n", "indenter.radius = 2.5 m is 786 x the loaded block's thickness");
+  refused("bundle = \"slab\"\n[protocol]\ndelta_max = 6\n", "lengths are in m (6 mm is 0.006 m)");
+  refused("bundle = \"slab\"\n[indenter]\nspeed = 30\n", "speeds are in m/s (30 mm/s is 0.03 m/s)");
   {
     // With a preset the scene read is a derived one, written beside the results only once they
     // are: the message names the user's file and the preset, not a file that does not exist.
