@@ -35,14 +35,17 @@ void refuseOverlaps(const Bundle& bundle, const AssemblyCheck& check, double tol
 }
 
 AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
-                                           const std::string& fix) {
+                                           const std::string& overlapFix, const std::string& apartFix) {
   const double voxel = finestVoxel(bundle);
   const double tolerance = overlapTolerance ? *overlapTolerance : 0.1 * voxel;
   const double touch = gap + 0.5 * voxel;
   AssemblySummary summary;
   const AssemblyLevelSets levelSets(bundle);
   summary.check = checkAssembly(bundle, levelSets, tolerance, touch);
-  refuseOverlaps(bundle, summary.check, tolerance, "", fix);
+  refuseOverlaps(bundle, summary.check, tolerance, "", overlapFix);
+  if (bundle.bodies.size() > 1 && summary.check.contacts.empty())
+    throw InputError("no two of the " + std::to_string(bundle.bodies.size()) + " bodies touch (nothing within " +
+                     formatMillimetres(touch) + " of another): the blocks lie apart, not an assembly; " + apartFix);
   for (int i : summary.check.isolated)
     summary.warnings.push_back("body '" + bundle.bodies[i].name + "' touches no other body (nothing within " +
                                formatMillimetres(touch) + ")");
@@ -55,6 +58,8 @@ AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<d
                               (l.upDepth > threshold ? "downward" : l.downDepth > threshold ? "upward" : "up or down") +
                               " by its neighbours");
   }
+  if (summary.free > 0 && summary.locked == 0)
+    summary.warnings.push_back("no free body is held both up and down by its neighbours: not an interlocked slab; " + apartFix);
   return summary;
 }
 

@@ -25,15 +25,18 @@ struct AssemblySummary {
   AssemblyCheck check;
   int locked = 0;  ///< free bodies held both up and down by their neighbours
   std::size_t free = 0;
-  std::vector<std::string> warnings;  ///< a body touching nothing
+  std::vector<std::string> warnings;  ///< a body touching nothing; no free body held
   std::vector<std::string> notes;     ///< a free body not held up and down
 };
 
 /// The checks made before an assembly is written: an overlap deeper than the tolerance (default
 /// 0.1 of the finest voxel; coincident bodies included) is an InputError naming the two bodies and
-/// the fix; a body touching nothing is a warning, a free body not held up and down a note.
+/// `overlapFix`; so is an assembly of two or more bodies of which no two touch (blocks laid out
+/// apart: a pitch or positions in another unit, a block whose thickness is not along z), with
+/// `apartFix`. A body touching nothing is a warning, and so is a slab in which no free body is held
+/// both up and down (with `apartFix`); a free body not held up and down is a note.
 /// `gap`: clearance the layout left between neighbours, m.
 AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
-                                           const std::string& fix);
+                                           const std::string& overlapFix, const std::string& apartFix);
 
 }  // namespace tessera

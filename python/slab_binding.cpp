@@ -45,16 +45,14 @@ py::dict tileAndWrite(const SlabPlan& plan, const std::string& output, const Sha
   bundle.spanLength = plan.spanLength;
   bundle.spanInterfaces = plan.spanInterfaces;
   const AssemblySummary summary =
-      checkAssemblyBeforeWriting(bundle, std::nullopt, gap, "check the pitch or the layout positions, or add a gap");
+      checkAssemblyBeforeWriting(bundle, std::nullopt, gap, "check the pitch or the layout positions, or add a gap",
+                                 "check that the pitch is in m and that the block's thickness is along z");
   writeBundle(output, bundle);
   std::vector<std::string> notes = plan.notes, warnings = log.warnings;
   notes.insert(notes.end(), log.notes.begin(), log.notes.end());
   notes.insert(notes.end(), summary.notes.begin(), summary.notes.end());
   warnings.insert(warnings.end(), summary.warnings.begin(), summary.warnings.end());
   for (const std::string& w : warnings) py::print("tessera: tile: warning:", w, py::arg("file") = py::module_::import("sys").attr("stderr"));
-  if (summary.locked == 0 && summary.free > 0)
-    py::print("tessera: tile: warning: no free body is held both up and down by its neighbours: not an interlocked slab "
-              "(check the pitch, in m)", py::arg("file") = py::module_::import("sys").attr("stderr"));
   py::dict d;
   d["bundle"] = output;
   d["bodies"] = bundle.bodies.size();

@@ -90,7 +90,8 @@ void runTile(const TileArguments& a) {
   // Check the assembly before anything is written.
   const AssemblySummary summary =
       checkAssemblyBeforeWriting(bundle, a.overlapTolerance ? std::optional<double>(*a.overlapTolerance * unit.metres) : std::nullopt,
-                                 a.gap * unit.metres, "check --pitch or the layout positions, or add --gap");
+                                 a.gap * unit.metres, "check --pitch or the layout positions, or add --gap",
+                                 "check that --pitch is in the block's unit (--unit) and that the block's thickness is along z");
 
   writeBundle(a.output, bundle);
 

@@ -154,6 +154,18 @@ TEST_CASE("export writes the assembly for ParaView and a layout that rebuilds it
   for (std::size_t i = 0; i < a.bodies.size(); ++i) REQUIRE((a.bodies[i].position - b.bodies[i].position).norm() < 1e-12);
 }
 
+TEST_CASE("blocks laid out apart are refused before a bundle is written") {
+  // A pitch of twice the 10 mm block (or one in another unit than the block's): no two blocks
+  // touch, which is no assembly.
+  test::TempDir dir;
+  const test::CliResult r = test::runTessera("tile --block " + quoted(kDefaultBlock) + " --unit mm --grid 3x3 --pitch 20 -o " +
+                                             quoted(dir / "apart"));
+  INFO(r.err);
+  REQUIRE(r.status == 2);
+  REQUIRE_THAT(r.err, Contains("no two of the 9 bodies touch") && Contains("--pitch is in the block's unit"));
+  REQUIRE_FALSE(fs::exists(dir / "apart"));
+}
+
 TEST_CASE("a body that touches nothing is reported, not refused") {
   test::TempDir dir;
   test::writeFile(dir / "solo.json", R"({"format": "tessera-layout", "version": 1, "unit": "mm",
