@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace tessera {
 
@@ -78,10 +80,23 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
     }
   if (n >= 2 && n * sxx - sx * sx > 0) r.stiffness = (n * sxy - sx * sy) / (n * sxx - sx * sx);
 
+  // Failure is read on the loading envelope only: the samples where the indenter is as deep as it
+  // has ever been. Below that (a steered run backing the indenter off, and reloading up to where
+  // it was) the load falls or rises because the indenter moves, not because the slab gives way.
+  std::vector<std::size_t> envelope;
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (c[i].delta >= deepest) {
+      deepest = c[i].delta;
+      envelope.push_back(i);
+    }
+  const std::size_t peakOnEnvelope = static_cast<std::size_t>(
+      std::lower_bound(envelope.begin(), envelope.end(), peak) - envelope.begin());  // the first at or after the peak
+
   // Failure deflection: the load first below the fraction of P_max after the peak.
   std::size_t failure = c.size() - 1;
-  for (std::size_t i = peak + 1; i < c.size(); ++i)
-    if (c[i].load < settings.failureLoadFraction * r.peakLoad) {
+  for (std::size_t k = peakOnEnvelope + 1; k < envelope.size(); ++k)
+    if (const std::size_t i = envelope[k]; c[i].load < settings.failureLoadFraction * r.peakLoad) {
       failure = i;
       r.failureDeflection = c[i].delta;
       break;
@@ -89,17 +104,19 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   r.atFailure = contactStateAt(c[failure]);
 
   // Ultimate deflection: after the peak, where the load falls below 1 % of the peak for good.
-  std::size_t last = c.size() - 1;
-  for (std::size_t i = c.size(); i-- > peak;)
-    if (c[i].load > 0.01 * r.peakLoad) {
-      last = std::min(i + 1, c.size() - 1);
+  std::size_t last = envelope.back();
+  for (std::size_t k = envelope.size(); k-- > peakOnEnvelope;)
+    if (c[envelope[k]].load > 0.01 * r.peakLoad) {
+      last = envelope[std::min(k + 1, envelope.size() - 1)];
       break;
     }
   r.ultimateDeflection = c[last].delta;
 
   r.energy = areaUpTo(c, failure);
   r.energyToEnd = areaUpTo(c, c.size() - 1);
-  r.drops = loadDrops(c, peak, 0.1, 0.02, 0.05 * record.thickness);
+  std::vector<CurveSample> loading;
+  for (std::size_t i : envelope) loading.push_back(c[i]);
+  r.drops = loadDrops(loading, std::min(peakOnEnvelope, loading.size() - 1), 0.1, 0.02, 0.05 * record.thickness);
   r.end = c.back();
 
   // Quasi-static check before the peak, once the indenter has done 1 % of its work up to the peak

@@ -123,3 +123,30 @@ TEST_CASE("response: K is fitted on the first loading, not on an unloading and r
   REQUIRE(r.fitTo == Approx(0.25e-3).epsilon(1e-9));
   REQUIRE(r.stiffness == Approx(100e3).epsilon(1e-9));  // the unloading and reloading (400 N/mm) left out
 }
+
+TEST_CASE("response: failure is read on the loading envelope, not where a steered run backs the indenter off") {
+  // Up at 100 N/mm to 100 N at 1 mm, then the indenter backs off to 0.6 mm, unloading to 0 N.
+  IndentationRecord record = recordOf(25, [](double delta) { return 100 * delta * 1e3; });
+  const auto add = [&](double mm, double load) {
+    CurveSample s;
+    s.delta = mm * 1e-3;
+    s.load = load;
+    record.curve.push_back(s);
+  };
+  for (double mm = 0.96; mm > 0.6 - 1e-9; mm -= 0.04) add(mm, std::max(0.0, 100 - 300 * (1 - mm)));
+  ResponseParameters r = analyseResponse(record, ResponseSettings{});
+  REQUIRE(r.peakLoad == Approx(100.0));
+  REQUIRE(r.failureDeflection < 0);  // none: the load fell to 0 N on the unloading
+  REQUIRE(r.drops.empty());
+  REQUIRE(r.ultimateDeflection == Approx(1e-3));  // the deepest point it carried load at
+  REQUIRE(r.energy == Approx(r.energyToEnd));
+
+  // Reloaded (below 1 mm it follows the unloading back up), then past 1 mm the load falls at
+  // 220 N/mm: that is failure, at the first sample below 10 N on the envelope (1.40 mm: 12 N).
+  for (double mm = 0.64; mm < 1.0 - 1e-9; mm += 0.04) add(mm, std::max(0.0, 100 - 300 * (1 - mm)));
+  for (double mm = 1.0; mm < 1.6 + 1e-9; mm += 0.04) add(mm, std::max(0.0, 100 - 220 * (mm - 1)));
+  r = analyseResponse(record, ResponseSettings{});
+  REQUIRE(r.failureDeflection == Approx(1.44e-3).epsilon(1e-9));  // 3.2 N
+  REQUIRE(r.drops.size() == 1);
+  REQUIRE(r.drops[0].delta == Approx(1e-3));
+}
