@@ -68,7 +68,9 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
                 r.failureDeflection * 1e3, failureFraction,
                 r.atFailure.blockDisplacement * 1e3, r.thickness > 0 ? r.atFailure.blockDisplacement / r.thickness : 0.0);
   else
-    std::printf("  failure deflection none (the load stayed above the failure fraction of P_max)\n");
+    std::printf("  failure deflection none%s\n", !record.finished()    ? " yet (run incomplete)"
+                                               : r.peakLoad > 0 ? " (the load stayed above the failure fraction of P_max)"
+                                                                : " (no load: the indenter carried nothing)");
   std::printf("  loading energy     W = %.4g mJ to failure, %.4g mJ to the end (delta %.4g mm)\n", r.energy * 1e3,
               r.energyToEnd * 1e3, r.end.delta * 1e3);
   std::printf("  failure            %s", r.failureMode.c_str());
@@ -83,8 +85,11 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
               e.externalWork * 1e3, e.gravityWork * 1e3, e.elastic * 1e3, e.kinetic * 1e3, e.friction * 1e3, e.damping * 1e3,
               e.retiredKinetic * 1e3, e.projection * 1e3, e.residual * 1e3,
               e.externalWork > 0 ? 100 * std::abs(e.residual) / e.externalWork : 0.0);
+  // An unfinished run's "peak" is its last load so far: no verdict on a loading not yet done.
   std::printf("  quasi-static check max KE / W before the peak = %.2e%s\n", r.quasiStaticRatio,
-              r.quasiStatic ? "" : " (above the limit: loading too fast, lower indenter.speed)");
+              !record.finished() ? " (run incomplete: no verdict)"
+              : r.quasiStatic    ? ""
+                                 : " (above the limit: loading too fast, lower indenter.speed)");
   std::printf("  indenter           radius %.4g mm at %.4g mm/s; h = %.4g mm\n", record.indenterRadius * 1e3,
               record.indenterSpeed * 1e3, record.thickness * 1e3);
   std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
