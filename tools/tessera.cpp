@@ -25,9 +25,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::RuntimeError& e) {  // a command's own exit status (its message is already printed)
     return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
-    // --help and --version exit 0; every other parse error is a user mistake: exit 2 (docs: exit codes).
-    const int status = app.exit(e);
-    return status == 0 ? 0 : 2;
+    // --help and --version exit 0; every other parse error is a user mistake: one line, exit 2
+    // (docs: exit codes).
+    if (e.get_exit_code() == 0) return app.exit(e);
+    const bool number = dynamic_cast<const CLI::ConversionError*>(&e) != nullptr;
+    std::cerr << "tessera: error: " << e.what()
+              << (number ? "; give a plain number (lengths in the unit of --unit, other values in SI units)" : "")
+              << "; see tessera COMMAND --help\n";
+    return 2;
   } catch (const tessera::InputError& e) {
     std::cerr << "tessera: error: " << e.what() << "\n";
     return 2;
