@@ -6,7 +6,9 @@
 #include <assimp/Exporter.hpp>
 #include <assimp/scene.h>
 
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 namespace tessera {
@@ -48,7 +50,26 @@ void writeMesh(const TriangleMesh& mesh, const std::string& path, MeshFileFormat
     for (int k = 0; k < 3; ++k) out->mFaces[f].mIndices[k] = static_cast<unsigned>(mesh.triangles[f][k]);
   }
 
-  const char* formatId = format == MeshFileFormat::Obj ? "objnomtl" : format == MeshFileFormat::StlAscii ? "stl" : "stlb";
+  if (format == MeshFileFormat::Obj) {
+    // Written here, not by assimp: its OBJ exporter (5.2) rounds every coordinate to float (a block
+    // in metres then moves by 1e-10 m, as much as a settled contact's penetration) and writes
+    // normals of its own making for a mesh that has none. OBJ's v/f lines are the whole format.
+    writeFileSafely(fs::path(path), [&](const fs::path& temporary) {
+      std::ofstream file(temporary, std::ios::binary);
+      file << "# tessera\n";
+      char line[128];
+      for (const Eigen::Vector3d& v : mesh.vertices) {
+        const Eigen::Vector3d p = v / metresPerUnit;
+        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+        file << line;
+      }
+      for (const auto& t : mesh.triangles) file << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+      file.close();
+      if (!file) throw std::runtime_error("short write");
+    });
+    return;
+  }
+  const char* formatId = format == MeshFileFormat::StlAscii ? "stl" : "stlb";
   writeFileSafely(fs::path(path), [&](const fs::path& temporary) {
     Assimp::Exporter exporter;
     if (exporter.Export(&scene, formatId, temporary.string()) != AI_SUCCESS)

@@ -11,6 +11,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 using namespace tessera;
 using tessera::test::kDefaultBlock;
@@ -27,6 +29,24 @@ TEST_CASE("block writes valid meshes of every family in the stated unit") {
   mm.metresPerUnit = 1e-3;
   const double volume = computeMassProperties(importMesh(dir / "p.obj", mm).mesh).volume;
   REQUIRE(volume == Approx(1e-4 * 3.18e-3 - std::pow(3.18e-3, 3) * std::pow(std::tan(5 * M_PI / 180), 2) / 3).epsilon(1e-6));
+  // The same block in metres: the same vertices to double precision (an OBJ written in float
+  // moved them by 1e-10 m), and no made-up normals.
+  REQUIRE(test::runTessera("block planar --size 0.01 --thickness 0.00318 --angle 5 --unit m -o " + quoted(dir / "pm.obj")).status == 0);
+  const auto vertexLines = [](const std::string& path) {
+    std::vector<double> values;
+    std::ifstream obj(path);
+    for (std::string line; std::getline(obj, line);) {
+      REQUIRE(line.rfind("vn", 0) != 0);
+      if (line.rfind("v ", 0) != 0) continue;
+      std::istringstream in(line.substr(2));
+      for (double x; in >> x;) values.push_back(x);
+    }
+    return values;
+  };
+  const std::vector<double> inMm = vertexLines(dir / "p.obj"), inM = vertexLines(dir / "pm.obj");
+  REQUIRE(inM.size() == 24);
+  REQUIRE(inM.size() == inMm.size());
+  for (std::size_t i = 0; i < inM.size(); ++i) REQUIRE(std::abs(inM[i] * 1e3 - inMm[i]) < 1e-14 * std::abs(inMm[i]));
   for (const std::string family : {"box", "wave", "hex", "osteomorphic"}) {
     const test::CliResult r = test::runTessera("block " + family + " --unit cm --size 1 --thickness 0.318 --amplitude 0.02 -o " +
                                                quoted(dir / (family + ".stl")));
