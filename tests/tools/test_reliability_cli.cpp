@@ -203,6 +203,7 @@ TEST_CASE("reliability 3: a damaged checkpoint is one clear error, never a crash
     INFO(damage << ": " << r.err);
     REQUIRE(r.status == 2);
     REQUIRE_THAT(r.err, Contains("checkpoint.h5") && (Contains("corrupt checkpoint") || Contains("cannot resume")));
+    REQUIRE_THAT(r.err, Contains("start the run again from its scene"));  // the fix, every time
     fs::copy_file(dir / "good.h5", checkpoint, fs::copy_options::overwrite_existing);
   };
   std::vector<hsize_t> dims;
