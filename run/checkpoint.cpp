@@ -359,7 +359,7 @@ CheckpointSource readCheckpointSource(const std::string& path) {
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
-    throw InputError(path + ": corrupt checkpoint (" + e.what() + ")");
+    throw InputError(path + ": corrupt checkpoint (" + e.what() + "); start the run again from its scene in a new folder");
   }
 }
 

@@ -250,7 +250,7 @@ std::unique_ptr<RunSession> RunSession::resume(const std::string& folder, const 
   try {
     s.world_->restore(restored);
   } catch (const std::invalid_argument& e) {
-    throw InputError(checkpointFile(folder) + ": corrupt checkpoint (" + e.what() + "); start the run again from its scene");
+    throw InputError(checkpointFile(folder) + ": corrupt checkpoint (" + e.what() + "); start the run again from its scene in a new folder");
   }
   return session;
 }
