@@ -7,6 +7,7 @@
 #include <assimp/scene.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 namespace tessera {
@@ -58,9 +59,17 @@ ImportedMesh importMesh(const std::string& path, const MeshImportOptions& option
   out.fileVertices = out.mesh.vertices.size();
   const double diagonal = boundingBox(out.mesh.vertices).diagonal().norm();
   const double tolerance = options.weldTolerance >= 0 ? options.weldTolerance : 1e-6 * diagonal;
+  const std::size_t read = out.mesh.triangles.size();
   out.weld = weldVertices(out.mesh, tolerance);
   if (out.mesh.triangles.empty())
     throw InputError(path + ": every triangle collapsed when vertices were welded (the mesh has no extent); check the file");
+  if (out.mesh.triangles.size() < 4 && out.weld.collapsedTriangles > 0) {  // what is left is no solid, whatever it is
+    char span[32];
+    std::snprintf(span, sizeof span, "%.3g", diagonal / options.metresPerUnit);
+    throw InputError(path + ": " + std::to_string(out.weld.collapsedTriangles) + " of its " + std::to_string(read) +
+                     " triangles collapsed when vertices within 1e-6 of its size were welded (it spans " + span +
+                     " units): its coordinates look damaged; check the file");
+  }
   return out;
 }
 

@@ -98,4 +98,16 @@ TEST_CASE("unreadable files are refused naming the file") {
   REQUIRE_THROWS_AS(importAs(dir / "noise.stl", 1), InputError);
   test::writeFile(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
   REQUIRE_THROWS_WITH(importAs(dir / "points.obj", 1), Contains("points.obj") && Contains("no faces"));
+  // Twelve triangles, ten of them tiny beside two corners far away (as random bytes in a binary
+  // STL read): welding at 1e-6 of the size collapses them, and the message says so, with the span.
+  std::string obj;
+  for (int t = 0; t < 10; ++t) {
+    const double x = t * 1e-3;
+    obj += "v " + std::to_string(x) + " 0 0\nv " + std::to_string(x) + " 1e-3 0\nv " + std::to_string(x) + " 0 1e-3\n";
+  }
+  obj += "v 0 0 0\nv 1e30 0 0\nv 0 1e30 0\nv 0 0 1e30\nv 1e30 1e30 0\nv 0 1e30 1e30\n";
+  for (int t = 0; t < 12; ++t) obj += "f " + std::to_string(3 * t + 1) + " " + std::to_string(3 * t + 2) + " " + std::to_string(3 * t + 3) + "\n";
+  test::writeFile(dir / "damaged.obj", obj);
+  REQUIRE_THROWS_WITH(importAs(dir / "damaged.obj", 1),
+                      Contains("damaged.obj: 10 of its 12 triangles collapsed") && Contains("spans 1.73e+30"));
 }
