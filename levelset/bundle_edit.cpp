@@ -17,7 +17,7 @@ Shape prepareIntoBundle(const ShapeRequest& request, const std::string& director
   const int existing = bundle.findShape(name);
   if (existing >= 0 && !replace)
     throw InputError(directory + ": already holds a shape named '" + name + "'; choose another --name or pass --replace");
-  Shape shape = prepareShapeFromFile(request.mesh, request.unit, name, request.resolution, log, request.limits);
+  Shape shape = prepareShapeFromFile(request.mesh, request.unit, name, request.resolution, log, request.limits, request.up);
   if (existing >= 0) bundle.shapes[existing] = shape;
   else bundle.shapes.push_back(shape);
   bundle.generator = generatorVersion();

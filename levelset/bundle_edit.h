@@ -14,6 +14,7 @@ struct ShapeRequest {
   std::string name;
   ShapeResolution resolution;
   ShapeLimits limits;
+  std::string up = "z";  ///< the mesh's up axis, turned into +z
 };
 
 /// Prepares the shape of a block mesh (shape_builder.h) and adds it to the bundle in `directory`,

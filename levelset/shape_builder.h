@@ -53,9 +53,11 @@ Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& 
                  const ShapeResolution& resolution, const std::string& label, PrepLog& log,
                  const ShapeLimits& limits = {});
 
-/// Imports a mesh file (STL/OBJ) in the given unit and builds its shape (see buildShape).
+/// Imports a mesh file (STL/OBJ) in the given unit, turns its up axis `up` ("x", "y" or "z") into
+/// +z (rotationToZUp), and builds its shape (see buildShape).
 Shape prepareShapeFromFile(const std::string& path, const std::string& unit, const std::string& name,
-                           const ShapeResolution& resolution, PrepLog& log, const ShapeLimits& limits = {});
+                           const ShapeResolution& resolution, PrepLog& log, const ShapeLimits& limits = {},
+                           const std::string& up = "z");
 
 /// A valid shape name: 1-64 characters from [A-Za-z0-9_.-], not starting with '.'.
 bool isValidShapeName(const std::string& name);

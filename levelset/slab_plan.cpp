@@ -2,6 +2,7 @@
 
 #include "geometry/length_unit.h"
 #include "geometry/mesh_import.h"
+#include "geometry/up_axis.h"
 #include "io/input_error.h"
 #include "levelset/shape_builder.h"
 
@@ -9,9 +10,11 @@
 
 namespace tessera {
 
-SlabPlan gridSlabPlan(const std::string& block, const std::string& unit, const SquareGridOptions& grid) {
+SlabPlan gridSlabPlan(const std::string& block, const std::string& unit, const SquareGridOptions& grid,
+                      const std::string& up) {
   SlabPlan plan;
   plan.unit = unit;
+  plan.up = up;
   const double m = parseLengthUnit(unit).metres;
   LayoutShape shape;
   shape.key = shapeNameFromPath(block);
@@ -20,7 +23,9 @@ SlabPlan gridSlabPlan(const std::string& block, const std::string& unit, const S
   plan.placements = squareGrid(grid, shape.key);
   MeshImportOptions import;
   import.metresPerUnit = m;
-  const Eigen::AlignedBox3d box = boundingBox(importMesh(block, import).mesh.vertices);
+  std::vector<Eigen::Vector3d> vertices = importMesh(block, import).mesh.vertices;
+  for (Eigen::Vector3d& v : vertices) v = rotationToZUp(up) * v;
+  const Eigen::AlignedBox3d box = boundingBox(vertices);
   const Eigen::Vector3d centre(box.center().x(), box.center().y(), 0.0);
   if (centre.norm() > 1e-9 * box.diagonal().norm()) {
     for (Placement& p : plan.placements) p.translation -= p.rotation * centre;

@@ -14,15 +14,18 @@ struct SlabPlan {
   std::vector<LayoutShape> shapes;
   std::vector<Placement> placements;
   std::string unit;       ///< length unit of the meshes (and of the layout)
+  std::string up = "z";   ///< the meshes' up axis, turned into +z when they are prepared
   double spanLength = 0;  ///< m, L (0: none)
   int spanInterfaces = 0; ///< M
   std::vector<std::string> notes;  ///< for the user (e.g. the block is not centred at its origin)
 };
 
-/// A square grid of one block mesh (in `unit`; grid.pitch and grid.gap in m). Blocks are laid
-/// out (and turned) about the centre of the block's plan bounding box, wherever the mesh has its
-/// origin: a block with its origin at a corner still gives a centred slab.
-SlabPlan gridSlabPlan(const std::string& block, const std::string& unit, const SquareGridOptions& grid);
+/// A square grid of one block mesh (in `unit`, its up axis `up` turned into +z; grid.pitch and
+/// grid.gap in m). Blocks are laid out (and turned) about the centre of the block's plan bounding
+/// box, wherever the mesh has its origin: a block with its origin at a corner still gives a
+/// centred slab.
+SlabPlan gridSlabPlan(const std::string& block, const std::string& unit, const SquareGridOptions& grid,
+                      const std::string& up = "z");
 
 /// The plan of a layout file (docs/tiling.md). InputError if it places more than `maxBodies`.
 SlabPlan layoutSlabPlan(const std::string& layoutFile, long maxBodies);

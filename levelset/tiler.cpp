@@ -9,7 +9,7 @@ namespace tessera {
 
 Bundle tileAssembly(const std::vector<LayoutShape>& shapes, const std::vector<Placement>& placements,
                     const std::string& meshUnit, const ShapeResolution& resolution, PrepLog& log,
-                    const ShapeLimits& limits) {
+                    const ShapeLimits& limits, const std::string& meshUp) {
   Bundle bundle;
   bundle.generator = generatorVersion();
   std::map<std::string, int> index;
@@ -28,7 +28,7 @@ Bundle tileAssembly(const std::vector<LayoutShape>& shapes, const std::vector<Pl
       ShapeResolution r = resolution;
       if (s.voxel) r.voxelSize = *s.voxel;
       if (s.spacing) r.nodeSpacing = *s.spacing;
-      shape = prepareShapeFromFile(s.mesh, meshUnit, s.key, r, log, limits);
+      shape = prepareShapeFromFile(s.mesh, meshUnit, s.key, r, log, limits, meshUp);
     }
     index[s.key] = static_cast<int>(bundle.shapes.size());
     bundle.shapes.push_back(std::move(shape));

@@ -41,12 +41,13 @@ ShapeResolution resolution(std::optional<double> voxel, std::optional<double> sp
 py::dict tileAndWrite(const SlabPlan& plan, const std::string& output, const ShapeResolution& r, double gap, bool replace) {
   checkBundleOutput(output, replace);
   PrepLog log;
-  Bundle bundle = tileAssembly(plan.shapes, plan.placements, plan.unit, r, log);
+  Bundle bundle = tileAssembly(plan.shapes, plan.placements, plan.unit, r, log, {}, plan.up);
+  bundle.sourceUp = plan.up;
   bundle.spanLength = plan.spanLength;
   bundle.spanInterfaces = plan.spanInterfaces;
   const AssemblySummary summary =
       checkAssemblyBeforeWriting(bundle, std::nullopt, gap, "check the pitch or the layout positions, or add a gap",
-                                 "check that the pitch is in m and that the block's thickness is along z");
+                                 "check that the pitch is in m and that the block's thickness is along z (up='y' for a y-up mesh)");
   writeBundle(output, bundle);
   std::vector<std::string> notes = plan.notes, warnings = log.warnings;
   notes.insert(notes.end(), log.notes.begin(), log.notes.end());
@@ -131,7 +132,7 @@ void bindSlabs(py::module_& m) {
       "tile",
       [](const std::string& block, const std::string& unit, const std::string& output, std::pair<int, int> grid,
          double pitch, double gap, bool alternate, bool fixPerimeter, std::optional<double> voxel,
-         std::optional<double> spacing, double edgeSpacing, bool replace) {
+         std::optional<double> spacing, double edgeSpacing, bool replace, const std::string& up) {
         if (grid.first < 1 || grid.second < 1 || static_cast<long>(grid.first) * grid.second > 10000)
           throw InputError("grid must be (columns, rows), each at least 1 and at most 10000 blocks in all");
         if (!(pitch > 0)) throw InputError("pitch must be a positive length in m (the centre-to-centre distance)");
@@ -142,13 +143,13 @@ void bindSlabs(py::module_& m) {
         options.gap = gap;
         options.alternate = alternate;
         options.fixPerimeter = fixPerimeter;
-        return tileAndWrite(gridSlabPlan(block, unit, options), output, resolution(voxel, spacing, edgeSpacing), gap,
+        return tileAndWrite(gridSlabPlan(block, unit, options, up), output, resolution(voxel, spacing, edgeSpacing), gap,
                             replace);
       },
       py::arg("block"), py::arg("unit"), py::arg("output"), py::arg("grid") = std::pair<int, int>{7, 7},
       py::arg("pitch"), py::arg("gap") = 0.0, py::arg("alternate") = true, py::arg("fix_perimeter") = true,
       py::arg("voxel") = py::none(), py::arg("spacing") = py::none(),
-      py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false,
+      py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false, py::arg("up") = "z",
       "A slab bundle (as `tessera tile --block`): a square grid of one block mesh (its length unit given), "
       "pitch and gap in m; voxel and node spacing in m (default: relative to the block). Returns a summary.");
   m.def(

@@ -25,6 +25,7 @@ struct PrepArguments {
   std::string unit;
   std::string output;
   std::string name;
+  std::string up = "z";
   ResolutionArguments resolution;
   double featureAngle = 30;  // deg
   int band = 3;              // voxels
@@ -39,10 +40,10 @@ void runPrep(const PrepArguments& a) {
   resolution.exteriorBandVoxels = a.band;
   if (!(a.featureAngle > 0 && a.featureAngle < 180)) throw InputError("--feature-angle must be between 0 and 180 degrees");
 
-  ShapeRequest request{a.mesh, a.unit, a.name, resolution, shapeLimits(a.resolution)};
+  ShapeRequest request{a.mesh, a.unit, a.name, resolution, shapeLimits(a.resolution), a.up};
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "prep: " << m << "\n"; };
-  std::cerr << "prep: reading " << a.mesh << " (unit " << unit.name << ")\n";
+  std::cerr << "prep: reading " << a.mesh << " (unit " << unit.name << (a.up == "z" ? "" : ", up axis " + a.up + " turned to +z") << ")\n";
   const Shape s = prepareIntoBundle(request, a.output, a.replace, log);
   for (const auto& note : log.notes) std::cerr << "prep: note: " << note << "\n";
   for (const auto& warning : log.warnings) std::cerr << "prep: warning: " << warning << "\n";
@@ -75,6 +76,7 @@ void addPrepCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--band", args->band, "Exterior band (and grid padding) outside the surface, voxels")
       ->capture_default_str();
+  cmd->add_option("--up", args->up, "The mesh's up axis (x, y or z), turned into +z (the slab's thickness)")->capture_default_str();
   cmd->add_option("--name", args->name, "Shape name in the bundle [default: the mesh file name without extension]");
   cmd->add_flag("--replace", args->replace, "Replace a shape of the same name already in the bundle");
   cmd->footer("Example: tessera prep block.stl --unit mm -o out/slab\n"

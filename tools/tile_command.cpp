@@ -23,6 +23,7 @@ struct TileArguments {
   std::string block;
   std::string layout;
   std::string unit;
+  std::string up = "z";
   std::string grid = "7x7";
   std::optional<double> pitch;
   std::string fix = "perimeter";
@@ -67,9 +68,10 @@ void runTile(const TileArguments& a) {
     grid.alternate = !a.noAlternate;
     if (a.fix != "perimeter" && a.fix != "none") throw InputError("--fix '" + a.fix + "': use perimeter or none");
     grid.fixPerimeter = a.fix == "perimeter";
-    plan = gridSlabPlan(a.block, a.unit, grid);
+    plan = gridSlabPlan(a.block, a.unit, grid, a.up);
   } else {
     plan = layoutSlabPlan(a.layout, a.maxBodies);
+    plan.up = a.up;
     if (!a.unit.empty() && a.unit != plan.unit)
       throw InputError(a.layout + ": the layout states unit '" + plan.unit + "'; drop --unit or make them agree");
   }
@@ -80,7 +82,8 @@ void runTile(const TileArguments& a) {
 
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "tile: " << m << "\n"; };
-  Bundle bundle = tileAssembly(plan.shapes, plan.placements, unitName, resolution, log, shapeLimits(a.resolution));
+  Bundle bundle = tileAssembly(plan.shapes, plan.placements, unitName, resolution, log, shapeLimits(a.resolution), plan.up);
+  bundle.sourceUp = plan.up;
   bundle.spanLength = plan.spanLength;
   bundle.spanInterfaces = plan.spanInterfaces;
 
@@ -91,7 +94,8 @@ void runTile(const TileArguments& a) {
   const AssemblySummary summary =
       checkAssemblyBeforeWriting(bundle, a.overlapTolerance ? std::optional<double>(*a.overlapTolerance * unit.metres) : std::nullopt,
                                  a.gap * unit.metres, "check --pitch or the layout positions, or add --gap",
-                                 "check that --pitch is in the block's unit (--unit) and that the block's thickness is along z");
+                                 "check that --pitch is in the block's unit (--unit) and that the block's thickness is along z "
+                                 "(--up y for a y-up mesh)");
 
   writeBundle(a.output, bundle);
 
@@ -108,6 +112,7 @@ void addTileCommand(CLI::App& app) {
   cmd->add_option("--block", args->block, "Block mesh (STL/OBJ) for the built-in square tessellation");
   cmd->add_option("--layout", args->layout, "Layout file (JSON, docs/tiling.md) of arbitrary placements, instead of --block");
   cmd->add_option("--unit", args->unit, "Length unit of the mesh and of every length given: m, cm, mm, um, in, ft");
+  cmd->add_option("--up", args->up, "The meshes' up axis (x, y or z), turned into +z (the slab's thickness)")->capture_default_str();
   cmd->add_option("--grid", args->grid, "Square tessellation: columns x rows")->capture_default_str();
   cmd->add_option("--pitch", args->pitch, "Centre-to-centre distance of neighbouring blocks, in --unit");
   cmd->add_option("--fix", args->fix, "Fixed blocks of the square tessellation: perimeter (outer ring) or none")

@@ -100,6 +100,25 @@ def test_bad_input_is_a_value_error_naming_the_problem(slab, tmp_path):
         tessera.Simulation(SCENE, bundle=slab, overrides={"material.nonsense": 1.0})
     with pytest.raises(ValueError, match="overlap"):
         tessera.tile(BLOCK, "mm", str(tmp_path / "tight"), grid=(3, 3), pitch=8e-3)
+    # A pitch given in mm (10 m): no two blocks touch, refused before anything is written.
+    with pytest.raises(ValueError, match="no two of the 9 bodies touch.*pitch is in m"):
+        tessera.tile(BLOCK, "mm", str(tmp_path / "apart"), grid=(3, 3), pitch=10)
+    assert not (tmp_path / "apart").exists()
+
+
+def test_tile_turns_a_y_up_block_to_z_up(tmp_path):
+    # The block written y-up, (x, y, z) -> (x, z, -y): with up="y" the same slab as the z-up one.
+    lines = []
+    for line in open(BLOCK):
+        if line.startswith("v "):
+            x, y, z = (float(t) for t in line.split()[1:4])
+            line = f"v {x!r} {z!r} {-y!r}\n"
+        lines.append(line)
+    (tmp_path / "yup.obj").write_text("".join(lines))
+    kw = dict(grid=(3, 3), pitch=10e-3, spacing=1e-3, edge_spacing=1.0)
+    up = tessera.tile(str(tmp_path / "yup.obj"), "mm", str(tmp_path / "up"), up="y", **kw)
+    z = tessera.tile(BLOCK, "mm", str(tmp_path / "z"), **kw)
+    assert up["interlocked"] == z["interlocked"] == 1
 
 
 def test_results_file_states_units_scene_and_contact_split(cli_run):

@@ -186,6 +186,43 @@ TEST_CASE("blocks laid out apart are refused before a bundle is written") {
   REQUIRE_FALSE(fs::exists(dir / "apart"));
 }
 
+TEST_CASE("a y-up block mesh tiles with --up y into the z-up slab") {
+  // The default block written y-up, (x, y, z) -> (x, z, -y): tiled as it is, its thickness lies in
+  // plan and no two blocks touch; with --up y it is the same slab as the z-up block's.
+  test::TempDir dir;
+  std::ifstream in(kDefaultBlock);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream v(line.substr(2));
+      double x, y, z;
+      v >> x >> y >> z;
+      std::ostringstream turned;
+      turned.precision(17);
+      turned << "v " << x << " " << z << " " << -y;
+      line = turned.str();
+    }
+    out += line + "\n";
+  }
+  test::writeFile(dir / "yup.obj", out);
+  const std::string grid = " --unit mm --grid 3x3 --pitch 10 --spacing 1.0 --edge-spacing 1 -o ";
+  const test::CliResult flat = test::runTessera("tile --block " + quoted(dir / "yup.obj") + grid + quoted(dir / "flat"));
+  REQUIRE(flat.status == 2);
+  REQUIRE_THAT(flat.err, Contains("no two of the 9 bodies touch") && Contains("--up y for a y-up mesh"));
+  const test::CliResult up = test::runTessera("tile --block " + quoted(dir / "yup.obj") + " --up y" + grid + quoted(dir / "up"));
+  INFO(up.err);
+  REQUIRE(up.status == 0);
+  REQUIRE(test::runTessera("tile --block " + quoted(kDefaultBlock) + grid + quoted(dir / "z")).status == 0);
+  const Bundle a = readBundle(dir / "up"), b = readBundle(dir / "z");
+  REQUIRE(a.sourceUp == "y");
+  REQUIRE(a.bodies.size() == b.bodies.size());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    REQUIRE((a.bodies[i].position - b.bodies[i].position).norm() < 1e-12);
+    REQUIRE(a.bodies[i].orientation.angularDistance(b.bodies[i].orientation) < 1e-9);
+  }
+  REQUIRE_THAT(up.out, Contains("1 of 1 free bodies held both up and down"));
+}
+
 TEST_CASE("a body that touches nothing is reported, not refused") {
   test::TempDir dir;
   test::writeFile(dir / "solo.json", R"({"format": "tessera-layout", "version": 1, "unit": "mm",
