@@ -838,27 +838,18 @@ double sidesTravel(const Travel& t, const PairContacts& pair) {
 // Clears the pair's last evaluation (its contacts become the history) and says whether its
 // candidate nodes are to be rebuilt: when they are not valid, or the sides have moved too far
 // relative to each other since they were built (ContactScene::candidateBand).
-// m, the two sides' summed Travel now (0 without a Travel), and whether they may have moved by
-// the rebuild threshold since the pair's exact motion was last computed (always without a Travel).
-double sidesTravel(const ContactScene& scene, const PairContacts& pair) {
-  return scene.travel != nullptr ? sidesTravel(*scene.travel, pair) : 0.0;
-}
-bool mayHaveMoved(const ContactScene& scene, const PairContacts& pair, double travel) {
-  return scene.travel == nullptr || kSqrt3 * (pair.checkedMotion + (travel - pair.checkedTravel)) >= scene.candidateBand;
-}
-
 bool beginEvaluation(const ContactScene& scene, PairContacts& pair) {
   std::swap(pair.contacts, pair.previous);
   pair.forceA = pair.torqueA = pair.forceB = pair.torqueB = pair.normalForceA = pair.forcePoint = Eigen::Vector3d::Zero();
   pair.tally = ContactTally{};
   pair.maxDepth = 0.0;
   pair.evaluations = 0;
-  pair.quiet = false;
-  const double travel = sidesTravel(scene, pair);
+  const double travel = scene.travel != nullptr ? sidesTravel(*scene.travel, pair) : 0.0;
+  const bool mayHaveMoved = scene.travel == nullptr || kSqrt3 * (pair.checkedMotion + (travel - pair.checkedTravel)) >= scene.candidateBand;
   bool rebuild = !pair.candidatesValid;
   // The exact motion only when the bound from the travel since it was last computed can reach the
   // threshold: the same decisions as computing it every step.
-  if (!rebuild && mayHaveMoved(scene, pair, travel)) {
+  if (!rebuild && mayHaveMoved) {
     pair.checkedMotion = candidateMotion(scene, pair);
     pair.checkedTravel = travel;
     rebuild = kSqrt3 * pair.checkedMotion >= scene.candidateBand;
@@ -921,13 +912,9 @@ void evaluatePair(const ContactScene& scene, PairContacts& pair) {
 }
 
 void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
-  // Half of a slab's pairs (its diagonal neighbours) have no candidate node: most steps they
-  // would only clear what is already clear, so they read nothing more than this test.
-  if (pair.quiet && pair.candidatesValid && !mayHaveMoved(scene, pair, sidesTravel(scene, pair))) return;
   const bool rebuild = beginEvaluation(scene, pair);
   if (!rebuild && pair.candidates.nodes() == 0) {  // no node within the band: no contact until rebuilt
     pair.contacts.clear();
-    pair.quiet = true;
     return;
   }
   Scratch& scratch = threadScratch;

@@ -184,10 +184,6 @@ struct PairContacts {
   /// the candidates were built is at most checkedMotion + (travel now - checkedTravel), so the
   /// exact motion is computed again only once that bound reaches the rebuild threshold.
   double checkedMotion = 0.0, checkedTravel = 0.0;
-  /// The last evaluation of this body pair found no candidate node and set every result to zero:
-  /// until the two sides may have moved (checkedMotion, checkedTravel) the next one would do the
-  /// same, so it is skipped (not in the checkpoint: a restored pair is evaluated in full once).
-  bool quiet = false;
   Eigen::Vector3d forceA{0, 0, 0}, torqueA{0, 0, 0}, forceB{0, 0, 0}, torqueB{0, 0, 0};
   Eigen::Vector3d normalForceA{0, 0, 0};  ///< N, the part of forceA along the contact normals (forceA minus it: friction)
   Eigen::Vector3d forcePoint{0, 0, 0};  ///< m, world: contact points weighted by normal force (force chains)
