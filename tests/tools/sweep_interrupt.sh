@@ -29,6 +29,9 @@ cat "$work/first.log"
 if pgrep -f "$work/mu/case_" > /dev/null; then echo "a case still runs after the sweep stopped"; exit 1; fi
 [ ! -e "$work/mu/case_001/run" ] || { echo "a case started after Ctrl-C"; exit 1; }
 grep -q '"stop_reason": "interrupted"' "$work/mu/case_000/run/summary.json"
+# Its printed summary gives no verdict on a loading not yet done.
+grep -q "failure deflection none yet (run incomplete)" "$work/mu/case_000/log.txt" &&
+  grep -q "run incomplete: no verdict" "$work/mu/case_000/log.txt" || { cat "$work/mu/case_000/log.txt"; exit 1; }
 [ "$(wc -l < "$work/mu/sweep.csv")" -eq 1 ] || { echo "sweep.csv lists an incomplete case"; cat "$work/mu/sweep.csv"; exit 1; }
 status=0
 "$tessera" report "$work/mu" > "$work/report.log" 2>&1 || status=$?
