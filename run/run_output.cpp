@@ -183,7 +183,6 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
         {"samples", record.curve.size()},
         {"snapshots", record.snapshots.size()}}},
   };
-  writeTextFileSafely(dir / "summary.json", summary.dump(2) + "\n");
 
   // The ParaView series: per snapshot the blocks (displacement from the bundle's pose, velocity),
   // the contacts as points at their force centres, and the indenter.
@@ -252,6 +251,9 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   }
   writeParaViewState((dir / "paraview").string(),
                      {largestForce > 0 ? 3 * record.thickness / largestForce : 0.0, record.thickness, largestDisplacement});
+  // Last: a summary.json that says how the run stopped means every file above was written then
+  // (a resumed run that had finished relies on it, RunSession::finishedAndWritten).
+  writeTextFileSafely(dir / "summary.json", summary.dump(2) + "\n");
 }
 
 }  // namespace tessera
