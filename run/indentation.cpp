@@ -204,6 +204,10 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     s.indenterSpeed = -world.sphere(state.sphere).velocity.z();
     record.curve.push_back(s);
   };
+  // The deepest delta sampled so far (from the curve, so a resumed run knows it): the loading
+  // envelope, where failure is read (run/response.cpp).
+  double deepest = 0.0;
+  for (const CurveSample& c : record.curve) deepest = std::max(deepest, c.delta);
   while (state.phase == 1) {
     if (hooks.interrupted && hooks.interrupted()) {
       record.stopReason = "interrupted";
@@ -245,8 +249,11 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
                         " mm (limit protocol.quasi_static_limit); lower indenter.speed or indenter.speed_ratio");
       }
       state.nextSample = pathDue ? state.nextSample + scene.output.sampleEvery : along + scene.output.sampleEvery;
-      // The load gone: below 1 % of the peak since quietFrom.
-      if (state.peak > 0 && load < 0.01 * state.peak) {
+      // The load gone: below 1 % of the peak since quietFrom, on the loading envelope (a steered
+      // indenter backing off unloads the slab; that is no failure to stop on).
+      const bool onEnvelope = delta >= deepest;
+      deepest = std::max(deepest, delta);
+      if (state.peak > 0 && load < 0.01 * state.peak && onEnvelope) {
         if (state.quietFrom < 0) state.quietFrom = along;
       } else {
         state.quietFrom = -1;

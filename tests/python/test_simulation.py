@@ -50,6 +50,23 @@ def test_unloading_returns_the_indenter_and_balances_energy(slab):
     assert sim.indenter["velocity"][2] > 0, "lifting at the end"
 
 
+def test_backing_off_is_no_failure(slab):
+    # Lift the indenter well past the load's end, further than the failure rule's quiet travel
+    # (0.1 h): the load is gone because the indenter left, so the run neither stops on failure
+    # nor reports one.
+    sim = tessera.Simulation(SCENE, bundle=slab)
+
+    def on_sample(sample, control):
+        if sample.delta >= 0.3e-3 and control.indenter_speed > 0:
+            control.indenter_speed = -control.indenter_speed
+        elif control.indenter_speed < 0 and sample.delta < -0.2e-3:
+            control.stop()
+
+    assert sim.run(on_sample) == "requested"
+    assert sim.response["failure_deflection"] is None
+    assert sim.response["failure_mode"] == "no failure"
+
+
 def test_results_as_arrays_in_si_units(slab):
     sim, _ = load_unload(slab, 0.1e-3)
     n = len(sim.body_names)
