@@ -35,7 +35,7 @@ void refuseOverlaps(const Bundle& bundle, const AssemblyCheck& check, double tol
 }
 
 AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
-                                           const std::string& overlapFix, const std::string& apartFix) {
+                                           const std::string& overlapFix, const std::string& apartFix, bool refuseApart) {
   const double voxel = finestVoxel(bundle);
   const double tolerance = overlapTolerance ? *overlapTolerance : 0.1 * voxel;
   const double touch = gap + 0.5 * voxel;
@@ -43,9 +43,12 @@ AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<d
   const AssemblyLevelSets levelSets(bundle);
   summary.check = checkAssembly(bundle, levelSets, tolerance, touch);
   refuseOverlaps(bundle, summary.check, tolerance, "", overlapFix);
-  if (bundle.bodies.size() > 1 && summary.check.contacts.empty())
-    throw InputError("no two of the " + std::to_string(bundle.bodies.size()) + " bodies touch (nothing within " +
-                     formatMillimetres(touch) + " of another): the blocks lie apart, not an assembly; " + apartFix);
+  if (bundle.bodies.size() > 1 && summary.check.contacts.empty()) {
+    const std::string apart = "no two of the " + std::to_string(bundle.bodies.size()) + " bodies touch (nothing within " +
+                              formatMillimetres(touch) + " of another): the blocks lie apart; " + apartFix;
+    if (refuseApart) throw InputError(apart);
+    summary.warnings.push_back(apart);
+  }
   for (int i : summary.check.isolated)
     summary.warnings.push_back("body '" + bundle.bodies[i].name + "' touches no other body (nothing within " +
                                formatMillimetres(touch) + ")");
@@ -59,7 +62,7 @@ AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<d
                               " by its neighbours");
   }
   if (summary.free > 0 && summary.locked == 0)
-    summary.warnings.push_back("no free body is held both up and down by its neighbours: not an interlocked slab; " + apartFix);
+    summary.warnings.push_back("no free body is held both up and down by its neighbours: the slab does not interlock");
   return summary;
 }
 

@@ -31,12 +31,13 @@ struct AssemblySummary {
 
 /// The checks made before an assembly is written: an overlap deeper than the tolerance (default
 /// 0.1 of the finest voxel; coincident bodies included) is an InputError naming the two bodies and
-/// `overlapFix`; so is an assembly of two or more bodies of which no two touch (blocks laid out
-/// apart: a pitch or positions in another unit, a block whose thickness is not along z), with
-/// `apartFix`. A body touching nothing is a warning, and so is a slab in which no free body is held
-/// both up and down (with `apartFix`); a free body not held up and down is a note.
-/// `gap`: clearance the layout left between neighbours, m.
+/// `overlapFix`. Two or more bodies of which no two touch (blocks laid out apart: a pitch or
+/// positions in another unit, a block whose thickness is not along z) are an InputError with
+/// `apartFix` when `refuseApart` (a layout tile made: its blocks are meant to touch), else a
+/// warning (an assembly may have been modelled with clearances). A body touching nothing is a
+/// warning, and so is a slab in which no free body is held both up and down; a free body not held
+/// up and down is a note. `gap`: clearance the layout left between neighbours, m.
 AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
-                                           const std::string& overlapFix, const std::string& apartFix);
+                                           const std::string& overlapFix, const std::string& apartFix, bool refuseApart);
 
 }  // namespace tessera

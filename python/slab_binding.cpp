@@ -47,7 +47,8 @@ py::dict tileAndWrite(const SlabPlan& plan, const std::string& output, const Sha
   bundle.spanInterfaces = plan.spanInterfaces;
   const AssemblySummary summary =
       checkAssemblyBeforeWriting(bundle, std::nullopt, gap, "check the pitch or the layout positions, or add a gap",
-                                 "check that the pitch is in m and that the block's thickness is along z (up='y' for a y-up mesh)");
+                                 "check the pitch or positions (in m) and that the blocks' thickness is along z (up='y' for y-up meshes)",
+                                 true);
   writeBundle(output, bundle);
   std::vector<std::string> notes = plan.notes, warnings = log.warnings;
   notes.insert(notes.end(), log.notes.begin(), log.notes.end());

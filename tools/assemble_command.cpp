@@ -86,7 +86,7 @@ void runAssemble(const AssembleArguments& a) {
   const AssemblySummary summary = checkAssemblyBeforeWriting(
       bundle, a.overlapTolerance ? std::optional<double>(*a.overlapTolerance * unit.metres) : std::nullopt, 0.0,
       "check that every part was exported once, in one unit, or raise --overlap-tolerance",
-      "check the parts' unit (--unit) and up axis (--up)");
+      "check the parts' unit (--unit) and up axis (--up), unless they were modelled with clearances", false);
   writeBundle(a.output, bundle);
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -94,8 +94,9 @@ void runTile(const TileArguments& a) {
   const AssemblySummary summary =
       checkAssemblyBeforeWriting(bundle, a.overlapTolerance ? std::optional<double>(*a.overlapTolerance * unit.metres) : std::nullopt,
                                  a.gap * unit.metres, "check --pitch or the layout positions, or add --gap",
-                                 "check that --pitch is in the block's unit (--unit) and that the block's thickness is along z "
-                                 "(--up y for a y-up mesh)");
+                                 (a.block.empty() ? std::string("check the layout's positions and unit") : std::string("check that --pitch is in the block's unit (--unit)")) +
+                                     " and that the blocks' thickness is along z (--up y for y-up meshes)",
+                                 true);
 
   writeBundle(a.output, bundle);
 

@@ -118,7 +118,7 @@ def test_bad_input_is_a_value_error_naming_the_problem(slab, tmp_path):
     with pytest.raises(ValueError, match="overlap"):
         tessera.tile(BLOCK, "mm", str(tmp_path / "tight"), grid=(3, 3), pitch=8e-3)
     # A pitch given in mm (10 m): no two blocks touch, refused before anything is written.
-    with pytest.raises(ValueError, match="no two of the 9 bodies touch.*pitch is in m"):
+    with pytest.raises(ValueError, match="no two of the 9 bodies touch.*pitch or positions"):
         tessera.tile(BLOCK, "mm", str(tmp_path / "apart"), grid=(3, 3), pitch=10)
     assert not (tmp_path / "apart").exists()
 
