@@ -21,11 +21,12 @@ double areaUpTo(const std::vector<CurveSample>& c, std::size_t last) {
   return w;
 }
 
-// Sudden drops after the peak (slip events): within a travel `window`, the load falls by at least
-// `fraction` of its value where the fall starts, and by at least `floor` x P_max (so that the
-// noise of a near-zero load is not one); one drop per such fall (the search restarts after it).
-std::vector<LoadDrop> loadDrops(const std::vector<CurveSample>& c, std::size_t peak, double fraction, double floor,
-                                double window) {
+// Sudden drops after sample `peak` (slip events): within a travel `window`, the load falls by at
+// least `fraction` of its value where the fall starts, and by at least `floor` x `peakLoad` (so
+// that the noise of a near-zero load is not one); one drop per such fall (the search restarts
+// after it).
+std::vector<LoadDrop> loadDrops(const std::vector<CurveSample>& c, std::size_t peak, double peakLoad, double fraction,
+                                double floor, double window) {
   std::vector<LoadDrop> drops;
   std::size_t from = peak;
   for (std::size_t i = peak + 1; i < c.size(); ++i) {
@@ -33,7 +34,7 @@ std::vector<LoadDrop> loadDrops(const std::vector<CurveSample>& c, std::size_t p
     std::size_t top = from;
     for (std::size_t k = from; k <= i; ++k)
       if (c[k].load > c[top].load) top = k;
-    if (c[top].load - c[i].load < std::max(fraction * c[top].load, floor * c[peak].load)) continue;
+    if (c[top].load - c[i].load < std::max(fraction * c[top].load, floor * peakLoad)) continue;
     // Follow the fall to its bottom, then look for the next one from there.
     while (i + 1 < c.size() && c[i + 1].load < c[i].load) ++i;
     drops.push_back({c[top].delta, c[top].load, c[i].load});
@@ -90,12 +91,14 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
       deepest = c[i].delta;
       envelope.push_back(i);
     }
+  // From the peak on: the envelope's samples after it (the peak itself when it is one of them).
   const std::size_t peakOnEnvelope = static_cast<std::size_t>(
-      std::lower_bound(envelope.begin(), envelope.end(), peak) - envelope.begin());  // the first at or after the peak
+      std::lower_bound(envelope.begin(), envelope.end(), peak) - envelope.begin());
+  const std::size_t afterPeak = peakOnEnvelope + (peakOnEnvelope < envelope.size() && envelope[peakOnEnvelope] == peak ? 1 : 0);
 
   // Failure deflection: the load first below the fraction of P_max after the peak.
   std::size_t failure = c.size() - 1;
-  for (std::size_t k = peakOnEnvelope + 1; k < envelope.size(); ++k)
+  for (std::size_t k = afterPeak; k < envelope.size(); ++k)
     if (const std::size_t i = envelope[k]; c[i].load < settings.failureLoadFraction * r.peakLoad) {
       failure = i;
       r.failureDeflection = c[i].delta;
@@ -105,7 +108,7 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
 
   // Ultimate deflection: after the peak, where the load falls below 1 % of the peak for good.
   std::size_t last = envelope.back();
-  for (std::size_t k = envelope.size(); k-- > peakOnEnvelope;)
+  for (std::size_t k = envelope.size(); k-- > std::min(peakOnEnvelope, envelope.size() - 1);)
     if (c[envelope[k]].load > 0.01 * r.peakLoad) {
       last = envelope[std::min(k + 1, envelope.size() - 1)];
       break;
@@ -116,7 +119,7 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   r.energyToEnd = areaUpTo(c, c.size() - 1);
   std::vector<CurveSample> loading;
   for (std::size_t i : envelope) loading.push_back(c[i]);
-  r.drops = loadDrops(loading, std::min(peakOnEnvelope, loading.size() - 1), 0.1, 0.02, 0.05 * record.thickness);
+  r.drops = loadDrops(loading, std::min(peakOnEnvelope, loading.size() - 1), r.peakLoad, 0.1, 0.02, 0.05 * record.thickness);
   r.end = c.back();
 
   // Quasi-static check before the peak, once the indenter has done 1 % of its work up to the peak
