@@ -40,12 +40,8 @@ void startLoading(World& world, const Bundle& bundle, const Scene& scene, Indent
   const Eigen::Vector2d at = bodies.position[record.target].head<2>() + load.offset;
   record.targetName = bodies.name[record.target];
   // h: the settled block's extent along the loading direction (z), from its mesh as posed.
-  double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
-  for (const auto& v : bundle.shapes[bodies.shape[record.target]].mesh.vertices) {
-    const double z = (bodies.orientation[record.target] * v + bodies.position[record.target]).z();
-    top = std::max(top, z);
-    bottom = std::min(bottom, z);
-  }
+  const auto [bottom, top] =
+      heightRange(bundle.shapes[bodies.shape[record.target]].mesh, bodies.orientation[record.target], bodies.position[record.target]);
   record.thickness = top - bottom;
   record.deltaMax = scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * record.thickness;
   SphereObstacle indenter;

@@ -1,6 +1,7 @@
 // Where the indenter comes down (docs/scene.md, [indenter]).
 #include "run/load_point.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -9,6 +10,17 @@
 #include <string>
 
 namespace tessera {
+
+std::pair<double, double> heightRange(const TriangleMesh& mesh, const Eigen::Quaterniond& orientation,
+                                      const Eigen::Vector3d& position) {
+  double bottom = std::numeric_limits<double>::infinity(), top = -bottom;
+  for (const Eigen::Vector3d& v : mesh.vertices) {
+    const double z = (orientation * v + position).z();
+    bottom = std::min(bottom, z);
+    top = std::max(top, z);
+  }
+  return {bottom, top};
+}
 
 namespace {
 

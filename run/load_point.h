@@ -2,7 +2,14 @@
 #include "levelset/bundle.h"
 #include "run/scene.h"
 
+#include <utility>
+
 namespace tessera {
+
+/// m, the bottom and top (along z, the loading direction) of a mesh posed at (orientation,
+/// position): a body's thickness h is their difference.
+std::pair<double, double> heightRange(const TriangleMesh& mesh, const Eigen::Quaterniond& orientation,
+                                      const Eigen::Vector3d& position);
 
 /// Where the indenter comes down, decided once from the bundle's poses, before any work (so a
 /// resumed run loads the same body): the body it loads and the plan offset (x, y) from that body's

@@ -17,7 +17,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
+#include <sstream>
 
 namespace tessera {
 
@@ -43,48 +45,36 @@ bool derivedScene(const CheckpointSource& source) { return textDigest(source.sce
 
 std::string keptScenePath(const std::string& output) { return (fs::path(output) / "scene.toml").string(); }
 
-// m, the loaded block's extent along z as the bundle places it (its thickness h before settling).
-double loadedThickness(const Bundle& bundle, const IndenterSettings& indenter) {
-  const Body& body = bundle.bodies[chooseLoadPoint(bundle, indenter).body];
-  double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& v : bundle.shapes[body.shape].mesh.vertices) {
-    const double z = (body.orientation * v + body.position).z();
-    top = std::max(top, z);
-    bottom = std::min(bottom, z);
-  }
-  return top - bottom;
-}
-
-std::string formatted(const char* format, double a, double b = 0, double c = 0, double d = 0) {
-  char text[256];
-  std::snprintf(text, sizeof text, format, a, b, c, d);
-  return text;
-}
-
 // Lengths and a speed given in SI units, against the slab they are for: an indenter radius or a
-// delta_max outside the range their ratios allow (1e-3 to 100 times the loaded block's
-// thickness h), or an indenter speed that moves it more than a tenth of the broad-phase margin a
-// time step (its contacts would be found late; the cap a sample hook's steering has), is almost
-// always a value in mm or mm/s. Refused before any work, naming the value and the fix.
+// delta_max outside the range their ratios allow (1e-3 to 100 times the loaded block's thickness
+// h, as the bundle places it), or an indenter speed that moves it more than a tenth of the
+// broad-phase margin a time step (its contacts would be found late; the cap a sample hook's
+// steering has), is almost always a value in mm or mm/s. Refused before a run starts, naming the
+// value and the fix (a resumed run keeps what it started with).
 void checkValuesAgainstSlab(const Scene& scene, const Bundle& bundle, const World& world) {
-  const double h = loadedThickness(bundle, scene.indenter);
+  const Body& loaded = bundle.bodies[chooseLoadPoint(bundle, scene.indenter).body];
+  const auto [bottom, top] = heightRange(bundle.shapes[loaded.shape].mesh, loaded.orientation, loaded.position);
+  const double h = top - bottom;
   const auto length = [&](const std::string& key, double value, const std::string& ratioKey) {
     if (value <= 0 || (value >= 1e-3 * h && value <= 100 * h)) return;
-    throw InputError(scene.path + ": " + key +
-                     formatted(" = %g m is %.3g x the loaded block's thickness h = %.4g mm (the range is 0.001 to 100 h); ", value,
-                               value / h, h * 1e3) +
-                     formatted("lengths are in m (%g mm is %g m), ", value, value * 1e-3) + "or set it to 0 for " + ratioKey + " x h");
+    std::ostringstream m;
+    m << scene.path << ": " << key << " = " << value << " m is " << std::setprecision(3) << value / h
+      << " x the loaded block's thickness h = " << std::setprecision(4) << h * 1e3 << " mm (the range is 0.001 to 100 h); ";
+    if (value > 100 * h) m << "lengths are in m (" << value << " mm is " << value * 1e-3 << " m), or ";
+    m << "set it to 0 for " << ratioKey << " x h";
+    throw InputError(m.str());
   };
   length("indenter.radius", scene.indenter.radius, "indenter.radius_ratio");
   length("protocol.delta_max", scene.protocol.deltaMax, "protocol.delta_max_ratio");
-  const double fastest = 0.1 * world.settings().broadPhaseMargin / world.timeStep();
-  if (scene.indenter.speed > fastest)
-    throw InputError(scene.path + ": indenter.speed" +
-                     formatted(" = %g m/s moves the indenter %.3g um a time step, more than a tenth of the broad-phase margin "
-                               "(%.3g um), so its contacts would be found late; speeds are in m/s (%g mm/s is ",
-                               scene.indenter.speed, scene.indenter.speed * world.timeStep() * 1e6,
-                               world.settings().broadPhaseMargin * 1e6, scene.indenter.speed) +
-                     formatted("%g m/s), at most %.3g m/s here, or set it to 0 for the automatic speed", scene.indenter.speed * 1e-3, fastest));
+  const double speed = scene.indenter.speed, margin = world.settings().broadPhaseMargin, fastest = 0.1 * margin / world.timeStep();
+  if (speed > fastest) {
+    std::ostringstream m;
+    m << std::setprecision(3) << scene.path << ": indenter.speed = " << speed << " m/s moves the indenter "
+      << speed * world.timeStep() * 1e6 << " um a time step, more than a tenth of the broad-phase margin (" << margin * 1e6
+      << " um), so its contacts would be found late; speeds are in m/s (" << speed << " mm/s is " << speed * 1e-3
+      << " m/s), at most " << fastest << " m/s here, or set it to 0 for the automatic speed";
+    throw InputError(m.str());
+  }
 }
 
 }  // namespace
@@ -193,7 +183,10 @@ std::unique_ptr<RunSession> RunSession::start(const RunRequest& request, const R
                                             : fs::path(source.bundle).lexically_relative(fs::absolute(s.output_).lexically_normal()).string();
   source.bundleDigest = fs::exists(bundleFile(s.scene_.bundle)) ? fileDigest(bundleFile(s.scene_.bundle)) : "";
   source.threads = s.scene_.solver.threads;
-  s.namedForUser(s.scene_.path, [&] { s.prepare(log); });
+  s.namedForUser(s.scene_.path, [&] {
+    s.prepare(log);
+    checkValuesAgainstSlab(s.scene_, s.bundle_, *s.world_);
+  });
   if (!s.output_.empty()) {
     s.lock_ = std::make_unique<FolderLock>(s.output_, "a run");  // after every check: a refused run leaves no folder
     if (fs::exists(checkpointFile(s.output_)))
@@ -277,7 +270,6 @@ void RunSession::prepare(const RunLog& log) {
   } catch (const std::invalid_argument& e) {
     throw InputError(scene_.path + ": " + e.what());
   }
-  checkValuesAgainstSlab(scene_, bundle_, *world_);
 }
 
 ResponseParameters RunSession::response() const {
