@@ -24,7 +24,8 @@ SlabPlan gridSlabPlan(const std::string& block, const std::string& unit, const S
   MeshImportOptions import;
   import.metresPerUnit = m;
   std::vector<Eigen::Vector3d> vertices = importMesh(block, import).mesh.vertices;
-  for (Eigen::Vector3d& v : vertices) v = rotationToZUp(up) * v;
+  const Eigen::Matrix3d toZUp = rotationToZUp(up);
+  for (Eigen::Vector3d& v : vertices) v = toZUp * v;
   const Eigen::AlignedBox3d box = boundingBox(vertices);
   const Eigen::Vector3d centre(box.center().x(), box.center().y(), 0.0);
   if (centre.norm() > 1e-9 * box.diagonal().norm()) {

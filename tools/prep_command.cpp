@@ -76,7 +76,9 @@ void addPrepCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--band", args->band, "Exterior band (and grid padding) outside the surface, voxels")
       ->capture_default_str();
-  cmd->add_option("--up", args->up, "The mesh's up axis (x, y or z), turned into +z (the slab's thickness)")->capture_default_str();
+  cmd->add_option("--up", args->up, "The mesh's up axis (x, y or z), turned into +z (the slab's thickness)")
+      ->check(CLI::IsMember({"x", "y", "z"}))
+      ->capture_default_str();
   cmd->add_option("--name", args->name, "Shape name in the bundle [default: the mesh file name without extension]");
   cmd->add_flag("--replace", args->replace, "Replace a shape of the same name already in the bundle");
   cmd->footer("Example: tessera prep block.stl --unit mm -o out/slab\n"

@@ -29,9 +29,10 @@ int main(int argc, char** argv) {
     // (docs: exit codes).
     if (e.get_exit_code() == 0) return app.exit(e);
     const bool number = dynamic_cast<const CLI::ConversionError*>(&e) != nullptr;
-    std::cerr << "tessera: error: " << e.what()
-              << (number ? "; give a plain number (lengths in the unit of --unit, other values in SI units)" : "")
-              << "; see tessera COMMAND --help\n";
+    std::string command = "COMMAND";
+    for (const CLI::App* sub : app.get_subcommands()) command = sub->get_name();
+    std::cerr << "tessera: error: " << e.what() << (number ? "; give a plain number, without a unit" : "") << "; see tessera "
+              << command << " --help\n";
     return 2;
   } catch (const tessera::InputError& e) {
     std::cerr << "tessera: error: " << e.what() << "\n";

@@ -113,7 +113,9 @@ void addTileCommand(CLI::App& app) {
   cmd->add_option("--block", args->block, "Block mesh (STL/OBJ) for the built-in square tessellation");
   cmd->add_option("--layout", args->layout, "Layout file (JSON, docs/tiling.md) of arbitrary placements, instead of --block");
   cmd->add_option("--unit", args->unit, "Length unit of the mesh and of every length given: m, cm, mm, um, in, ft");
-  cmd->add_option("--up", args->up, "The meshes' up axis (x, y or z), turned into +z (the slab's thickness)")->capture_default_str();
+  cmd->add_option("--up", args->up, "The meshes' up axis (x, y or z), turned into +z (the slab's thickness)")
+      ->check(CLI::IsMember({"x", "y", "z"}))
+      ->capture_default_str();
   cmd->add_option("--grid", args->grid, "Square tessellation: columns x rows")->capture_default_str();
   cmd->add_option("--pitch", args->pitch, "Centre-to-centre distance of neighbouring blocks, in --unit");
   cmd->add_option("--fix", args->fix, "Fixed blocks of the square tessellation: perimeter (outer ring) or none")

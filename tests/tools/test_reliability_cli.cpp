@@ -75,7 +75,8 @@ TEST_CASE("reliability 10: command-line mistakes exit 2, help exits 0") {
   const test::CliResult notANumber = test::runTessera("tile --block x.obj --unit mm --pitch 20mm -o y");
   REQUIRE(notANumber.status == 2);
   // One line: what was wrong, and how to give it.
-  REQUIRE_THAT(notANumber.err, Contains("tessera: error: ") && Contains("--pitch") && Contains("give a plain number"));
+  REQUIRE_THAT(notANumber.err, Contains("tessera: error: ") && Contains("--pitch") && Contains("give a plain number") &&
+                                   Contains("see tessera tile --help"));
   REQUIRE(std::count(notANumber.err.begin(), notANumber.err.end(), '\n') == 1);
   REQUIRE(test::runTessera("run --help").status == 0);
   REQUIRE(test::runTessera("--version").status == 0);
