@@ -1,5 +1,6 @@
 #include "io/safe_write.h"
 
+#include "io/file_digest.h"
 #include "io/input_error.h"
 
 #include <cerrno>
@@ -28,12 +29,13 @@ int syncPath(const fs::path& path, int flags) {
   return status;
 }
 
-// This machine's name: a temporary carries it with its writer's pid (.tmp-<pid>@<host>@<name>),
-// because on a folder shared between machines (a cluster's file system) a pid means something
-// only on the machine that wrote it.
+// This machine, as 8 hex digits of its name's digest: a temporary carries it with its writer's
+// pid (.tmp-<pid>@<host>@<name>), because on a folder shared between machines (a cluster's file
+// system) a pid means something only on the machine that wrote it. (The digest, not the name: a
+// host name of up to 64 characters would leave a long file name no room.)
 std::string thisHost() {
   char host[256] = {};
-  return ::gethostname(host, sizeof host - 1) == 0 && host[0] != '\0' ? host : "localhost";
+  return textDigest(::gethostname(host, sizeof host - 1) == 0 && host[0] != '\0' ? host : "localhost").substr(0, 8);
 }
 
 bool diskFull(int error) { return error == ENOSPC || error == EDQUOT || error == EFBIG; }

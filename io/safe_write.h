@@ -6,8 +6,8 @@
 namespace tessera {
 
 /// Writes `target` so that it is either the complete new file or the previous one, never a part:
-///  1. `write` fills a temporary sibling, .tmp-<pid>@<host>@<name> (the pid and the machine's name keep
-///     concurrent writers apart, also on a folder shared between machines);
+///  1. `write` fills a temporary sibling, .tmp-<pid>@<host>@<name> (the pid and 8 hex digits of the
+///     machine name's digest keep concurrent writers apart, also on a folder shared between machines);
 ///  2. `verify`, if given, reads the temporary back (a writer that does not report its own errors,
 ///     such as a library's, is caught here);
 ///  3. the temporary is synced to disk (a full disk can first show up here), renamed over `target`,
