@@ -359,7 +359,7 @@ CheckpointSource readCheckpointSource(const std::string& path) {
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
-    throw InputError(path + ": corrupt checkpoint (" + e.what() + "); start the run again from its scene in a new folder");
+    throw InputError(path + ": corrupt checkpoint (" + e.what() + "); " + kUnreadableCheckpointFix);
   }
 }
 
@@ -375,7 +375,7 @@ void readCheckpoint(const std::string& path, WorldState& world, IndentationState
     if (state.sphere < -1 || state.sphere >= static_cast<int>(world.spheres.size()) || (state.phase > 0 && state.sphere < 0))
       throw std::runtime_error("the indenter's index is out of range");
   } catch (const std::exception& e) {
-    throw InputError(path + ": cannot resume from this checkpoint (" + e.what() + "); start the run again from its scene in a new folder");
+    throw InputError(path + ": cannot resume from this checkpoint (" + e.what() + "); " + kUnreadableCheckpointFix);
   }
 }
 

@@ -25,6 +25,10 @@ struct CheckpointSource {
 void writeCheckpoint(const std::string& path, const CheckpointSource& source, const WorldState& world,
                      const IndentationState& state, const IndentationRecord& record);
 
+/// What a message about an unreadable checkpoint says to do.
+inline constexpr const char* kUnreadableCheckpointFix =
+    "start the run again from its scene in a new folder (a sweep's case: remove its run folder and run the sweep again)";
+
 /// Reads the source of a checkpoint (to rebuild the World and read the scene).
 CheckpointSource readCheckpointSource(const std::string& path);
 

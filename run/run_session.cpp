@@ -243,7 +243,7 @@ std::unique_ptr<RunSession> RunSession::resume(const std::string& folder, const 
   try {
     s.world_->restore(restored);
   } catch (const std::invalid_argument& e) {
-    throw InputError(checkpointFile(folder) + ": corrupt checkpoint (" + e.what() + "); start the run again from its scene in a new folder");
+    throw InputError(checkpointFile(folder) + ": corrupt checkpoint (" + e.what() + "); " + kUnreadableCheckpointFix);
   }
   return session;
 }
