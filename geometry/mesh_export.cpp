@@ -8,7 +8,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 namespace tessera {
@@ -24,7 +23,25 @@ MeshFileFormat meshFormatFromPath(const std::string& path) {
 }
 
 void writeMesh(const TriangleMesh& mesh, const std::string& path, MeshFileFormat format, double metresPerUnit) {
-  // aiScene's destructor frees what it owns, so build it with new[] as assimp expects.
+  if (format == MeshFileFormat::Obj) {
+    // Written here, not by assimp: its OBJ exporter (5.2) rounds every coordinate to float and
+    // writes normals of its own making for a mesh that has none (a planar block's top face got
+    // (-0.996, 0, -0.087)). OBJ's v/f lines are the whole format. (Reading is still assimp's,
+    // in float: tessera's own import keeps 7 digits; other readers get all 17.)
+    std::string text = "# tessera\n";
+    char line[128];
+    for (const Eigen::Vector3d& v : mesh.vertices) {
+      const Eigen::Vector3d p = v / metresPerUnit;
+      std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+      text += line;
+    }
+    for (const auto& t : mesh.triangles)
+      text += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+    writeTextFileSafely(fs::path(path), text);
+    return;
+  }
+  // STL (single precision by its format): by assimp. aiScene's destructor frees what it owns, so
+  // build it with new[] as assimp expects.
   aiScene scene;
   scene.mRootNode = new aiNode();
   scene.mRootNode->mNumMeshes = 1;
@@ -48,26 +65,6 @@ void writeMesh(const TriangleMesh& mesh, const std::string& path, MeshFileFormat
     out->mFaces[f].mNumIndices = 3;
     out->mFaces[f].mIndices = new unsigned[3];
     for (int k = 0; k < 3; ++k) out->mFaces[f].mIndices[k] = static_cast<unsigned>(mesh.triangles[f][k]);
-  }
-
-  if (format == MeshFileFormat::Obj) {
-    // Written here, not by assimp: its OBJ exporter (5.2) rounds every coordinate to float (a block
-    // in metres then moves by 1e-10 m, as much as a settled contact's penetration) and writes
-    // normals of its own making for a mesh that has none. OBJ's v/f lines are the whole format.
-    writeFileSafely(fs::path(path), [&](const fs::path& temporary) {
-      std::ofstream file(temporary, std::ios::binary);
-      file << "# tessera\n";
-      char line[128];
-      for (const Eigen::Vector3d& v : mesh.vertices) {
-        const Eigen::Vector3d p = v / metresPerUnit;
-        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
-        file << line;
-      }
-      for (const auto& t : mesh.triangles) file << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
-      file.close();
-      if (!file) throw std::runtime_error("short write");
-    });
-    return;
   }
   const char* formatId = format == MeshFileFormat::StlAscii ? "stl" : "stlb";
   writeFileSafely(fs::path(path), [&](const fs::path& temporary) {

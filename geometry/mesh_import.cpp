@@ -67,8 +67,8 @@ ImportedMesh importMesh(const std::string& path, const MeshImportOptions& option
     char span[32];
     std::snprintf(span, sizeof span, "%.3g", diagonal / options.metresPerUnit);
     throw InputError(path + ": " + std::to_string(out.weld.collapsedTriangles) + " of its " + std::to_string(read) +
-                     " triangles collapsed when vertices within 1e-6 of its size were welded (it spans " + span +
-                     " units): its coordinates look damaged; check the file");
+                     " triangles collapsed when nearby vertices were welded (it spans " + span +
+                     " units of the file): its coordinates look damaged; check the file");
   }
   return out;
 }

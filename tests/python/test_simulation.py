@@ -136,6 +136,8 @@ def test_tile_turns_a_y_up_block_to_z_up(tmp_path):
     up = tessera.tile(str(tmp_path / "yup.obj"), "mm", str(tmp_path / "up"), up="y", **kw)
     z = tessera.tile(BLOCK, "mm", str(tmp_path / "z"), **kw)
     assert up["interlocked"] == z["interlocked"] == 1
+    a, b = tessera.read_bundle(str(tmp_path / "up")), tessera.read_bundle(str(tmp_path / "z"))
+    assert np.abs(np.asarray(a["position"]) - np.asarray(b["position"])).max() < 1e-12
 
 
 def test_results_file_states_units_scene_and_contact_split(cli_run):
