@@ -9,7 +9,7 @@ Eigen::Matrix3d rotationToZUp(const std::string& up) {
   if (up == "z") r.setIdentity();
   else if (up == "y") r << 1, 0, 0, 0, 0, -1, 0, 1, 0;   // (x, y, z) -> (x, -z, y)
   else if (up == "x") r << 0, 0, -1, 0, 1, 0, 1, 0, 0;   // (x, y, z) -> (-z, y, x)
-  else throw InputError("--up '" + up + "': give the file's up axis as x, y or z");
+  else throw InputError("up axis '" + up + "': give the file's up axis as x, y or z");
   return r;
 }
 

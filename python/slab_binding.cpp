@@ -106,9 +106,9 @@ void bindSlabs(py::module_& m) {
   m.def(
       "prep",
       [](const std::string& mesh, const std::string& unit, const std::string& output, const std::string& name,
-         std::optional<double> voxel, std::optional<double> spacing, double edgeSpacing, bool replace) {
+         std::optional<double> voxel, std::optional<double> spacing, double edgeSpacing, bool replace, const std::string& up) {
         PrepLog log;
-        const Shape s = prepareIntoBundle({mesh, unit, name, resolution(voxel, spacing, edgeSpacing), ShapeLimits{}},
+        const Shape s = prepareIntoBundle({mesh, unit, name, resolution(voxel, spacing, edgeSpacing), ShapeLimits{}, up},
                                           output, replace, log);
         py::dict d;
         d["name"] = s.name;
@@ -125,7 +125,7 @@ void bindSlabs(py::module_& m) {
       },
       py::arg("mesh"), py::arg("unit"), py::arg("output"), py::arg("name") = "", py::arg("voxel") = py::none(),
       py::arg("spacing") = py::none(), py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction,
-      py::arg("replace") = false,
+      py::arg("replace") = false, py::arg("up") = "z",
       "A block mesh (STL/OBJ, its length unit given) validated and prepared as a shape, added to the bundle "
       "in `output` (as `tessera prep`); voxel and node spacing in m, edge_spacing the node spacing along sharp edges "
       "as a fraction of it (1: uniform). Returns its volume (m^3), area (m^2), nodes.");
@@ -156,11 +156,13 @@ void bindSlabs(py::module_& m) {
   m.def(
       "tile_layout",
       [](const std::string& layout, const std::string& output, std::optional<double> voxel, std::optional<double> spacing,
-         double edgeSpacing, bool replace) {
-        return tileAndWrite(layoutSlabPlan(layout, 10000), output, resolution(voxel, spacing, edgeSpacing), 0.0, replace);
+         double edgeSpacing, bool replace, const std::string& up) {
+        SlabPlan plan = layoutSlabPlan(layout, 10000);
+        plan.up = up;
+        return tileAndWrite(plan, output, resolution(voxel, spacing, edgeSpacing), 0.0, replace);
       },
       py::arg("layout"), py::arg("output"), py::arg("voxel") = py::none(), py::arg("spacing") = py::none(),
-      py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false, "A slab bundle from a layout file (docs/tiling.md), as `tessera tile --layout`.");
+      py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false, py::arg("up") = "z", "A slab bundle from a layout file (docs/tiling.md), as `tessera tile --layout`.");
   m.def("read_bundle", &bundleOf, py::arg("path"),
         "A bundle's bodies: names, shape, position (n, 3) m, orientation (n, 4) (w, x, y, z), fixed; its span.");
 }

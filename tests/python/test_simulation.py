@@ -138,6 +138,12 @@ def test_tile_turns_a_y_up_block_to_z_up(tmp_path):
     assert up["interlocked"] == z["interlocked"] == 1
     a, b = tessera.read_bundle(str(tmp_path / "up")), tessera.read_bundle(str(tmp_path / "z"))
     assert np.abs(np.asarray(a["position"]) - np.asarray(b["position"])).max() < 1e-12
+    # prep takes up= too (what it changes, the shape's frame, is what the tiling above checks);
+    # an axis that is none is refused.
+    shape = tessera.prep(str(tmp_path / "yup.obj"), "mm", str(tmp_path / "shapes"), up="y", spacing=1e-3)
+    assert shape["volume"] == pytest.approx(tessera.prep(BLOCK, "mm", str(tmp_path / "shapes_z"), spacing=1e-3)["volume"], rel=1e-9)
+    with pytest.raises(ValueError, match="up axis 'q'"):
+        tessera.prep(BLOCK, "mm", str(tmp_path / "bad"), up="q")
 
 
 def test_results_file_states_units_scene_and_contact_split(cli_run):

@@ -94,7 +94,7 @@ TEST_CASE("assemble refuses bad input in one line with the file, the problem and
       {parts + " --unit m --up y", "no body is fixed"},
       {parts + frame + " --unit mm --up y", "check --unit"},
       {parts + frame + " --unit m --up y --max-memory 0.001", "above the budget"},
-      {parts + frame + " --unit m --up w", "--up 'w'"},
+      {parts + frame + " --unit m --up w", "up axis 'w'"},
   };
   for (const auto& c : cases) {
     const test::CliResult r = test::runTessera("assemble " + c.arguments + " -o " + quoted(dir / "out"));
