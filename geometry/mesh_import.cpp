@@ -1,5 +1,6 @@
 #include "geometry/mesh_import.h"
 
+#include "geometry/up_axis.h"
 #include "io/input_error.h"
 
 #include <assimp/Importer.hpp>
@@ -15,6 +16,7 @@ namespace tessera {
 namespace fs = std::filesystem;
 
 ImportedMesh importMesh(const std::string& path, const MeshImportOptions& options) {
+  const Eigen::Matrix3d toZUp = rotationToZUp(options.up);
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path + ": no such file; check the path");
   if (!fs::is_regular_file(path, ec)) throw InputError(path + ": not a regular file; give a mesh file (STL or OBJ)");
@@ -70,6 +72,8 @@ ImportedMesh importMesh(const std::string& path, const MeshImportOptions& option
                      " triangles collapsed when nearby vertices were welded (it spans " + span +
                      " units of the file): its coordinates look damaged; check the file");
   }
+  if (options.up != "z")
+    for (Eigen::Vector3d& v : out.mesh.vertices) v = toZUp * v;
   return out;
 }
 

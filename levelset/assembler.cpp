@@ -5,7 +5,6 @@
 #include "geometry/mass_properties.h"
 #include "geometry/mesh_import.h"
 #include "geometry/mesh_pieces.h"
-#include "geometry/up_axis.h"
 #include "levelset/assembly.h"
 
 #include <Eigen/SVD>
@@ -33,9 +32,8 @@ struct Piece {
 std::vector<Piece> readPieces(const std::string& file, const AssembleOptions& options, bool fixed) {
   MeshImportOptions import;
   import.metresPerUnit = parseLengthUnit(options.unit).metres;
+  import.up = options.up;
   ImportedMesh imported = importMesh(file, import);
-  const Eigen::Matrix3d up = rotationToZUp(options.up);
-  for (auto& v : imported.mesh.vertices) v = up * v;
   std::vector<TriangleMesh> meshes = splitPieces(imported.mesh);
   std::vector<Piece> pieces;
   const std::string stem = shapeNameFromPath(file);

@@ -4,7 +4,6 @@
 #include "geometry/length_unit.h"
 #include "geometry/mesh_features.h"
 #include "geometry/mesh_import.h"
-#include "geometry/up_axis.h"
 #include "geometry/mesh_validation.h"
 #include "levelset/signed_distance.h"
 
@@ -147,11 +146,10 @@ Shape prepareShapeFromFile(const std::string& path, const std::string& unitName,
                            const ShapeResolution& resolution, PrepLog& log, const ShapeLimits& limits,
                            const std::string& up) {
   const LengthUnit unit = parseLengthUnit(unitName);
-  const Eigen::Matrix3d toZUp = rotationToZUp(up);
   MeshImportOptions importOptions;
   importOptions.metresPerUnit = unit.metres;
+  importOptions.up = up;
   ImportedMesh imported = importMesh(path, importOptions);
-  for (Eigen::Vector3d& v : imported.mesh.vertices) v = toZUp * v;
   if (imported.weld.mergedVertices > 0)
     log.notes.push_back("welded " + std::to_string(imported.weld.mergedVertices) + " duplicate vertices (" +
                         std::to_string(imported.fileVertices) + " -> " + std::to_string(imported.mesh.vertices.size()) + ")");

@@ -2,7 +2,6 @@
 
 #include "geometry/length_unit.h"
 #include "geometry/mesh_import.h"
-#include "geometry/up_axis.h"
 #include "io/input_error.h"
 #include "levelset/shape_builder.h"
 
@@ -23,10 +22,8 @@ SlabPlan gridSlabPlan(const std::string& block, const std::string& unit, const S
   plan.placements = squareGrid(grid, shape.key);
   MeshImportOptions import;
   import.metresPerUnit = m;
-  std::vector<Eigen::Vector3d> vertices = importMesh(block, import).mesh.vertices;
-  const Eigen::Matrix3d toZUp = rotationToZUp(up);
-  for (Eigen::Vector3d& v : vertices) v = toZUp * v;
-  const Eigen::AlignedBox3d box = boundingBox(vertices);
+  import.up = up;
+  const Eigen::AlignedBox3d box = boundingBox(importMesh(block, import).mesh.vertices);
   const Eigen::Vector3d centre(box.center().x(), box.center().y(), 0.0);
   if (centre.norm() > 1e-9 * box.diagonal().norm()) {
     for (Placement& p : plan.placements) p.translation -= p.rotation * centre;

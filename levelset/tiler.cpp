@@ -12,6 +12,7 @@ Bundle tileAssembly(const std::vector<LayoutShape>& shapes, const std::vector<Pl
                     const ShapeLimits& limits, const std::string& meshUp) {
   Bundle bundle;
   bundle.generator = generatorVersion();
+  bundle.sourceUp = meshUp;
   std::map<std::string, int> index;
   std::map<std::string, Bundle> sourceBundles;  // each source bundle read once
   for (const LayoutShape& s : shapes) {

@@ -9,8 +9,8 @@
 namespace tessera {
 
 /// Builds the bundle of an assembly: each distinct shape prepared once (from its mesh file, in
-/// `meshUnit` with its up axis `meshUp` turned into +z, at `resolution` unless the shape overrides
-/// it) or copied from an existing bundle,
+/// `meshUnit` with its up axis `meshUp` turned into +z, recorded as the bundle's sourceUp, at
+/// `resolution` unless the shape overrides it) or copied from an existing bundle,
 /// and one body per placement, posed by placeBody. Throws InputError for a placement naming an
 /// unknown shape or a shape that cannot be prepared.
 Bundle tileAssembly(const std::vector<LayoutShape>& shapes, const std::vector<Placement>& placements,

@@ -42,7 +42,6 @@ py::dict tileAndWrite(const SlabPlan& plan, const std::string& output, const Sha
   checkBundleOutput(output, replace);
   PrepLog log;
   Bundle bundle = tileAssembly(plan.shapes, plan.placements, plan.unit, r, log, {}, plan.up);
-  bundle.sourceUp = plan.up;
   bundle.spanLength = plan.spanLength;
   bundle.spanInterfaces = plan.spanInterfaces;
   const AssemblySummary summary =

@@ -290,8 +290,8 @@ void RunSession::writeOutputs() const {
 bool RunSession::finishedAndWritten() const {
   if (!resumed_ || !record_.finished()) return false;
   try {
-    const nlohmann::json summary = nlohmann::json::parse(readText((fs::path(output_) / "summary.json").string()));
-    return summary.at("stop_reason").get<std::string>() == record_.stopReason;
+    std::ifstream file(fs::path(output_) / "summary.json");
+    return nlohmann::json::parse(file).at("stop_reason").get<std::string>() == record_.stopReason;
   } catch (const std::exception&) {
     return false;  // missing or unreadable: written again by the resumed run
   }

@@ -83,7 +83,6 @@ void runTile(const TileArguments& a) {
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "tile: " << m << "\n"; };
   Bundle bundle = tileAssembly(plan.shapes, plan.placements, unitName, resolution, log, shapeLimits(a.resolution), plan.up);
-  bundle.sourceUp = plan.up;
   bundle.spanLength = plan.spanLength;
   bundle.spanInterfaces = plan.spanInterfaces;
 
