@@ -208,6 +208,17 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   solver.number("broad_phase_margin", scene.solver.broadPhaseMargin, 0, 1, "m; 0 = 0.0063 x the thinnest block");
   solver.boolean("exact_convex_level_sets", scene.solver.exactConvexLevelSets);
   solver.boolean("exact_mesh_level_sets", scene.solver.exactMeshLevelSets);
+  std::string method = scene.solver.method == SolverMethod::Implicit ? "implicit" : "explicit";
+  solver.text("method", method);
+  if (method != "explicit" && method != "implicit")
+    throw InputError(path + ": solver.method must be \"explicit\" or \"implicit\", got \"" + method + "\"");
+  scene.solver.method = method == "implicit" ? SolverMethod::Implicit : SolverMethod::Explicit;
+  ImplicitSettings& implicit = scene.solver.implicit;
+  solver.number("implicit_tolerance", implicit.tolerance, 1e-14, 1e-2, "of the force scale");
+  solver.integer("implicit_max_iterations", implicit.maxIterations, 1, 1000);
+  solver.number("implicit_max_increment", implicit.maxIncrement, 0, 1e3, "s; 0 = 1e4 explicit automatic steps");
+  solver.number("implicit_max_travel", implicit.maxTravel, 0, 1, "m; 0 = implicit_max_travel_ratio x the thinnest block");
+  solver.number("implicit_max_travel_ratio", implicit.maxTravelRatio, 1e-6, 1, "of the thinnest block");
   solver.finish();
 
   Table resolution(path, "resolution", root["resolution"].as_table());

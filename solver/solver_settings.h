@@ -5,6 +5,26 @@
 
 namespace tessera {
 
+/// How a World advances (docs/physics.md): explicit velocity-Verlet steps bounded by the fastest
+/// contact mode, or implicit increments that find the bodies' balance of forces at their end
+/// (backward Euler; quasi-static where the increment is long against the bodies' periods).
+enum class SolverMethod { Explicit, Implicit };
+
+/// The implicit method's Newton iteration and increments (docs/physics.md, "Implicit method").
+struct ImplicitSettings {
+  /// Converged when every free body's force residual is below this x the force scale (the largest
+  /// weight or contact force sum of a body) and its torque residual below this x that scale x its
+  /// radius.
+  double tolerance = 1e-9;
+  int maxIterations = 25;  ///< Newton iterations before the increment is cut
+  /// s, the longest increment; 0: 1e4 x the explicit method's automatic step (quasi-static on a
+  /// slab of the paper's blocks: the inertia of an increment is 1e-3 of its contact forces).
+  double maxIncrement = 0.0;
+  /// m, the farthest an obstacle (the indenter) moves in one increment; 0: maxTravelRatio x the
+  /// thinnest block (10 um on the paper's block).
+  double maxTravel = 0.0;
+  double maxTravelRatio = 10e-6 / kPaperThickness;
+};
 
 /// How the solver integrates (docs/physics.md). Units in the comments.
 struct SolverSettings {
@@ -38,6 +58,8 @@ struct SolverSettings {
   /// the surface (the distance to the closest triangle, signed by pseudo-normals) instead of the
   /// grid; false leaves them the grid.
   bool exactMeshLevelSets = true;
+  SolverMethod method = SolverMethod::Explicit;
+  ImplicitSettings implicit;
 };
 
 }  // namespace tessera

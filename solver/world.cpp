@@ -1,10 +1,10 @@
 #include "solver/world.h"
 
 #include "solver/broad_phase.h"
+#include "solver/world_internals.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,11 +12,6 @@
 #include <limits>
 
 namespace tessera {
-
-struct World::ThreadArena {
-  tbb::task_arena arena;
-  explicit ThreadArena(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
-};
 
 namespace {
 
@@ -96,6 +91,7 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   if (settings.timeStep > 0 && omega > 0 && dt_ < 1e-4 * limit)
     throw std::invalid_argument(format("time step %.4g s is below 1e-4 of the stability estimate %.4g s: the run would "
                                        "take over 10 000 times the steps it needs; use 0 (automatic)", dt_, limit));
+  thinnest_ = thinnest;
   penetrationLimit_ = settings.maxPenetration > 0 ? settings.maxPenetration : 0.25 * thinnest;
   if (!(settings_.broadPhaseMargin > 0)) settings_.broadPhaseMargin = settings.broadPhaseMarginRatio * thinnest;
 
@@ -109,6 +105,12 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   state_.startPosition = state_.bodies.position;
   state_.retired.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) bodyRadius_.push_back(shapes_[state_.bodies.shape[i]].radius);
+  if (settings_.method == SolverMethod::Implicit) {
+    const ImplicitSettings& s = settings_.implicit;
+    if (!(s.tolerance > 0) || !(s.maxIterations > 0) || !(s.maxIncrement >= 0) || !(s.maxTravel >= 0) || !(s.maxTravelRatio > 0))
+      throw std::invalid_argument("implicit settings: tolerance, iterations and travel ratio must be positive, limits 0 or positive");
+    dt_ = implicitIncrementLimit();  // until the first increment
+  }
 }
 
 WorldState World::state() const { return state_; }
@@ -166,6 +168,9 @@ void World::checkState(const WorldState& s) const {
   for (double e : {s.initialEnergy, s.obstacleWork, s.friction, s.damping, s.retiredKinetic, s.projection, s.mostSupplied, s.time})
     if (!std::isfinite(e)) throw std::invalid_argument("an energy or the time is not finite");
   if (s.time < 0 || s.steps < 0) throw std::invalid_argument("a negative time or step count");
+  const ImplicitCounts& c = s.implicit;
+  if (!std::isfinite(c.increment) || c.increment < 0 || c.iterations < 0 || c.cutbacks < 0 || c.dynamicIncrements < 0)
+    throw std::invalid_argument("the implicit method's increment or counts are negative or not finite");
 }
 
 void World::restore(const WorldState& s) {
@@ -346,6 +351,11 @@ void World::evaluateForces() {
 // Velocity Verlet (kick-drift-kick) for translation; the rotation drift is the free-rotor
 // splitting of rotateFreely, with torque kicks in the body frame on either side (docs/physics.md).
 void World::step() {
+  if (settings_.method == SolverMethod::Implicit) return implicitStep();
+  explicitStep();
+}
+
+void World::explicitStep() {
   if (!state_.forcesValid) {
     evaluateForces();
     if (state_.steps == 0) {

@@ -38,6 +38,16 @@ struct EnergyBudget {
   }
 };
 
+/// What the implicit method has done (WorldState::implicit): increments are the World's steps.
+struct ImplicitCounts {
+  double increment = 0.0;  ///< s, the next increment's duration (0: the longest allowed)
+  long iterations = 0;     ///< Newton iterations, line-search trials not counted
+  long cutbacks = 0;       ///< increments cut to a quarter for want of convergence
+  /// Increments in which inertia carried more than 1 % of the force scale: where equilibrium was
+  /// lost (a slip, a block falling out) and the run went through the event with dynamics.
+  long dynamicIncrements = 0;
+};
+
 /// Everything a World changes as it runs: saved in checkpoints, restored to resume bit-identically.
 struct WorldState {
   RigidBodies bodies;
@@ -53,7 +63,8 @@ struct WorldState {
   std::vector<Eigen::Vector3d> startPosition;
   double initialEnergy = 0, obstacleWork = 0, friction = 0, damping = 0, retiredKinetic = 0, projection = 0, mostSupplied = 0,
          time = 0;
-  long steps = 0;
+  long steps = 0;  ///< explicit steps, or implicit increments
+  ImplicitCounts implicit;
 };
 
 /// An LS-DEM world: rigid bodies from a bundle, analytic obstacles, node-vs-level-set contacts,
@@ -84,8 +95,11 @@ public:
   /// body: its whole surface in sticking contact with bodies like itself moving the other way.
   double automaticTimeStep() const { return automaticDt_; }
 
-  /// Advances one step. Throws SolverInstability instead of producing garbage.
+  /// Advances one step (SolverSettings::method): an explicit time step, or an implicit increment
+  /// (the bodies' balance of forces at its end; timeStep() is then the last increment's duration).
+  /// Throws SolverInstability instead of producing garbage.
   void step();
+  const ImplicitCounts& implicitCounts() const { return state_.implicit; }
 
   /// The changing state, and its restoration into a World made from the same bundle and settings.
   /// restore() checks the state first (sizes, indices, finite values): std::invalid_argument
@@ -118,6 +132,14 @@ public:
 
 private:
   void evaluateForces();
+  void explicitStep();
+  // The implicit method (solver/implicit_increment.cpp).
+  struct ImplicitWork;
+  void implicitStep();
+  double implicitIncrementLimit() const;
+  bool solveIncrement(double dt, int& iterations);
+  double evaluateIncrement(double dt, bool withMatrix);
+  void commitIncrement(double dt, int iterations);
   void updatePairs();
   double candidateBand() const;
   void checkStability();
@@ -128,10 +150,11 @@ private:
   SolverSettings settings_;
   struct ThreadArena;
   std::unique_ptr<ThreadArena> arena_;  // the threads the contact loop runs on
+  std::unique_ptr<ImplicitWork> implicit_;  // the implicit method's scratch (derived, not state)
   BodyKinematics kinematics_;           // of state_.bodies at the last evaluation (derived, not state)
   Travel travel_;                       // of the bodies and spheres, to the last evaluation (derived, not state)
   std::vector<double> bodyRadius_;      // m, each body's ShapeModel::radius
-  double penetrationLimit_ = 0.0;
+  double penetrationLimit_ = 0.0, thinnest_ = 0.0;
   double dt_ = 0.0, automaticDt_ = 0.0;
 };
 

@@ -1,0 +1,336 @@
+// The implicit method (docs/physics.md, "Implicit method"): each increment of duration dt finds
+// the free bodies' poses at its end for which the forces balance, with backward Euler's inertia,
+//   F_c(q) + m g - m (dx / dt - v_0) / dt = 0,   T_c(q) - I_0 (dtheta / dt - omega_0) / dt = 0,
+// by Newton's method over six unknowns per free body (dx, and dtheta, the rotation vector of
+// q q_0^-1), the tangent assembled from each pair's contact stiffness (implicit_contacts.h) and
+// factorised sparse (Eigen's SparseLU), with a backtracking line search. Where the increment is
+// long against a body's periods the inertia terms vanish against the contact forces and the
+// balance is static; where no static balance exists (a block losing its support) they carry the
+// motion as backward-Euler dynamics. An increment that does not converge is cut to a quarter and
+// tried again from the same start; an easy one lets the next grow. Friction history, energies and
+// forces are committed only at a converged increment.
+#include "solver/world_internals.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace tessera {
+
+namespace {
+
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+// The rotation vector of q q0^-1 (angle x axis), rad.
+Eigen::Vector3d rotationBetween(const Eigen::Quaterniond& q, const Eigen::Quaterniond& q0) {
+  const Eigen::AngleAxisd turn(q * q0.conjugate());
+  return turn.angle() * turn.axis();
+}
+
+// q turned by the rotation vector theta (world), normalised.
+Eigen::Quaterniond turned(const Eigen::Quaterniond& q, const Eigen::Vector3d& theta) {
+  const double angle = theta.norm();
+  if (!(angle > 0)) return q;
+  return (Eigen::Quaterniond(Eigen::AngleAxisd(angle, theta / angle)) * q).normalized();
+}
+
+// A pair's committed contacts (the increment's start), found by (a, b) in the sorted copy.
+const NodeContacts& committedOf(const std::vector<PairContacts>& committed, const PairContacts& pair) {
+  static const NodeContacts none;
+  const auto found = std::lower_bound(committed.begin(), committed.end(), pair, [](const PairContacts& x, const PairContacts& y) {
+    return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
+  });
+  return found != committed.end() && found->a == pair.a && found->b == pair.b && found->kind == pair.kind ? found->contacts : none;
+}
+
+constexpr int kLineSearchHalvings = 4;  // step lengths 1, 1/2, ..., 1/16
+constexpr int kEasyIterations = 4;      // an increment converged in this many lets the next double
+constexpr double kStepLimitRatio = 0.05;  // of the thinnest block: the farthest one iteration moves a point
+
+std::string format(const char* pattern, double a, double b = 0) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, pattern, a, b);
+  return buffer;
+}
+
+}  // namespace
+
+double World::implicitIncrementLimit() const {
+  const ImplicitSettings& s = settings_.implicit;
+  double limit = s.maxIncrement > 0 ? s.maxIncrement : 1e4 * automaticDt_;
+  const double travel = s.maxTravel > 0 ? s.maxTravel : s.maxTravelRatio * thinnest_;
+  for (const SphereObstacle& sphere : state_.spheres) {
+    const double speed = sphere.velocity.norm();
+    if (speed > 0) limit = std::min(limit, travel / speed);
+  }
+  return limit;
+}
+
+// The residual (and, withMatrix, the tangent) at the bodies' present poses, an increment of dt
+// from work.start. Returns the merit sum_i |R_F,i|^2 + |R_T,i / r_i|^2 (r_i: the body's radius).
+double World::evaluateIncrement(double dt, bool withMatrix) {
+  ImplicitWork& w = *implicit_;
+  updatePairs();
+  const ImplicitScene scene{&state_.bodies, &shapes_, &state_.spheres, &state_.planes, &w.start, parameters_,
+                            parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt};
+  w.results.resize(state_.pairs.size());
+  arena_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, state_.pairs.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t p = r.begin(); p != r.end(); ++p)
+        evaluateImplicitPair(scene, state_.pairs[p], committedOf(w.committed, state_.pairs[p]), w.results[p]);
+    });
+  });
+
+  const RigidBodies& bodies = state_.bodies;
+  const std::size_t n = bodies.size();
+  w.residual.setZero(6 * w.freeBodies);
+  w.bodyScale.assign(n, 0.0);
+  w.triplets.clear();
+  const auto block = [&](int row, int column, const Matrix6& m) {
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        if (m(i, j) != 0) w.triplets.emplace_back(6 * row + i, 6 * column + j, m(i, j));
+  };
+  for (std::size_t p = 0; p < state_.pairs.size(); ++p) {
+    const PairContacts& pair = state_.pairs[p];
+    const ImplicitPairResult& r = w.results[p];
+    const int a = w.dof[pair.a];
+    w.bodyScale[pair.a] += r.forceScale;
+    if (a >= 0) w.residual.segment<6>(6 * a) += r.force;
+    if (withMatrix && a >= 0) block(a, a, r.stiffness);
+    if (pair.kind != PairKind::Bodies) continue;
+    // Body b: -F at the same points, its generalised force T_b^T (-F_a) (implicit_contacts.h).
+    const Matrix6 T = shiftToPoint(bodies.position[pair.a], bodies.position[pair.b]);
+    const int b = w.dof[pair.b];
+    w.bodyScale[pair.b] += r.forceScale;
+    if (b >= 0) w.residual.segment<6>(6 * b) -= T.transpose() * r.force;
+    if (!withMatrix) continue;
+    if (b >= 0) block(b, b, T.transpose() * r.stiffness * T);
+    if (a >= 0 && b >= 0) {
+      block(a, b, -r.stiffness * T);
+      block(b, a, -T.transpose() * r.stiffness);
+    }
+  }
+  // Gravity and backward Euler's inertia.
+  double merit = 0.0;
+  w.forceScale = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int d = w.dof[i];
+    if (d < 0) continue;
+    const double m = bodies.mass[i];
+    const Eigen::Vector3d dx = bodies.position[i] - w.startBodies.position[i];
+    const Eigen::Vector3d dtheta = rotationBetween(bodies.orientation[i], w.startBodies.orientation[i]);
+    const Eigen::Vector3d v0 = w.startBodies.velocity[i], omega0 = w.startBodies.angularVelocity(i);
+    const Eigen::Matrix3d& I0 = w.startInertia[i];
+    w.residual.segment<3>(6 * d) += m * settings_.gravity - m * (dx / dt - v0) / dt;
+    w.residual.segment<3>(6 * d + 3) -= I0 * (dtheta / dt - omega0) / dt;
+    if (withMatrix) {
+      Matrix6 inertia = Matrix6::Zero();
+      inertia.topLeftCorner<3, 3>() = m / (dt * dt) * Eigen::Matrix3d::Identity();
+      inertia.bottomRightCorner<3, 3>() = I0 / (dt * dt);
+      block(d, d, inertia);
+    }
+    w.bodyScale[i] += m * settings_.gravity.norm();
+    w.forceScale = std::max(w.forceScale, w.bodyScale[i]);
+    merit += w.residual.segment<3>(6 * d).squaredNorm() + w.residual.segment<3>(6 * d + 3).squaredNorm() / (bodyRadius_[i] * bodyRadius_[i]);
+  }
+  if (withMatrix) {
+    w.matrix.resize(6 * w.freeBodies, 6 * w.freeBodies);
+    w.matrix.setFromTriplets(w.triplets.begin(), w.triplets.end());
+  }
+  return merit;
+}
+
+// Newton's iteration for the increment (the spheres already moved); true when it converged, with
+// the bodies at the balanced poses and work.results their contacts.
+bool World::solveIncrement(double dt, int& iterations) {
+  ImplicitWork& w = *implicit_;
+  RigidBodies& bodies = state_.bodies;
+  const double tolerance = settings_.implicit.tolerance;
+  // The predictor: each free body goes on at its velocity (0 for a body at rest).
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (w.dof[i] < 0) continue;
+    bodies.position[i] = w.startBodies.position[i] + dt * w.startBodies.velocity[i];
+    bodies.orientation[i] = turned(w.startBodies.orientation[i], dt * w.startBodies.angularVelocity(i));
+  }
+  double merit = evaluateIncrement(dt, true);
+  std::vector<Eigen::Vector3d> position(bodies.size());
+  std::vector<Eigen::Quaterniond> orientation(bodies.size());
+  for (iterations = 0;; ++iterations) {
+    bool converged = w.forceScale == 0 || merit == 0;
+    if (!converged) {
+      converged = true;
+      for (std::size_t i = 0; i < bodies.size() && converged; ++i) {
+        const int d = w.dof[i];
+        if (d < 0) continue;
+        converged = w.residual.segment<3>(6 * d).norm() <= tolerance * w.forceScale &&
+                    w.residual.segment<3>(6 * d + 3).norm() <= tolerance * w.forceScale * bodyRadius_[i];
+      }
+    }
+    if (converged) return true;
+    if (iterations == settings_.implicit.maxIterations || !std::isfinite(merit)) return false;
+    if (w.freeBodies == 0) return true;
+    w.solver.analyzePattern(w.matrix);
+    w.solver.factorize(w.matrix);
+    if (w.solver.info() != Eigen::Success) return false;
+    const Eigen::VectorXd step = w.solver.solve(w.residual);
+    if (w.solver.info() != Eigen::Success || !step.allFinite()) return false;
+    // No point moves farther than kStepLimitRatio of the thinnest block in one iteration.
+    double farthest = 0.0;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      if (w.dof[i] >= 0)
+        farthest = std::max(farthest, step.segment<3>(6 * w.dof[i]).norm() + step.segment<3>(6 * w.dof[i] + 3).norm() * bodyRadius_[i]);
+    const double limit = farthest > kStepLimitRatio * thinnest_ ? kStepLimitRatio * thinnest_ / farthest : 1.0;
+    position = bodies.position;
+    orientation = bodies.orientation;
+    // Backtracking: the longest of 1, 1/2, ... 1/16 of the step that lowers the merit; the
+    // shortest if none does (the non-smooth law's active set can need a step up first).
+    double length = limit;
+    for (int halving = 0; halving <= kLineSearchHalvings; ++halving, length *= 0.5) {
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const int d = w.dof[i];
+        if (d < 0) continue;
+        bodies.position[i] = position[i] + length * step.segment<3>(6 * d);
+        bodies.orientation[i] = turned(orientation[i], length * step.segment<3>(6 * d + 3));
+      }
+      const double trial = evaluateIncrement(dt, true);
+      if (trial < (1 - 1e-4 * length) * merit || halving == kLineSearchHalvings) {
+        merit = trial;
+        break;
+      }
+    }
+  }
+}
+
+// The converged increment kept: the pairs' contacts and forces, the bodies' backward-Euler
+// velocities, the energies, the time.
+void World::commitIncrement(double dt, int iterations) {
+  ImplicitWork& w = *implicit_;
+  RigidBodies& bodies = state_.bodies;
+  const std::size_t n = bodies.size();
+  std::fill(state_.contactForce.begin(), state_.contactForce.end(), Eigen::Vector3d::Zero());
+  std::fill(state_.contactTorque.begin(), state_.contactTorque.end(), Eigen::Vector3d::Zero());
+  std::fill(state_.sphereReaction.begin(), state_.sphereReaction.end(), Eigen::Vector3d::Zero());
+  for (std::size_t p = 0; p < state_.pairs.size(); ++p) {
+    PairContacts& pair = state_.pairs[p];
+    ImplicitPairResult& r = w.results[p];
+    std::swap(pair.contacts, r.contacts);
+    pair.forceA = r.force.head<3>();
+    pair.torqueA = r.force.tail<3>();
+    pair.forceB = -pair.forceA;
+    pair.torqueB = pair.b >= 0 ? Eigen::Vector3d(-(pair.torqueA + (bodies.position[pair.a] - bodies.position[pair.b]).cross(pair.forceA)))
+                               : Eigen::Vector3d::Zero();
+    pair.normalForceA = r.normalForceA;
+    pair.forcePoint = r.forcePoint;
+    pair.tally = r.tally;
+    pair.maxDepth = r.maxDepth;
+    state_.friction += r.tally.friction;
+    state_.damping += r.tally.viscous;
+    state_.projection += r.tally.projection;
+    state_.contactForce[pair.a] += pair.forceA;
+    state_.contactTorque[pair.a] += pair.torqueA;
+    if (pair.kind == PairKind::Bodies) {
+      state_.contactForce[pair.b] += pair.forceB;
+      state_.contactTorque[pair.b] += pair.torqueB;
+    } else if (pair.kind == PairKind::Sphere) {
+      state_.sphereReaction[-1 - pair.b] += pair.forceB;
+    }
+  }
+  // The obstacles' work over the increment, by the trapezoidal rule on their reactions.
+  for (std::size_t k = 0; k < state_.spheres.size(); ++k) {
+    const Eigen::Vector3d moved = state_.spheres[k].center - w.start.sphereCentre[k];
+    const Eigen::Vector3d before = k < w.startReaction.size() ? w.startReaction[k] : Eigen::Vector3d::Zero();
+    state_.obstacleWork -= 0.5 * (before + state_.sphereReaction[k]).dot(moved);
+  }
+  // Backward Euler's velocities, and what it dissipates: m |v - v_0|^2 / 2 (and the rotation's),
+  // the work of the end-of-increment forces beyond the kinetic energy's change.
+  bool dynamic = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    state_.force[i] = state_.contactForce[i] + bodies.mass[i] * settings_.gravity;
+    state_.torque[i] = state_.contactTorque[i];
+    state_.dampingForce[i].setZero();
+    state_.dampingTorque[i].setZero();
+    if (w.dof[i] < 0) continue;
+    const Eigen::Vector3d v = (bodies.position[i] - w.startBodies.position[i]) / dt;
+    const Eigen::Vector3d omega = rotationBetween(bodies.orientation[i], w.startBodies.orientation[i]) / dt;
+    const Eigen::Vector3d dv = v - w.startBodies.velocity[i], domega = omega - w.startBodies.angularVelocity(i);
+    state_.damping += 0.5 * bodies.mass[i] * dv.squaredNorm() + 0.5 * domega.dot(w.startInertia[i] * domega);
+    dynamic = dynamic || bodies.mass[i] * dv.norm() / dt > 1e-2 * w.forceScale;
+    bodies.velocity[i] = v;
+    bodies.angularMomentum[i] = bodies.inertia[i].cwiseProduct(bodies.orientation[i].conjugate() * omega);
+  }
+  ImplicitCounts& counts = state_.implicit;
+  counts.iterations += iterations;
+  counts.dynamicIncrements += dynamic ? 1 : 0;
+  dt_ = dt;
+  state_.time += dt;
+  ++state_.steps;
+  state_.forcesValid = true;
+  // An easy increment lets the next double (up to the limit); a hard one keeps its length.
+  counts.increment = iterations <= kEasyIterations ? 2 * dt : dt;
+}
+
+void World::implicitStep() {
+  if (!implicit_) implicit_ = std::make_unique<ImplicitWork>();
+  ImplicitWork& w = *implicit_;
+  RigidBodies& bodies = state_.bodies;
+  const std::size_t n = bodies.size();
+  w.dof.assign(n, -1);
+  w.freeBodies = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!bodies.fixed[i]) w.dof[i] = w.freeBodies++;
+  w.startBodies = bodies;
+  w.start.position = bodies.position;
+  w.start.orientation = bodies.orientation;
+  w.start.sphereCentre.clear();
+  for (const SphereObstacle& s : state_.spheres) w.start.sphereCentre.push_back(s.center);
+  w.startReaction = state_.sphereReaction;
+  w.startInertia.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Matrix3d R = bodies.orientation[i].toRotationMatrix();
+    w.startInertia[i] = R * bodies.inertia[i].asDiagonal() * R.transpose();
+  }
+  w.committed = state_.pairs;
+  std::sort(w.committed.begin(), w.committed.end(), [](const PairContacts& x, const PairContacts& y) {
+    return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
+  });
+  if (state_.steps == 0) {  // the energy stored at the start (an assembly built overlapping)
+    evaluateIncrement(1.0, false);
+    double elastic = 0.0;
+    for (const ImplicitPairResult& r : w.results) elastic += r.tally.elastic;
+    state_.initialEnergy = elastic;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!bodies.fixed[i]) state_.initialEnergy += bodies.kineticEnergy(i);
+  }
+
+  const double limit = implicitIncrementLimit();
+  double dt = state_.implicit.increment > 0 ? std::min(state_.implicit.increment, limit) : limit;
+  int iterations = 0;
+  for (;;) {
+    for (std::size_t k = 0; k < state_.spheres.size(); ++k)
+      state_.spheres[k].center = w.start.sphereCentre[k] + dt * state_.spheres[k].velocity;
+    int tried = 0;
+    const bool converged = solveIncrement(dt, tried);
+    iterations += tried;
+    if (converged) break;
+    // Cut: back to the start, a quarter of the increment.
+    bodies = w.startBodies;
+    state_.pairs = w.committed;
+    state_.pairsValid = false;
+    ++state_.implicit.cutbacks;
+    dt *= 0.25;
+    if (dt < 1e-12 * limit)
+      throw SolverInstability(format("t = %.6g s: no balance of forces found even over an increment of %.3g s; ", state_.time, dt) +
+                              "the assembly or the loading is beyond what the implicit method can follow; try "
+                              "solver.method = \"explicit\"");
+  }
+  commitIncrement(dt, iterations);
+  checkStability();
+}
+
+}  // namespace tessera

@@ -1,0 +1,38 @@
+#pragma once
+// A World's private parts, for the files that implement it (world.cpp, implicit_increment.cpp):
+// its threads, and the implicit method's scratch (derived from the state at each increment, never saved).
+#include "solver/implicit_contacts.h"
+#include "solver/world.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
+
+#include <tbb/task_arena.h>
+
+#include <vector>
+
+namespace tessera {
+
+struct World::ThreadArena {
+  tbb::task_arena arena;
+  explicit ThreadArena(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+};
+
+struct World::ImplicitWork {
+  IncrementStart start;                 ///< poses at the increment's start
+  RigidBodies startBodies;              ///< the bodies then (restored when the increment is cut)
+  std::vector<PairContacts> committed;  ///< the pairs then, sorted by (a, b): the springs every trial starts from
+  std::vector<Eigen::Vector3d> startReaction;  ///< each sphere's reaction then
+  std::vector<Eigen::Matrix3d> startInertia;   ///< kg m^2, each body's inertia tensor then (world)
+  std::vector<ImplicitPairResult> results;     ///< of the last evaluation, one per pair
+  std::vector<int> dof;                 ///< body -> its block of six unknowns, -1 for a fixed body
+  int freeBodies = 0;
+  Eigen::VectorXd residual;             ///< per free body: force, torque (N, N m)
+  std::vector<double> bodyScale;        ///< N, each body's weight plus its contacts' |f| sums
+  double forceScale = 0.0;              ///< N, the largest of them
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::SparseMatrix<double> matrix;   ///< the tangent, -d residual / d (dx, dtheta)
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
+};
+
+}  // namespace tessera
