@@ -113,6 +113,9 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
   };
   const auto finishSession = [&] {
     record.steps = world.stepCount();
+    record.timeStep = world.timeStep();
+    record.implicit = world.settings().method == SolverMethod::Implicit;
+    record.implicitCounts = world.implicitCounts();
     record.wallSeconds = wallBefore + wall();
     if (hooks.checkpoint) hooks.checkpoint(state);
   };

@@ -83,8 +83,10 @@ struct IndentationRecord {
   std::vector<Snapshot> snapshots;
   std::vector<FallenBody> fallen;  ///< as of the last sample
   std::string stopReason;  ///< "delta_max", "failure", "interrupted", "requested" (by the sample hook), "instability"
-  long steps = 0;          ///< all steps, settling included
-  double timeStep = 0;     ///< s
+  long steps = 0;          ///< all steps (implicit: increments), settling included
+  double timeStep = 0;     ///< s (implicit: the last increment's duration)
+  bool implicit = false;   ///< the World's method was implicit (solver.method)
+  ImplicitCounts implicitCounts;  ///< the implicit method's iterations, cut-backs, dynamic increments
   double wallSeconds = 0;
 
   /// The run has ended for good: at delta_max, on failure, or as its sample hook asked (not when

@@ -36,6 +36,11 @@ void writeResultsH5(hid_t f, const Scene& scene, const Bundle& bundle, const Con
   h5::writeAttribute(f, "friction", contact.friction);
   h5::writeAttribute(f, "time_step", record.timeStep);
   h5::writeAttribute(f, "stop_reason", record.stopReason);
+  h5::writeAttribute(f, "solver_method", std::string(record.implicit ? "implicit" : "explicit"));
+  h5::writeAttribute(f, "steps", std::int64_t{record.steps});
+  h5::writeAttribute(f, "newton_iterations", std::int64_t{record.implicitCounts.iterations});
+  h5::writeAttribute(f, "cutbacks", std::int64_t{record.implicitCounts.cutbacks});
+  h5::writeAttribute(f, "dynamic_increments", std::int64_t{record.implicitCounts.dynamicIncrements});
 
   h5::writeAttribute(f, "target", record.targetName);
   h5::writeAttribute(f, "thickness", record.thickness);
@@ -171,8 +176,12 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
         {"span_interfaces", contact.spanInterfaces}}},
       {"shapes", shapes},
       {"run",
-       {{"time_step_s", record.timeStep},
+       {{"method", record.implicit ? "implicit" : "explicit"},
+        {"time_step_s", record.timeStep},
         {"steps", record.steps},
+        {"newton_iterations", record.implicitCounts.iterations},
+        {"cutbacks", record.implicitCounts.cutbacks},
+        {"dynamic_increments", record.implicitCounts.dynamicIncrements},
         {"settle_time_s", record.settleTime},
         {"settle_steps", record.settleSteps},
         {"settled", record.settled},

@@ -17,6 +17,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <string>
 
 namespace tessera {
@@ -51,6 +53,7 @@ const NodeContacts& committedOf(const std::vector<PairContacts>& committed, cons
 constexpr int kLineSearchHalvings = 4;  // step lengths 1, 1/2, ..., 1/16
 constexpr int kEasyIterations = 4;      // an increment converged in this many lets the next double
 constexpr double kStepLimitRatio = 0.05;  // of the thinnest block: the farthest one iteration moves a point
+constexpr double kCandidateBandRatio = 0.01;  // of the thinnest block: ImplicitCandidates' band
 
 std::string format(const char* pattern, double a, double b = 0) {
   char buffer[256];
@@ -63,7 +66,7 @@ std::string format(const char* pattern, double a, double b = 0) {
 double World::implicitIncrementLimit() const {
   const ImplicitSettings& s = settings_.implicit;
   double limit = s.maxIncrement > 0 ? s.maxIncrement : 1e4 * automaticDt_;
-  const double travel = s.maxTravel > 0 ? s.maxTravel : s.maxTravelRatio * thinnest_;
+  const double travel = state_.implicit.travelFactor * (s.maxTravel > 0 ? s.maxTravel : s.maxTravelRatio * thinnest_);
   for (const SphereObstacle& sphere : state_.spheres) {
     const double speed = sphere.velocity.norm();
     if (speed > 0) limit = std::min(limit, travel / speed);
@@ -73,16 +76,38 @@ double World::implicitIncrementLimit() const {
 
 // The residual (and, withMatrix, the tangent) at the bodies' present poses, an increment of dt
 // from work.start. Returns the merit sum_i |R_F,i|^2 + |R_T,i / r_i|^2 (r_i: the body's radius).
+static long g_evals = 0, g_contacts = 0;
+static struct Report { ~Report() { if (std::getenv("TESSERA_DEBUG_NEWTON")) std::fprintf(stderr, "evaluations %ld contacts %ld\n", g_evals, g_contacts); } } g_report;
 double World::evaluateIncrement(double dt, bool withMatrix) {
   ImplicitWork& w = *implicit_;
+  ++g_evals;
   updatePairs();
+  const double band = kCandidateBandRatio * thinnest_;
   const ImplicitScene scene{&state_.bodies, &shapes_, &state_.spheres, &state_.planes, &w.start, parameters_,
-                            parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt};
+                            parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt, band};
   w.results.resize(state_.pairs.size());
+  w.candidates.resize(state_.pairs.size());
+  // The candidates listed this increment stay valid while every pair's sides have moved less than
+  // band / sqrt(3) relative to each other since: each side's |dp| + 2 sin(theta / 2) r (the
+  // chord of its turn, candidateMotion) at most half of it.
+  bool listed = !w.listedPosition.empty();
+  for (std::size_t i = 0; i < state_.bodies.size() && listed; ++i)
+    listed = (state_.bodies.position[i] - w.listedPosition[i]).norm() +
+                 turnChord(state_.bodies.orientation[i], w.listedOrientation[i]) * bodyRadius_[i] <
+             0.5 * band / std::sqrt(3.0);
+  for (std::size_t k = 0; k < state_.spheres.size() && listed; ++k)
+    listed = k < w.listedSphereCentre.size() && (state_.spheres[k].center - w.listedSphereCentre[k]).norm() < 0.5 * band / std::sqrt(3.0);
+  if (!listed) {
+    for (ImplicitCandidates& c : w.candidates) c.listed = false;
+    w.listedPosition = state_.bodies.position;
+    w.listedOrientation = state_.bodies.orientation;
+    w.listedSphereCentre.clear();
+    for (const SphereObstacle& s : state_.spheres) w.listedSphereCentre.push_back(s.center);
+  }
   arena_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, state_.pairs.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t p = r.begin(); p != r.end(); ++p)
-        evaluateImplicitPair(scene, state_.pairs[p], committedOf(w.committed, state_.pairs[p]), w.results[p]);
+        evaluateImplicitPair(scene, state_.pairs[p], committedOf(w.committed, state_.pairs[p]), w.candidates[p], w.results[p]);
     });
   });
 
@@ -99,21 +124,25 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
   for (std::size_t p = 0; p < state_.pairs.size(); ++p) {
     const PairContacts& pair = state_.pairs[p];
     const ImplicitPairResult& r = w.results[p];
+    g_contacts += r.contacts.size();
     const int a = w.dof[pair.a];
+    const bool bodies2 = pair.kind == PairKind::Bodies;
+    const int b = bodies2 ? w.dof[pair.b] : -1;
     w.bodyScale[pair.a] += r.forceScale;
     if (a >= 0) w.residual.segment<6>(6 * a) += r.force;
-    if (withMatrix && a >= 0) block(a, a, r.stiffness);
-    if (pair.kind != PairKind::Bodies) continue;
     // Body b: -F at the same points, its generalised force T_b^T (-F_a) (implicit_contacts.h).
-    const Matrix6 T = shiftToPoint(bodies.position[pair.a], bodies.position[pair.b]);
-    const int b = w.dof[pair.b];
-    w.bodyScale[pair.b] += r.forceScale;
-    if (b >= 0) w.residual.segment<6>(6 * b) -= T.transpose() * r.force;
-    if (!withMatrix) continue;
-    if (b >= 0) block(b, b, T.transpose() * r.stiffness * T);
+    const Eigen::Vector3d cb = bodies2 ? bodies.position[pair.b] : bodies.position[pair.a];
+    if (bodies2) {
+      w.bodyScale[pair.b] += r.forceScale;
+      if (b >= 0) w.residual.segment<6>(6 * b) -= shiftToPoint(bodies.position[pair.a], cb).transpose() * r.force;
+    }
+    if (!withMatrix || (a < 0 && b < 0)) continue;
+    const Eigen::Matrix<double, 12, 12> K = pairTangent(r, bodies.position[pair.a], cb);
+    if (a >= 0) block(a, a, K.topLeftCorner<6, 6>());
+    if (b >= 0) block(b, b, K.bottomRightCorner<6, 6>());
     if (a >= 0 && b >= 0) {
-      block(a, b, -r.stiffness * T);
-      block(b, a, -T.transpose() * r.stiffness);
+      block(a, b, K.topRightCorner<6, 6>());
+      block(b, a, K.bottomLeftCorner<6, 6>());
     }
   }
   // Gravity and backward Euler's inertia.
@@ -172,6 +201,14 @@ bool World::solveIncrement(double dt, int& iterations) {
                     w.residual.segment<3>(6 * d + 3).norm() <= tolerance * w.forceScale * bodyRadius_[i];
       }
     }
+    if (std::getenv("TESSERA_DEBUG_NEWTON")) {
+      double worst = 0, worstT = 0; int wi = -1, wt = -1;
+      for (std::size_t i = 0; i < bodies.size(); ++i) if (w.dof[i] >= 0) {
+        double f = w.residual.segment<3>(6 * w.dof[i]).norm() / w.forceScale; if (f > worst) { worst = f; wi = i; }
+        double t = w.residual.segment<3>(6 * w.dof[i] + 3).norm() / w.forceScale / bodyRadius_[i]; if (t > worstT) { worstT = t; wt = i; } }
+      int sliding = 0; for (auto& r : w.results) sliding += r.tally.sliding;
+      std::fprintf(stderr, "newton t=%.6g dt=%.3g it=%d merit=%.3e worstF=%.3e(%d) worstT=%.3e(%d) sliding=%d\n", state_.time, dt, iterations, merit, worst, wi, worstT, wt, sliding);
+    }
     if (converged) return true;
     if (iterations == settings_.implicit.maxIterations || !std::isfinite(merit)) return false;
     if (w.freeBodies == 0) return true;
@@ -180,11 +217,19 @@ bool World::solveIncrement(double dt, int& iterations) {
     if (w.solver.info() != Eigen::Success) return false;
     const Eigen::VectorXd step = w.solver.solve(w.residual);
     if (w.solver.info() != Eigen::Success || !step.allFinite()) return false;
-    // No point moves farther than kStepLimitRatio of the thinnest block in one iteration.
+    // No point moves farther than kStepLimitRatio of the thinnest block in one iteration. A step
+    // that moves no point by more than the rounding of its coordinates (64 ulp) ends the
+    // iteration: the residual is then at the floor the poses can resolve (a penetration of 1e-10
+    // m on a 3 mm coordinate is resolved to 1e-9 of itself).
     double farthest = 0.0;
+    bool rounding = true;
     for (std::size_t i = 0; i < bodies.size(); ++i)
-      if (w.dof[i] >= 0)
-        farthest = std::max(farthest, step.segment<3>(6 * w.dof[i]).norm() + step.segment<3>(6 * w.dof[i] + 3).norm() * bodyRadius_[i]);
+      if (w.dof[i] >= 0) {
+        const double moved = step.segment<3>(6 * w.dof[i]).norm() + step.segment<3>(6 * w.dof[i] + 3).norm() * bodyRadius_[i];
+        farthest = std::max(farthest, moved);
+        rounding = rounding && moved <= 64 * std::numeric_limits<double>::epsilon() * (bodies.position[i].norm() + bodyRadius_[i]);
+      }
+    if (rounding) return true;
     const double limit = farthest > kStepLimitRatio * thinnest_ ? kStepLimitRatio * thinnest_ / farthest : 1.0;
     position = bodies.position;
     orientation = bodies.orientation;
@@ -199,6 +244,7 @@ bool World::solveIncrement(double dt, int& iterations) {
         bodies.orientation[i] = turned(orientation[i], length * step.segment<3>(6 * d + 3));
       }
       const double trial = evaluateIncrement(dt, true);
+      if (std::getenv("TESSERA_DEBUG_NEWTON")) std::fprintf(stderr, "linesearch t=%.6g it=%d halving=%d merit=%.3e trial=%.3e\n", state_.time, iterations, halving, merit, trial);
       if (trial < (1 - 1e-4 * length) * merit || halving == kLineSearchHalvings) {
         merit = trial;
         break;
@@ -219,7 +265,8 @@ void World::commitIncrement(double dt, int iterations) {
   for (std::size_t p = 0; p < state_.pairs.size(); ++p) {
     PairContacts& pair = state_.pairs[p];
     ImplicitPairResult& r = w.results[p];
-    std::swap(pair.contacts, r.contacts);
+    pair.contacts.clear();
+    for (const NodeContact& c : r.contacts) pair.contacts.push_back(c);
     pair.forceA = r.force.head<3>();
     pair.torqueA = r.force.tail<3>();
     pair.forceB = -pair.forceA;
@@ -273,6 +320,17 @@ void World::commitIncrement(double dt, int iterations) {
   state_.forcesValid = true;
   // An easy increment lets the next double (up to the limit); a hard one keeps its length.
   counts.increment = iterations <= kEasyIterations ? 2 * dt : dt;
+  // The obstacles' travel limit grows while their reactions change smoothly, and falls back at a jump.
+  double change = 0.0, size = 0.0;
+  for (std::size_t k = 0; k < state_.spheres.size(); ++k) {
+    const Eigen::Vector3d before = k < w.startReaction.size() ? w.startReaction[k] : Eigen::Vector3d::Zero();
+    change = std::max(change, (state_.sphereReaction[k] - before).norm());
+    size = std::max(size, state_.sphereReaction[k].norm());
+  }
+  const ImplicitSettings& s = settings_.implicit;
+  if (change > 4 * s.smoothReactionChange * size) counts.travelFactor = 1.0;
+  else if (change <= s.smoothReactionChange * size && iterations <= kEasyIterations && size > 0)
+    counts.travelFactor = std::min(2 * counts.travelFactor, s.maxTravelGrowth);
 }
 
 void World::implicitStep() {
@@ -295,6 +353,7 @@ void World::implicitStep() {
     const Eigen::Matrix3d R = bodies.orientation[i].toRotationMatrix();
     w.startInertia[i] = R * bodies.inertia[i].asDiagonal() * R.transpose();
   }
+  w.listedPosition.clear();  // candidates are listed afresh each increment
   w.committed = state_.pairs;
   std::sort(w.committed.begin(), w.committed.end(), [](const PairContacts& x, const PairContacts& y) {
     return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);

@@ -2,6 +2,7 @@
 #include "geometry/convex_planes.h"
 #include "levelset/dense_sdf.h"
 #include "levelset/mesh_sdf.h"
+#include "levelset/shape.h"
 #include "solver/contact_law.h"
 #include "solver/contact_parameters.h"
 #include "solver/node_bins.h"
@@ -96,6 +97,10 @@ struct ShapeModel {
     return s.phi;
   }
 };
+
+/// The solver's model of a bundle shape: its nodes binned, its grid, and its exact planes when
+/// convex (and exactConvex) or else its exact mesh level set (when exactMesh).
+ShapeModel makeShapeModel(const Shape& shape, bool exactConvex, bool exactMesh);
 
 /// The candidate nodes of a pair, sorted by key (as in NodeContact), each quantity in its own
 /// array: what a step reads of a node, copied from its body's NodeBins when the candidates are

@@ -15,7 +15,7 @@ struct ImplicitSettings {
   /// Converged when every free body's force residual is below this x the force scale (the largest
   /// weight or contact force sum of a body) and its torque residual below this x that scale x its
   /// radius.
-  double tolerance = 1e-9;
+  double tolerance = 1e-6;
   int maxIterations = 25;  ///< Newton iterations before the increment is cut
   /// s, the longest increment; 0: 1e4 x the explicit method's automatic step (quasi-static on a
   /// slab of the paper's blocks: the inertia of an increment is 1e-3 of its contact forces).
@@ -24,6 +24,11 @@ struct ImplicitSettings {
   /// thinnest block (10 um on the paper's block).
   double maxTravel = 0.0;
   double maxTravelRatio = 10e-6 / kPaperThickness;
+  /// While the obstacles' reactions change smoothly (by at most smoothReactionChange of
+  /// themselves over an increment, converged easily), the travel limit grows by doubling to this
+  /// many times maxTravel; a change above 4 x smoothReactionChange sets it back.
+  double maxTravelGrowth = 4.0;
+  double smoothReactionChange = 0.01;
 };
 
 /// How the solver integrates (docs/physics.md). Units in the comments.

@@ -13,8 +13,6 @@
 
 namespace tessera {
 
-namespace {
-
 ShapeModel makeShapeModel(const Shape& shape, bool exactConvex, bool exactMesh) {
   ShapeModel m;
   m.nodes = makeNodeBins(shape.nodes);
@@ -28,6 +26,8 @@ ShapeModel makeShapeModel(const Shape& shape, bool exactConvex, bool exactMesh) 
     }
   return m;
 }
+
+namespace {
 
 // An upper estimate of the fastest mode of a free body: every node of its surface in sticking
 // contact with a body like itself moving the other way (the checkerboard mode of a packed
@@ -169,7 +169,7 @@ void World::checkState(const WorldState& s) const {
     if (!std::isfinite(e)) throw std::invalid_argument("an energy or the time is not finite");
   if (s.time < 0 || s.steps < 0) throw std::invalid_argument("a negative time or step count");
   const ImplicitCounts& c = s.implicit;
-  if (!std::isfinite(c.increment) || c.increment < 0 || c.iterations < 0 || c.cutbacks < 0 || c.dynamicIncrements < 0)
+  if (!std::isfinite(c.increment) || c.increment < 0 || !(c.travelFactor >= 1) || !(c.travelFactor <= settings_.implicit.maxTravelGrowth) || c.iterations < 0 || c.cutbacks < 0 || c.dynamicIncrements < 0)
     throw std::invalid_argument("the implicit method's increment or counts are negative or not finite");
 }
 

@@ -41,6 +41,7 @@ struct EnergyBudget {
 /// What the implicit method has done (WorldState::implicit): increments are the World's steps.
 struct ImplicitCounts {
   double increment = 0.0;  ///< s, the next increment's duration (0: the longest allowed)
+  double travelFactor = 1.0;  ///< the obstacles' travel limit, of ImplicitSettings::maxTravel (1 to maxTravelGrowth)
   long iterations = 0;     ///< Newton iterations, line-search trials not counted
   long cutbacks = 0;       ///< increments cut to a quarter for want of convergence
   /// Increments in which inertia carried more than 1 % of the force scale: where equilibrium was

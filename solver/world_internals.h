@@ -25,6 +25,12 @@ struct World::ImplicitWork {
   std::vector<Eigen::Vector3d> startReaction;  ///< each sphere's reaction then
   std::vector<Eigen::Matrix3d> startInertia;   ///< kg m^2, each body's inertia tensor then (world)
   std::vector<ImplicitPairResult> results;     ///< of the last evaluation, one per pair
+  /// Per pair (by index; a pair found at another index lists its own again): the nodes near
+  /// contact, listed at the poses listedPosition/listedOrientation this increment.
+  std::vector<ImplicitCandidates> candidates;
+  std::vector<Eigen::Vector3d> listedPosition;
+  std::vector<Eigen::Quaterniond> listedOrientation;
+  std::vector<Eigen::Vector3d> listedSphereCentre;
   std::vector<int> dof;                 ///< body -> its block of six unknowns, -1 for a fixed body
   int freeBodies = 0;
   Eigen::VectorXd residual;             ///< per free body: force, torque (N, N m)

@@ -92,7 +92,12 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
                                  : " (above the limit: loading too fast, lower indenter.speed)");
   std::printf("  indenter           radius %.4g mm at %.4g mm/s; h = %.4g mm\n", record.indenterRadius * 1e3,
               record.indenterSpeed * 1e3, record.thickness * 1e3);
-  std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
+  if (record.implicit)
+    std::printf("  %ld implicit increments (%ld Newton iterations, %ld cut back, %ld dynamic) in %.1f s\n", record.steps,
+                record.implicitCounts.iterations, record.implicitCounts.cutbacks, record.implicitCounts.dynamicIncrements,
+                record.wallSeconds);
+  else
+    std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
   std::string files;
   for (const char* f : {"results.h5", "curve.csv", "summary.json", "curve.png", "snapshots.png", "paraview/slab.pvd", "checkpoint.h5"})
     if (fs::exists(fs::path(out) / f)) files += (files.empty() ? "" : ", ") + std::string(f);
