@@ -219,6 +219,9 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   solver.number("implicit_max_increment", implicit.maxIncrement, 0, 1e3, "s; 0 = 1e4 explicit automatic steps");
   solver.number("implicit_max_travel", implicit.maxTravel, 0, 1, "m; 0 = implicit_max_travel_ratio x the thinnest block");
   solver.number("implicit_max_travel_ratio", implicit.maxTravelRatio, 1e-6, 1, "of the thinnest block");
+  solver.number("implicit_max_travel_growth", implicit.maxTravelGrowth, 1, 1e3, "x implicit_max_travel");
+  solver.number("implicit_smooth_reaction_change", implicit.smoothReactionChange, 1e-6, 0.2, "of the reaction per increment");
+  solver.number("implicit_dynamic_increment_ratio", implicit.dynamicIncrementRatio, 1, 1e6, "x the explicit automatic step");
   solver.finish();
 
   Table resolution(path, "resolution", root["resolution"].as_table());

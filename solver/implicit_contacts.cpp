@@ -179,10 +179,13 @@ public:
     out_.tally.friction += update.friction;
     out_.tally.viscous += update.viscous;
     out_.tally.sliding += static_cast<int>(update.sliding);
-    // Stored energy proportional to the area: what the change of area alone removed (as the
-    // explicit step books it, ContactTally::projection).
+    // Stored energy proportional to the area: what the change of area alone removed
+    // (ContactTally::projection), the area's change times the energy per area, which the explicit
+    // step takes at the step's end and an increment as the mean of its start and end (the
+    // trapezoidal rule: an increment's change is not small).
     const double perArea = 0.5 * rateLaw_.perAreaNormal * depth * depth + 0.5 * rateLaw_.perAreaTangent * (ux * ux + uy * uy + uz * uz);
-    double removed = areaBefore > 0 ? perArea * (areaBefore - area) : 0.0;
+    const double perAreaBefore = areaBefore > 0 && rateLaw_.perNodeNormal == 0 ? energyBefore / areaBefore : perArea;
+    double removed = areaBefore > 0 ? 0.5 * (perAreaBefore + perArea) * (areaBefore - area) : 0.0;
     if (areaBefore == 0) removed = -f.stored;
     if (!(area > 0)) removed = energyBefore;
     out_.tally.projection += removed;

@@ -333,6 +333,22 @@ void World::commitIncrement(double dt, int iterations) {
     counts.travelFactor = std::min(2 * counts.travelFactor, s.maxTravelGrowth);
 }
 
+// Equilibrium lost over the increment just solved: an obstacle's reaction fell by more than
+// 4 x smoothReactionChange of itself (the balance found at its end lies past a jump).
+bool World::lostEquilibrium() const {
+  const ImplicitWork& w = *implicit_;
+  const double limit = 4 * settings_.implicit.smoothReactionChange;
+  for (std::size_t k = 0; k < state_.spheres.size(); ++k) {
+    Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
+    for (std::size_t p = 0; p < state_.pairs.size(); ++p)
+      if (state_.pairs[p].kind == PairKind::Sphere && -1 - state_.pairs[p].b == static_cast<int>(k))
+        reaction -= w.results[p].force.head<3>();
+    const Eigen::Vector3d before = k < w.startReaction.size() ? w.startReaction[k] : Eigen::Vector3d::Zero();
+    if (reaction.norm() < (1 - limit) * before.norm()) return true;
+  }
+  return false;
+}
+
 void World::implicitStep() {
   if (!implicit_) implicit_ = std::make_unique<ImplicitWork>();
   ImplicitWork& w = *implicit_;
@@ -376,7 +392,7 @@ void World::implicitStep() {
     int tried = 0;
     const bool converged = solveIncrement(dt, tried);
     iterations += tried;
-    if (converged) break;
+    if (converged && !(lostEquilibrium() && dt > settings_.implicit.dynamicIncrementRatio * automaticDt_)) break;
     // Cut: back to the start, a quarter of the increment.
     bodies = w.startBodies;
     state_.pairs = w.committed;

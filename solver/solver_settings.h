@@ -29,6 +29,12 @@ struct ImplicitSettings {
   /// many times maxTravel; a change above 4 x smoothReactionChange sets it back.
   double maxTravelGrowth = 4.0;
   double smoothReactionChange = 0.01;
+  /// Where equilibrium is lost (an obstacle's reaction drops by more than 4 x smoothReactionChange
+  /// of itself in one increment: a slip, a block pushed through), the increment is cut until it is
+  /// at most this many times the explicit method's automatic step, so that backward Euler follows
+  /// the event as dynamics (its inertia then carries the energy released), and grows back as the
+  /// motion dies down.
+  double dynamicIncrementRatio = 10.0;
 };
 
 /// How the solver integrates (docs/physics.md). Units in the comments.

@@ -141,6 +141,7 @@ private:
   bool solveIncrement(double dt, int& iterations);
   double evaluateIncrement(double dt, bool withMatrix);
   void commitIncrement(double dt, int iterations);
+  bool lostEquilibrium() const;
   void updatePairs();
   double candidateBand() const;
   void checkStability();
