@@ -109,7 +109,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
   // would-be target's size (settling's own end is not known beforehand).
   const auto eta = [&](double travelLeft, double speed) {
     const double rate = (world.stepCount() - stepsBefore) / std::max(wall(), 1e-9);
-    return travelLeft / (speed * world.timeStep()) / std::max(rate, 1e-9);
+    return travelLeft / world.travelPerStep(speed) / std::max(rate, 1e-9);
   };
   const auto finishSession = [&] {
     record.steps = world.stepCount();

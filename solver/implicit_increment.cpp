@@ -54,6 +54,8 @@ constexpr int kLineSearchHalvings = 4;  // step lengths 1, 1/2, ..., 1/16
 constexpr int kEasyIterations = 4;      // an increment converged in this many lets the next double
 constexpr double kStepLimitRatio = 0.05;  // of the thinnest block: the farthest one iteration moves a point
 constexpr double kCandidateBandRatio = 0.01;  // of the thinnest block: ImplicitCandidates' band
+constexpr double kGapBandRatio = 0.0;         // of the thinnest block: ImplicitScene::gapBand
+constexpr double kFirstIncrementRatio = 100;  // x the explicit automatic step: the first increment
 
 std::string format(const char* pattern, double a, double b = 0) {
   char buffer[256];
@@ -66,12 +68,24 @@ std::string format(const char* pattern, double a, double b = 0) {
 double World::implicitIncrementLimit() const {
   const ImplicitSettings& s = settings_.implicit;
   double limit = s.maxIncrement > 0 ? s.maxIncrement : 1e4 * automaticDt_;
-  const double travel = state_.implicit.travelFactor * (s.maxTravel > 0 ? s.maxTravel : s.maxTravelRatio * thinnest_);
+  const double travel = implicitTravelLimit();
   for (const SphereObstacle& sphere : state_.spheres) {
     const double speed = sphere.velocity.norm();
     if (speed > 0) limit = std::min(limit, travel / speed);
   }
   return limit;
+}
+
+// m, the farthest an obstacle may move in one increment now.
+double World::implicitTravelLimit() const {
+  const ImplicitSettings& s = settings_.implicit;
+  return state_.implicit.travelFactor * (s.maxTravel > 0 ? s.maxTravel : s.maxTravelRatio * thinnest_);
+}
+
+double World::travelPerStep(double speed) const {
+  if (settings_.method == SolverMethod::Explicit) return speed * dt_;
+  const ImplicitSettings& s = settings_.implicit;
+  return std::min(implicitTravelLimit(), speed * (s.maxIncrement > 0 ? s.maxIncrement : 1e4 * automaticDt_));
 }
 
 // The residual (and, withMatrix, the tangent) at the bodies' present poses, an increment of dt
@@ -84,7 +98,7 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
   updatePairs();
   const double band = kCandidateBandRatio * thinnest_;
   const ImplicitScene scene{&state_.bodies, &shapes_, &state_.spheres, &state_.planes, &w.start, parameters_,
-                            parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt, band};
+                            parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt, band, kGapBandRatio * thinnest_};
   w.results.resize(state_.pairs.size());
   w.candidates.resize(state_.pairs.size());
   // The candidates listed this increment stay valid while every pair's sides have moved less than
@@ -384,7 +398,10 @@ void World::implicitStep() {
   }
 
   const double limit = implicitIncrementLimit();
-  double dt = state_.implicit.increment > 0 ? std::min(state_.implicit.increment, limit) : limit;
+  // The first increment is short (kFirstIncrementRatio explicit steps: inertia holds Newton's
+  // first steps while contacts close); each easy one doubles the next.
+  const double first = std::min(limit, kFirstIncrementRatio * automaticDt_);
+  double dt = std::min(state_.implicit.increment > 0 ? state_.implicit.increment : first, limit);
   int iterations = 0;
   for (;;) {
     for (std::size_t k = 0; k < state_.spheres.size(); ++k)

@@ -101,6 +101,9 @@ public:
   /// Throws SolverInstability instead of producing garbage.
   void step();
   const ImplicitCounts& implicitCounts() const { return state_.implicit; }
+  /// m, how far an obstacle moving at `speed` (m/s) goes in one step: speed x the time step, or
+  /// for the implicit method the increment's limit (the travel limit, or the longest increment).
+  double travelPerStep(double speed) const;
 
   /// The changing state, and its restoration into a World made from the same bundle and settings.
   /// restore() checks the state first (sizes, indices, finite values): std::invalid_argument
@@ -138,6 +141,7 @@ private:
   struct ImplicitWork;
   void implicitStep();
   double implicitIncrementLimit() const;
+  double implicitTravelLimit() const;
   bool solveIncrement(double dt, int& iterations);
   double evaluateIncrement(double dt, bool withMatrix);
   void commitIncrement(double dt, int iterations);
