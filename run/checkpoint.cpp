@@ -233,6 +233,7 @@ void serializeWorld(const Archive& io, WorldState& w) {
   io.field("steps", w.steps);
   io.field("implicit_increment", w.implicit.increment);
   io.field("implicit_travel_factor", w.implicit.travelFactor);
+  io.field("implicit_largest_reaction", w.implicit.largestReaction);
   io.field("implicit_iterations", w.implicit.iterations);
   io.field("implicit_cutbacks", w.implicit.cutbacks);
   io.field("implicit_dynamic_increments", w.implicit.dynamicIncrements);

@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -90,11 +89,8 @@ double World::travelPerStep(double speed) const {
 
 // The residual (and, withMatrix, the tangent) at the bodies' present poses, an increment of dt
 // from work.start. Returns the merit sum_i |R_F,i|^2 + |R_T,i / r_i|^2 (r_i: the body's radius).
-static long g_evals = 0, g_contacts = 0;
-static struct Report { ~Report() { if (std::getenv("TESSERA_DEBUG_NEWTON")) std::fprintf(stderr, "evaluations %ld contacts %ld\n", g_evals, g_contacts); } } g_report;
 double World::evaluateIncrement(double dt, bool withMatrix) {
   ImplicitWork& w = *implicit_;
-  ++g_evals;
   updatePairs();
   const double band = kCandidateBandRatio * thinnest_;
   const ImplicitScene scene{&state_.bodies, &shapes_, &state_.spheres, &state_.planes, &w.start, parameters_,
@@ -138,7 +134,6 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
   for (std::size_t p = 0; p < state_.pairs.size(); ++p) {
     const PairContacts& pair = state_.pairs[p];
     const ImplicitPairResult& r = w.results[p];
-    g_contacts += r.contacts.size();
     const int a = w.dof[pair.a];
     const bool bodies2 = pair.kind == PairKind::Bodies;
     const int b = bodies2 ? w.dof[pair.b] : -1;
@@ -215,14 +210,6 @@ bool World::solveIncrement(double dt, int& iterations) {
                     w.residual.segment<3>(6 * d + 3).norm() <= tolerance * w.forceScale * bodyRadius_[i];
       }
     }
-    if (std::getenv("TESSERA_DEBUG_NEWTON")) {
-      double worst = 0, worstT = 0; int wi = -1, wt = -1;
-      for (std::size_t i = 0; i < bodies.size(); ++i) if (w.dof[i] >= 0) {
-        double f = w.residual.segment<3>(6 * w.dof[i]).norm() / w.forceScale; if (f > worst) { worst = f; wi = i; }
-        double t = w.residual.segment<3>(6 * w.dof[i] + 3).norm() / w.forceScale / bodyRadius_[i]; if (t > worstT) { worstT = t; wt = i; } }
-      int sliding = 0; for (auto& r : w.results) sliding += r.tally.sliding;
-      std::fprintf(stderr, "newton t=%.6g dt=%.3g it=%d merit=%.3e worstF=%.3e(%d) worstT=%.3e(%d) sliding=%d\n", state_.time, dt, iterations, merit, worst, wi, worstT, wt, sliding);
-    }
     if (converged) return true;
     if (iterations == settings_.implicit.maxIterations || !std::isfinite(merit)) return false;
     if (w.freeBodies == 0) return true;
@@ -258,7 +245,6 @@ bool World::solveIncrement(double dt, int& iterations) {
         bodies.orientation[i] = turned(orientation[i], length * step.segment<3>(6 * d + 3));
       }
       const double trial = evaluateIncrement(dt, true);
-      if (std::getenv("TESSERA_DEBUG_NEWTON")) std::fprintf(stderr, "linesearch t=%.6g it=%d halving=%d merit=%.3e trial=%.3e\n", state_.time, iterations, halving, merit, trial);
       if (trial < (1 - 1e-4 * length) * merit || halving == kLineSearchHalvings) {
         merit = trial;
         break;
@@ -341,6 +327,7 @@ void World::commitIncrement(double dt, int iterations) {
     change = std::max(change, (state_.sphereReaction[k] - before).norm());
     size = std::max(size, state_.sphereReaction[k].norm());
   }
+  counts.largestReaction = std::max(counts.largestReaction, size);
   const ImplicitSettings& s = settings_.implicit;
   if (change > 4 * s.smoothReactionChange * size) counts.travelFactor = 1.0;
   else if (change <= s.smoothReactionChange * size && iterations <= kEasyIterations && size > 0)
@@ -348,7 +335,8 @@ void World::commitIncrement(double dt, int iterations) {
 }
 
 // Equilibrium lost over the increment just solved: an obstacle's reaction fell by more than
-// 4 x smoothReactionChange of itself (the balance found at its end lies past a jump).
+// 4 x smoothReactionChange of itself (the balance found at its end lies past a jump), from at least
+// a tenth of the largest reaction so far (a falling remnant's last touches are no event).
 bool World::lostEquilibrium() const {
   const ImplicitWork& w = *implicit_;
   const double limit = 4 * settings_.implicit.smoothReactionChange;
@@ -358,7 +346,7 @@ bool World::lostEquilibrium() const {
       if (state_.pairs[p].kind == PairKind::Sphere && -1 - state_.pairs[p].b == static_cast<int>(k))
         reaction -= w.results[p].force.head<3>();
     const Eigen::Vector3d before = k < w.startReaction.size() ? w.startReaction[k] : Eigen::Vector3d::Zero();
-    if (reaction.norm() < (1 - limit) * before.norm()) return true;
+    if (before.norm() >= 0.1 * state_.implicit.largestReaction && reaction.norm() < (1 - limit) * before.norm()) return true;
   }
   return false;
 }

@@ -169,7 +169,8 @@ void World::checkState(const WorldState& s) const {
     if (!std::isfinite(e)) throw std::invalid_argument("an energy or the time is not finite");
   if (s.time < 0 || s.steps < 0) throw std::invalid_argument("a negative time or step count");
   const ImplicitCounts& c = s.implicit;
-  if (!std::isfinite(c.increment) || c.increment < 0 || !(c.travelFactor >= 1) || !(c.travelFactor <= settings_.implicit.maxTravelGrowth) || c.iterations < 0 || c.cutbacks < 0 || c.dynamicIncrements < 0)
+  if (!std::isfinite(c.increment) || c.increment < 0 || !(c.travelFactor >= 1) || !(c.travelFactor <= settings_.implicit.maxTravelGrowth) ||
+      !(c.largestReaction >= 0) || !std::isfinite(c.largestReaction) || c.iterations < 0 || c.cutbacks < 0 || c.dynamicIncrements < 0)
     throw std::invalid_argument("the implicit method's increment or counts are negative or not finite");
 }
 

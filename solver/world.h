@@ -42,6 +42,7 @@ struct EnergyBudget {
 struct ImplicitCounts {
   double increment = 0.0;  ///< s, the next increment's duration (0: the longest allowed)
   double travelFactor = 1.0;  ///< the obstacles' travel limit, of ImplicitSettings::maxTravel (1 to maxTravelGrowth)
+  double largestReaction = 0.0;  ///< N, the largest obstacle reaction at a converged increment
   long iterations = 0;     ///< Newton iterations, line-search trials not counted
   long cutbacks = 0;       ///< increments cut to a quarter for want of convergence
   /// Increments in which inertia carried more than 1 % of the force scale: where equilibrium was
