@@ -294,8 +294,12 @@ void World::commitIncrement(double dt, int iterations) {
     const Eigen::Vector3d before = k < w.startReaction.size() ? w.startReaction[k] : Eigen::Vector3d::Zero();
     state_.obstacleWork -= 0.5 * (before + state_.sphereReaction[k]).dot(moved);
   }
-  // Backward Euler's velocities, and what it dissipates: m |v - v_0|^2 / 2 (and the rotation's),
-  // the work of the end-of-increment forces beyond the kinetic energy's change.
+  // Backward Euler's velocities, and what it dissipates. Its balance m (v - v_0) = dt F_1 (F the
+  // contact and gravity forces) gives F_1 . dx = dKE + m |v - v_0|^2 / 2, while the books (the
+  // law's energies, the indenter's trapezoidal work) count the forces' work as (F_0 + F_1) . dx / 2:
+  // what backward Euler takes out is m |v - v_0|^2 / 2 + (F_0 - F_1) . dx / 2, and the rotation's
+  // likewise (for a linear spring K, (F_0 - F_1) . dx = K dx^2: its damping of stiff motions).
+  // Where the bodies are in balance at both ends (F_0 = F_1 = 0: quasi-static) it is 0.
   bool dynamic = false;
   for (std::size_t i = 0; i < n; ++i) {
     state_.force[i] = state_.contactForce[i] + bodies.mass[i] * settings_.gravity;
@@ -303,10 +307,12 @@ void World::commitIncrement(double dt, int iterations) {
     state_.dampingForce[i].setZero();
     state_.dampingTorque[i].setZero();
     if (w.dof[i] < 0) continue;
-    const Eigen::Vector3d v = (bodies.position[i] - w.startBodies.position[i]) / dt;
-    const Eigen::Vector3d omega = rotationBetween(bodies.orientation[i], w.startBodies.orientation[i]) / dt;
+    const Eigen::Vector3d dx = bodies.position[i] - w.startBodies.position[i];
+    const Eigen::Vector3d dtheta = rotationBetween(bodies.orientation[i], w.startBodies.orientation[i]);
+    const Eigen::Vector3d v = dx / dt, omega = dtheta / dt;
     const Eigen::Vector3d dv = v - w.startBodies.velocity[i], domega = omega - w.startBodies.angularVelocity(i);
-    state_.damping += 0.5 * bodies.mass[i] * dv.squaredNorm() + 0.5 * domega.dot(w.startInertia[i] * domega);
+    state_.damping += 0.5 * bodies.mass[i] * dv.squaredNorm() + 0.5 * domega.dot(w.startInertia[i] * domega) +
+                      0.5 * (w.startForce[i] - state_.force[i]).dot(dx) + 0.5 * (w.startTorque[i] - state_.torque[i]).dot(dtheta);
     dynamic = dynamic || bodies.mass[i] * dv.norm() / dt > 1e-2 * w.forceScale;
     bodies.velocity[i] = v;
     bodies.angularMomentum[i] = bodies.inertia[i].cwiseProduct(bodies.orientation[i].conjugate() * omega);
@@ -376,14 +382,22 @@ void World::implicitStep() {
   std::sort(w.committed.begin(), w.committed.end(), [](const PairContacts& x, const PairContacts& y) {
     return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
   });
-  if (state_.steps == 0) {  // the energy stored at the start (an assembly built overlapping)
-    evaluateIncrement(1.0, false);
+  if (state_.steps == 0) {
+    // The energy stored at the start (an assembly built overlapping), and the forces there: the
+    // residual of an increment too long for inertia to count, with no motion.
+    evaluateIncrement(1e150, false);
     double elastic = 0.0;
     for (const ImplicitPairResult& r : w.results) elastic += r.tally.elastic;
     state_.initialEnergy = elastic;
-    for (std::size_t i = 0; i < n; ++i)
-      if (!bodies.fixed[i]) state_.initialEnergy += bodies.kineticEnergy(i);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (bodies.fixed[i]) continue;
+      state_.initialEnergy += bodies.kineticEnergy(i);
+      state_.force[i] = w.residual.segment<3>(6 * w.dof[i]);
+      state_.torque[i] = w.residual.segment<3>(6 * w.dof[i] + 3);
+    }
   }
+  w.startForce = state_.force;
+  w.startTorque = state_.torque;
 
   const double limit = implicitIncrementLimit();
   // The first increment is short (kFirstIncrementRatio explicit steps: inertia holds Newton's

@@ -23,6 +23,7 @@ struct World::ImplicitWork {
   RigidBodies startBodies;              ///< the bodies then (restored when the increment is cut)
   std::vector<PairContacts> committed;  ///< the pairs then, sorted by (a, b): the springs every trial starts from
   std::vector<Eigen::Vector3d> startReaction;  ///< each sphere's reaction then
+  std::vector<Eigen::Vector3d> startForce, startTorque;  ///< each body's contact and gravity force and torque then
   std::vector<Eigen::Matrix3d> startInertia;   ///< kg m^2, each body's inertia tensor then (world)
   std::vector<ImplicitPairResult> results;     ///< of the last evaluation, one per pair
   /// Per pair (by index; a pair found at another index lists its own again): the nodes near
