@@ -78,20 +78,20 @@ public:
            const Eigen::Vector3d& rel, double sign, double curvature, const Eigen::Vector3d& areaGradient,
            const Eigen::Vector3d& areaTurn) {
     // The committed spring, area and energy of this node contact (none: a new contact, area -1).
-    Eigen::Vector3d u = Eigen::Vector3d::Zero();
+    Eigen::Vector3d spring = Eigen::Vector3d::Zero();
     double areaBefore = -1.0, energyBefore = 0.0;
     // Keys come in increasing order (side 0's nodes by rank, then side 1's), as the committed ones.
     while (next_ < committed_.size() && committed_.key[next_] < key) ++next_;
     if (next_ < committed_.size() && committed_.key[next_] == key) {
       const NodeContact c = committed_[next_];
-      u = c.spring;
+      spring = c.spring;
       areaBefore = c.area;
       energyBefore = c.energy;
     }
     // The law of the explicit step with v dt = rel: the spring turned onto the tangent plane plus
     // the tangential part of rel, capped at mu f_n; the normal viscosity at the approach rate.
     const double vn = rel.dot(n), rate = increment_ > 0 ? vn / increment_ : 0.0;
-    double ux = u.x(), uy = u.y(), uz = u.z();
+    double ux = spring.x(), uy = spring.y(), uz = spring.z();
     const double turnedDotTrial = trialSpring(trialLaw_, n.x(), n.y(), n.z(), rel.x(), rel.y(), rel.z(), vn, ux, uy, uz);
     const Eigen::Vector3d trial(ux, uy, uz);
     const SpringUpdate<double> update = capSpring(rateLaw_, depth, area, rate, turnedDotTrial, ux, uy, uz);
@@ -192,15 +192,6 @@ public:
     out_.contacts.push_back({key, Eigen::Vector3d(ux, uy, uz), f.stored, area});
   }
 
-  // A node just outside the other side (within the gap band): its normal stiffness in the tangent only.
-  void addGap(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double area) {
-    const double kna = rateLaw_.perNodeNormal + rateLaw_.perAreaNormal * area;
-    const Eigen::Vector3d r = p - centreA_;
-    Eigen::Matrix<double, 6, 1> wn;
-    wn << n, r.cross(n);
-    addOuterLower(symmetric_, wn, kna);
-  }
-
   void finish() {
     out_.forcePoint = weight_ > 0 ? Eigen::Vector3d(centreA_ + forcePointSum_ / weight_) : Eigen::Vector3d::Zero();
     // The symmetric rank-one updates filled a lower triangle; the isotropic part
@@ -240,8 +231,8 @@ double facingArea(double share, double projection) { return share * (projection 
 // they are not listed every node in `region` (M's frame), listing those within the band.
 template <class LevelSet>
 void visitSide(Accumulator& acc, const ShapeModel& sm, const SidePoses& s, const Eigen::AlignedBox3d& region, std::uint32_t side,
-               double areaShare, ImplicitCandidates& candidates, bool listing, double band, double gapBand,
-               LevelSet&& levelSet, double sphereRadius = 0.0) {
+               double areaShare, ImplicitCandidates& candidates, bool listing, double band, LevelSet&& levelSet,
+               double sphereRadius = 0.0) {
   const double sign = side == 0 ? 1.0 : -1.0;
   const auto visit = [&](std::uint32_t rank) {
     const Eigen::Vector3d& x = sm.nodes.position[rank];
@@ -249,14 +240,7 @@ void visitSide(Accumulator& acc, const ShapeModel& sm, const SidePoses& s, const
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     const double phi = levelSet(y, normal);
     if (listing && phi < band) candidates.keys.push_back(side << 31 | rank);
-    if (!(phi < 0)) {
-      if (phi < gapBand) {  // the normal there: the level set's gradient, as inside
-        const Eigen::Vector3d n = s.RO * normal;
-        const double area = facingArea(areaShare * sm.nodes.area[rank], -(s.RM * sm.nodes.normal[rank]).dot(n));
-        if (area > 0) acc.addGap(s.RM * x + s.cM, n, area);
-      }
-      return;
-    }
+    if (!(phi < 0)) return;
     const Eigen::Vector3d n = s.RO * normal;
     const double area = facingArea(areaShare * sm.nodes.area[rank], -(s.RM * sm.nodes.normal[rank]).dot(n));
     const Eigen::Vector3d rel = s.RO * (y - (s.toO0 * x + s.shift0));
@@ -268,7 +252,10 @@ void visitSide(Accumulator& acc, const ShapeModel& sm, const SidePoses& s, const
     if (area > 0) {
       const double A = areaShare * sm.nodes.area[rank];
       const Eigen::Vector3d ni = s.RM * sm.nodes.normal[rank];
-      areaTurn = -A * ni.cross(n);
+      // (Skipped below a hundredth of a radian between n_i and -n: a face on a face, where the
+      // term is that fraction of a fraction d / r of the ones kept.)
+      const Eigen::Vector3d turn = ni.cross(n);
+      if (turn.squaredNorm() > 1e-4) areaTurn = -A * turn;
       if (curvature > 0) areaGradient = -A * curvature * (ni - n * n.dot(ni));
     }
     acc.add(side << 31 | rank, s.RM * x + s.cM, n, -phi, area, rel, sign, curvature, areaGradient, areaTurn);
@@ -347,7 +334,7 @@ void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, 
       Eigen::AlignedBox3d region = boxInNodeFrame(so.box, s);
       region.min().array() -= band;
       region.max().array() += band;
-      visitSide(acc, sm, s, region, side, 0.5, candidates, listing, band, scene.gapBand, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
+      visitSide(acc, sm, s, region, side, 0.5, candidates, listing, band, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
         if (so.planes.empty()) return so.meshLevelSet(y, normal);
         // The exact level set of a convex polyhedron: max_f (n_f . y - d_f), the first plane of
         // largest value giving the normal.
@@ -372,7 +359,7 @@ void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, 
     const SidePoses s = posesOf(Ra, ca, I, sphere.center, Ra0, ca0, I, start.sphereCentre[k]);
     const Eigen::Vector3d centre = Ra.transpose() * (sphere.center - ca);
     const Eigen::AlignedBox3d region(centre.array() - sphere.radius - band, centre.array() + sphere.radius + band);
-    visitSide(acc, sa, s, region, 0, 1.0, candidates, listing, band, scene.gapBand, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
+    visitSide(acc, sa, s, region, 0, 1.0, candidates, listing, band, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
       const double distance = y.norm();
       normal = distance > 0 ? Eigen::Vector3d(y / distance) : Eigen::Vector3d::UnitZ();
       return distance - sphere.radius;
@@ -383,7 +370,7 @@ void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, 
   const PlaneObstacle& plane = (*scene.planes)[-1 - pair.b - static_cast<int>(scene.spheres->size())];
   Accumulator acc(scene, pair, committed, 1.0, out);
   const SidePoses s = posesOf(Ra, ca, I, plane.point, Ra0, ca0, I, plane.point);
-  visitSide(acc, sa, s, sa.nodes.box, 0, 1.0, candidates, listing, band, scene.gapBand, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
+  visitSide(acc, sa, s, sa.nodes.box, 0, 1.0, candidates, listing, band, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
     normal = plane.normal;
     return plane.normal.dot(y);
   });

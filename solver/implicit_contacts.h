@@ -39,10 +39,6 @@ struct ImplicitScene {
   double kn = 0.0, kt = 0.0;  ///< N/m^3
   double increment = 0.0;     ///< s, the increment's duration (the normal viscosity's rate)
   double candidateBand = 0.0; ///< m, ImplicitCandidates
-  /// m: a node outside the other side by less than this adds its normal stiffness k_n a n n^T to
-  /// the tangent (not to the forces), so that Newton's step sees the contacts it is about to
-  /// close: blocks built touching, which gravity is about to press together.
-  double gapBand = 0.0;
 };
 
 /// A pair's contacts at a trial configuration.

@@ -24,7 +24,6 @@ namespace tessera {
 
 namespace {
 
-using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
 // The rotation vector of q q0^-1 (angle x axis), rad.
@@ -53,7 +52,6 @@ constexpr int kLineSearchHalvings = 4;  // step lengths 1, 1/2, ..., 1/16
 constexpr int kEasyIterations = 4;      // an increment converged in this many lets the next double
 constexpr double kStepLimitRatio = 0.05;  // of the thinnest block: the farthest one iteration moves a point
 constexpr double kCandidateBandRatio = 0.01;  // of the thinnest block: ImplicitCandidates' band
-constexpr double kGapBandRatio = 0.0;         // of the thinnest block: ImplicitScene::gapBand
 constexpr double kFirstIncrementRatio = 100;  // x the explicit automatic step: the first increment
 
 std::string format(const char* pattern, double a, double b = 0) {
@@ -64,6 +62,8 @@ std::string format(const char* pattern, double a, double b = 0) {
 
 }  // namespace
 
+// s, the longest increment allowed now: the settings' (or 1e4 explicit steps), and the time in
+// which the fastest obstacle moves the travel limit.
 double World::implicitIncrementLimit() const {
   const ImplicitSettings& s = settings_.implicit;
   double limit = s.maxIncrement > 0 ? s.maxIncrement : 1e4 * automaticDt_;
@@ -94,7 +94,7 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
   updatePairs();
   const double band = kCandidateBandRatio * thinnest_;
   const ImplicitScene scene{&state_.bodies, &shapes_, &state_.spheres, &state_.planes, &w.start, parameters_,
-                            parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt, band, kGapBandRatio * thinnest_};
+                            parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt, band};
   w.results.resize(state_.pairs.size());
   w.candidates.resize(state_.pairs.size());
   // The candidates listed this increment stay valid while every pair's sides have moved less than

@@ -135,9 +135,14 @@ int runTest(const RunArguments& a) {
   }
   if (session->resumed())
     std::fprintf(stderr, "run: resuming %s at t = %.6g s (step %ld)\n", out.c_str(), world.time(), world.stepCount());
-  std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, dt = %.3g s (automatic %.3g s)\n",
-               session->bundle().bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
-               world.timeStep(), world.automaticTimeStep());
+  if (world.settings().method == SolverMethod::Implicit)
+    std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, implicit increments of up to %.3g s "
+                 "(the explicit step would be %.3g s)\n", session->bundle().bodies.size(), contact.youngsModulus * 1e-9,
+                 contact.friction, contact.normalStiffness(), world.timeStep(), world.automaticTimeStep());
+  else
+    std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, dt = %.3g s (automatic %.3g s)\n",
+                 session->bundle().bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
+                 world.timeStep(), world.automaticTimeStep());
   for (const Shape& shape : session->bundle().shapes)
     std::fprintf(stderr, "run: shape '%s': %s\n", shape.name.c_str(),
                  levelSetPath(shape, session->scene().solver.exactConvexLevelSets, session->scene().solver.exactMeshLevelSets).c_str());

@@ -35,7 +35,7 @@ struct PairBench {
 
   ImplicitPairResult evaluate() const {
     const ImplicitScene scene{&bodies, &shapes, &spheres, &planes, &start, parameters,
-                              parameters.normalStiffness(), parameters.tangentialStiffness(), 1e-3, 1e-4, 0.0};
+                              parameters.normalStiffness(), parameters.tangentialStiffness(), 1e-3, 1e-4};
     ImplicitCandidates candidates;
     ImplicitPairResult out;
     evaluateImplicitPair(scene, pair, NodeContacts{}, candidates, out);
