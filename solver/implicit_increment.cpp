@@ -340,7 +340,8 @@ void World::commitIncrement(double dt, int iterations) {
     counts.travelFactor = std::min(2 * counts.travelFactor, s.maxTravelGrowth);
 }
 
-// Equilibrium lost over the increment just solved: an obstacle's reaction fell by more than
+// Equilibrium lost over the increment just solved: an obstacle pressing on the bodies (moving
+// against its reaction: lifting it off unloads them, no event) saw its reaction fall by more than
 // 4 x smoothReactionChange of itself (the balance found at its end lies past a jump), from at least
 // a tenth of the largest reaction so far (a falling remnant's last touches are no event).
 bool World::lostEquilibrium() const {
@@ -352,7 +353,9 @@ bool World::lostEquilibrium() const {
       if (state_.pairs[p].kind == PairKind::Sphere && -1 - state_.pairs[p].b == static_cast<int>(k))
         reaction -= w.results[p].force.head<3>();
     const Eigen::Vector3d before = k < w.startReaction.size() ? w.startReaction[k] : Eigen::Vector3d::Zero();
-    if (before.norm() >= 0.1 * state_.implicit.largestReaction && reaction.norm() < (1 - limit) * before.norm()) return true;
+    const bool pressing = state_.spheres[k].velocity.dot(before) < 0;  // moving against its reaction: loading, not unloading
+    if (pressing && before.norm() >= 0.1 * state_.implicit.largestReaction && reaction.norm() < (1 - limit) * before.norm())
+      return true;
   }
   return false;
 }

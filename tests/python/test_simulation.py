@@ -6,9 +6,9 @@ import tessera
 from conftest import BLOCK, SCENE
 
 
-def load_unload(slab, turn_at, **options):
+def load_unload(slab, turn_at, scene=SCENE, **options):
     """Load to delta = turn_at, then lift the indenter at the same speed until the load is gone."""
-    sim = tessera.Simulation(SCENE, bundle=slab, **options)
+    sim = tessera.Simulation(scene, bundle=slab, **options)
     state = {"lifting": False, "turned_at": None}
 
     def on_sample(sample, control):
@@ -48,6 +48,23 @@ def test_unloading_returns_the_indenter_and_balances_energy(slab):
     e = sim.energy
     assert abs(e["residual"]) < 0.02 * max(sim.curve["external_work"])
     assert sim.indenter["velocity"][2] > 0, "lifting at the end"
+
+
+def test_the_implicit_method_loads_and_unloads_as_the_explicit_one(slab, tmp_path):
+    scene = tmp_path / "implicit.toml"
+    scene.write_text(open(SCENE).read().replace("[damping]", '[solver]\nmethod = "implicit"\n\n[damping]'))
+    implicit, turned = load_unload(slab, 0.3e-3, scene=str(scene))
+    explicit, explicit_turned = load_unload(slab, 0.3e-3)
+    delta, load = implicit.curve["delta"], implicit.curve["load"]
+    assert np.all(np.diff(delta[turned:]) < 0), "delta decreases while lifting"
+    assert load[-1] <= 0 < load[turned - 1]
+    assert implicit.curve["external_work"][-1] < implicit.curve["external_work"][turned - 1]
+    assert abs(implicit.energy["residual"]) < 0.02 * max(implicit.curve["external_work"])
+    # The loading branches at delta = 0.25 mm.
+    ours = np.interp(0.25e-3, delta[:turned], load[:turned])
+    theirs = np.interp(0.25e-3, explicit.curve["delta"][:explicit_turned], explicit.curve["load"][:explicit_turned])
+    assert ours == pytest.approx(theirs, rel=0.01)
+    assert implicit.steps < explicit.steps / 50
 
 
 def test_backing_off_is_no_failure(slab):
