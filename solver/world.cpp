@@ -291,12 +291,15 @@ void World::updatePairs() {
   state_.pairsValid = true;
 }
 
-void World::evaluateForces() {
+// springStep: the time since the springs were last loaded, s: the step's dt after a drift, 0 when
+// the forces are evaluated again at the same configuration (after retireBody or addSphere, or at
+// the start), so that no spring is loaded twice by the same motion.
+void World::evaluateForces(double springStep) {
   updatePairs();
   kinematics_.update(state_.bodies);
   travel_.update(state_.bodies, bodyRadius_, state_.spheres);
   ContactScene scene{&state_.bodies, &kinematics_, &shapes_, &state_.spheres, &state_.planes, parameters_,
-                     parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt_, candidateBand(), &travel_};
+                     parameters_.normalStiffness(), parameters_.tangentialStiffness(), springStep, candidateBand(), &travel_};
   arena_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, state_.pairs.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t p = r.begin(); p != r.end(); ++p) evaluatePair(scene, state_.pairs[p]);
@@ -358,7 +361,7 @@ void World::step() {
 
 void World::explicitStep() {
   if (!state_.forcesValid) {
-    evaluateForces();
+    evaluateForces(0.0);
     if (state_.steps == 0) {
       const EnergyBudget e = energy();
       state_.initialEnergy = e.kinetic + e.elastic;
@@ -386,7 +389,7 @@ void World::explicitStep() {
     state_.obstacleWork += -state_.sphereReaction[k].dot(state_.spheres[k].velocity) * dt_;
     state_.spheres[k].center += dt_ * state_.spheres[k].velocity;
   }
-  evaluateForces();
+  evaluateForces(dt_);
   for (std::size_t i = 0; i < state_.bodies.size(); ++i)
     if (!state_.bodies.fixed[i]) kick(i);
   state_.time += dt_;

@@ -136,7 +136,7 @@ public:
   double maxPenetration() const;  ///< m, deepest node in the last evaluation
 
 private:
-  void evaluateForces();
+  void evaluateForces(double springStep);
   void explicitStep();
   // The implicit method (solver/implicit_increment.cpp).
   struct ImplicitWork;

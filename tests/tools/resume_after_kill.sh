@@ -4,7 +4,7 @@
 set -euo pipefail
 tessera=$1 source=$2
 source "$(dirname "${BASH_SOURCE[0]}")/small_slab.sh"  # $work/slab
-printf 'bundle = "slab"\n[indenter]\nspeed = 0.005\n[protocol]\ndelta_max = 1.0e-3\n[damping]\nlocal = 0.3\n[solver]\nthreads = 2\n[output]\ncheckpoint_seconds = 0.2\n' > "$work/scene.toml"
+printf 'bundle = "slab"\n[indenter]\nspeed = 0.003\n[protocol]\ndelta_max = 1.0e-3\n[damping]\nlocal = 0.3\n[solver]\nthreads = 2\n[output]\ncheckpoint_seconds = 0.2\n' > "$work/scene.toml"
 
 "$tessera" run "$work/scene.toml" --no-plot -o "$work/whole" > /dev/null 2>&1
 
