@@ -26,14 +26,17 @@ namespace {
 // the increment's start. A node at body-frame position x_b is at p = R_M x_b + c_M (world) and at
 // y = R_O^T (p - c_O) in O's frame; its displacement relative to O over the increment is
 // rel = R_O (y - y0): the node's motion less that of O's material point it was at.
+// (rel = R_O (toO x + shift - toO0 x - shift0) = relMatrix x + relShift.)
 struct SidePoses {
-  Eigen::Matrix3d RM, RO, toO, toO0;
-  Eigen::Vector3d cM, shift, shift0;
+  Eigen::Matrix3d RM, RO, toO, relMatrix;
+  Eigen::Vector3d cM, shift, relShift;
 };
 
 SidePoses posesOf(const Eigen::Matrix3d& RM, const Eigen::Vector3d& cM, const Eigen::Matrix3d& RO, const Eigen::Vector3d& cO,
                   const Eigen::Matrix3d& RM0, const Eigen::Vector3d& cM0, const Eigen::Matrix3d& RO0, const Eigen::Vector3d& cO0) {
-  return {RM, RO, RO.transpose() * RM, RO0.transpose() * RM0, cM, RO.transpose() * (cM - cO), RO0.transpose() * (cM0 - cO0)};
+  const Eigen::Matrix3d toO = RO.transpose() * RM, toO0 = RO0.transpose() * RM0;
+  const Eigen::Vector3d shift = RO.transpose() * (cM - cO), shift0 = RO0.transpose() * (cM0 - cO0);
+  return {RM, RO, toO, RO * (toO - toO0), cM, shift, RO * (shift - shift0)};
 }
 
 // The region of M's frame that O's box (in O's frame) covers.
@@ -241,9 +244,9 @@ void visitSide(Accumulator& acc, const ShapeModel& sm, const SidePoses& s, const
     const double phi = levelSet(y, normal);
     if (listing && phi < band) candidates.keys.push_back(side << 31 | rank);
     if (!(phi < 0)) return;
-    const Eigen::Vector3d n = s.RO * normal;
-    const double area = facingArea(areaShare * sm.nodes.area[rank], -(s.RM * sm.nodes.normal[rank]).dot(n));
-    const Eigen::Vector3d rel = s.RO * (y - (s.toO0 * x + s.shift0));
+    const Eigen::Vector3d n = s.RO * normal, ni = s.RM * sm.nodes.normal[rank];
+    const double area = facingArea(areaShare * sm.nodes.area[rank], -ni.dot(n));
+    const Eigen::Vector3d rel = s.relMatrix * x + s.relShift;
     // Inside a sphere n = (x - c) / |x - c| turns as dn = kappa (I - n n^T) d(rel), kappa = 1 / |x - c|,
     // and the area a = A (-n_i . n) with it: d a / d(rel) = -A kappa (I - n n^T) n_i.
     // Turning the node's body by dtheta against the other side turns n_i against n: d a = -A (n_i x n) . dtheta.
@@ -251,7 +254,6 @@ void visitSide(Accumulator& acc, const ShapeModel& sm, const SidePoses& s, const
     const double curvature = sphereRadius > 0 ? 1.0 / (sphereRadius + phi) : 0.0;
     if (area > 0) {
       const double A = areaShare * sm.nodes.area[rank];
-      const Eigen::Vector3d ni = s.RM * sm.nodes.normal[rank];
       // (Skipped below a hundredth of a radian between n_i and -n: a face on a face, where the
       // term is that fraction of a fraction d / r of the ones kept.)
       const Eigen::Vector3d turn = ni.cross(n);
