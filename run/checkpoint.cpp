@@ -17,7 +17,7 @@ using h5::Handle;
 namespace {
 
 constexpr const char* kFormat = "tessera-checkpoint";
-constexpr std::int64_t kVersion = 5;
+constexpr std::int64_t kVersion = 6;
 
 hsize_t count(std::size_t n) { return static_cast<hsize_t>(n); }
 
