@@ -94,6 +94,13 @@ std::vector<char> updateFallen(World& world, const Scene& scene, IndentationReco
 
 }  // namespace
 
+void recordStepping(IndentationRecord& record, const World& world) {
+  record.steps = world.stepCount();
+  record.timeStep = world.timeStep();
+  record.implicit = world.settings().method == SolverMethod::Implicit;
+  record.implicitCounts = world.implicitCounts();
+}
+
 void runIndentation(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
                     IndentationState& state, const RunHooks& hooks) {
   using Clock = std::chrono::steady_clock;
@@ -112,17 +119,14 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
     return travelLeft / world.travelPerStep(speed) / std::max(rate, 1e-9);
   };
   const auto finishSession = [&] {
-    record.steps = world.stepCount();
-    record.timeStep = world.timeStep();
-    record.implicit = world.settings().method == SolverMethod::Implicit;
-    record.implicitCounts = world.implicitCounts();
+    recordStepping(record, world);
     record.wallSeconds = wallBefore + wall();
     if (hooks.checkpoint) hooks.checkpoint(state);
   };
   const auto checkpointDue = [&] {
     if (!hooks.checkpoint || world.stepCount() % 100 != 0 || wall() - lastCheckpoint < hooks.checkpointSeconds) return;
     lastCheckpoint = wall();
-    record.steps = world.stepCount();
+    recordStepping(record, world);
     record.wallSeconds = wallBefore + wall();
     hooks.checkpoint(state);
   };

@@ -94,6 +94,10 @@ struct IndentationRecord {
   bool finished() const { return stopReason == "delta_max" || stopReason == "failure" || stopReason == "requested"; }
 };
 
+/// The record's account of the World's stepping: steps (increments), the last time step, the
+/// method and the implicit method's counts.
+void recordStepping(IndentationRecord& record, const World& world);
+
 /// Progress while running (called every output.progressSeconds of wall time).
 struct Progress {
   double delta, load, kinetic, externalWork;

@@ -312,7 +312,7 @@ void RunSession::run(RunHooks hooks) {
     runIndentation(*world_, bundle_, scene_, record_, state_, hooks);
   } catch (const SolverInstability&) {
     record_.stopReason = "instability";
-    record_.steps = world_->stepCount();
+    recordStepping(record_, *world_);
     writeOutputs();  // what was recorded, not the unstable state
     throw;
   }
