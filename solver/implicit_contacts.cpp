@@ -105,9 +105,9 @@ public:
     //   normal     (k_n a + eta_n a / dt) n n^T                       while f_n > 0
     //   sticking   k_t a (I - n n^T)
     //   sliding    mu f_n / |s| (I - s^ s^T)(I - n n^T) - mu (k_n a + eta_n a / dt) s^ n^T
-    // (s: the trial spring; sliding, f_t = -mu f_n s^). Terms of the order of the force times a
-    // rotation (the normal turning with the other side, the lever turning with the body) are left
-    // out: they are f / (k a r) = d / r of the ones kept. On a curved other side (the indenter) the
+    // (s: the trial spring; sliding, f_t = -mu f_n s^). The normal turning with a plane of the
+    // other side as that side turns is left out: f / (k a r) = d / r of the terms kept (the lever
+    // turning with the body is pairTangent's geometric part). On a curved other side (the indenter) the
     // normal turns as the node slides, dn = kappa (I - n n^T) d(rel), which softens the contact
     // tangentially by -f_n kappa (I - n n^T): d / R of k_n a, several per cent under the
     // indenter, and kept.
@@ -225,9 +225,6 @@ private:
   Eigen::Vector3d isotropicLever_{0, 0, 0};
   Eigen::Matrix3d isotropicSecond_ = Eigen::Matrix3d::Zero();
 };
-
-// m^2, a node's share of its area projected on the contact plane, 0 facing away (as the explicit step).
-double facingArea(double share, double projection) { return share * (projection > 0 ? projection : 0.0); }
 
 // The nodes of one side of a pair tested against the other side O's level set, phi(y, normal)
 // with y in O's frame (normal: O's frame, set when phi < 0): the side's listed candidates, or when

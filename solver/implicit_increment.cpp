@@ -62,11 +62,15 @@ std::string format(const char* pattern, double a, double b = 0) {
 
 }  // namespace
 
-// s, the longest increment allowed now: the settings' (or 1e4 explicit steps), and the time in
-// which the fastest obstacle moves the travel limit.
+// s, the settings' longest increment (0: 1e4 explicit automatic steps).
+double World::implicitLongestIncrement() const {
+  return settings_.implicit.maxIncrement > 0 ? settings_.implicit.maxIncrement : 1e4 * automaticDt_;
+}
+
+// s, the longest increment allowed now: implicitLongestIncrement, and the time in which the
+// fastest obstacle moves the travel limit.
 double World::implicitIncrementLimit() const {
-  const ImplicitSettings& s = settings_.implicit;
-  double limit = s.maxIncrement > 0 ? s.maxIncrement : 1e4 * automaticDt_;
+  double limit = implicitLongestIncrement();
   const double travel = implicitTravelLimit();
   for (const SphereObstacle& sphere : state_.spheres) {
     const double speed = sphere.velocity.norm();
@@ -83,8 +87,7 @@ double World::implicitTravelLimit() const {
 
 double World::travelPerStep(double speed) const {
   if (settings_.method == SolverMethod::Explicit) return speed * dt_;
-  const ImplicitSettings& s = settings_.implicit;
-  return std::min(implicitTravelLimit(), speed * (s.maxIncrement > 0 ? s.maxIncrement : 1e4 * automaticDt_));
+  return std::min(implicitTravelLimit(), speed * implicitLongestIncrement());
 }
 
 // The residual (and, withMatrix, the tangent) at the bodies' present poses, an increment of dt

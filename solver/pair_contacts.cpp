@@ -223,10 +223,6 @@ std::uint64_t planesNear(const SideCandidates& c, const PlanesInFrame& all, doub
   return kept;
 }
 
-// m^2, a node's share of its area projected on the contact plane: halfArea x projection, 0 where
-// the node faces away (projection <= 0, or NaN).
-inline double facingArea(double halfArea, double projection) { return halfArea * (projection > 0 ? projection : 0.0); }
-
 // Four nodes' facingArea with half their areas, from their areas projected on the contact plane,
 // -a n_i . n (each node's area a times its outward normal n_i: CandidateNodes).
 __attribute__((always_inline)) inline void facingHalfArea(Lanes& area, const Lanes& projectedArea) {

@@ -98,6 +98,10 @@ struct ShapeModel {
   }
 };
 
+/// m^2, a node's share of its area projected on the contact plane: share x projection (-n_i . n),
+/// 0 where the node faces away (projection <= 0, or NaN). docs/physics.md, "Contact".
+inline double facingArea(double share, double projection) { return share * (projection > 0 ? projection : 0.0); }
+
 /// The solver's model of a bundle shape: its nodes binned, its grid, and its exact planes when
 /// convex (and exactConvex) or else its exact mesh level set (when exactMesh).
 ShapeModel makeShapeModel(const Shape& shape, bool exactConvex, bool exactMesh);

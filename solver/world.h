@@ -141,6 +141,7 @@ private:
   // The implicit method (solver/implicit_increment.cpp).
   struct ImplicitWork;
   void implicitStep();
+  double implicitLongestIncrement() const;
   double implicitIncrementLimit() const;
   double implicitTravelLimit() const;
   bool solveIncrement(double dt, int& iterations);
