@@ -10,10 +10,73 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
 
 namespace tessera {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// Bytes a PLY property takes at least: its size in a binary file, a digit and a separator in an
+// ASCII one (a list at least its count).
+std::uintmax_t plyPropertyBytes(const std::string& type, bool ascii) {
+  if (ascii) return 2;
+  static const std::map<std::string, std::uintmax_t> sizes{
+      {"char", 1},   {"uchar", 1},  {"int8", 1},   {"uint8", 1},   {"short", 2},   {"ushort", 2}, {"int16", 2},
+      {"uint16", 2}, {"int", 4},    {"uint", 4},   {"int32", 4},   {"uint32", 4},  {"float", 4},  {"float32", 4},
+      {"double", 8}, {"float64", 8}};
+  const auto found = sizes.find(type);
+  return found == sizes.end() ? 1 : found->second;
+}
+
+// A PLY header's element counts against the bytes the file holds: assimp reserves memory for the
+// counts the header claims, so a damaged header (2 000 000 000 vertices in a 1 kB file) grew
+// memory without bound. The other formats' readers check their counts against the file.
+void checkPlyCounts(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return;
+  bool ascii = false;
+  std::uintmax_t needed = 0, count = 0;
+  std::string element;
+  const auto close = [&](std::uintmax_t bytes) {
+    if (count > 0 && bytes > (std::numeric_limits<std::uintmax_t>::max() / 4) / count)
+      throw InputError(path + ": its PLY header claims " + std::to_string(count) + " " + element + "s; the file is damaged");
+    needed += count * bytes;
+  };
+  std::uintmax_t elementBytes = 0;
+  for (int lines = 0; std::getline(in, line) && lines < 10000; ++lines) {
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "format") {
+      words >> word;
+      ascii = word == "ascii";
+    } else if (word == "element") {
+      close(elementBytes);
+      elementBytes = 0;
+      count = 0;
+      words >> element >> count;
+    } else if (word == "property") {
+      words >> word;
+      if (word == "list") words >> word;  // the count's type; a list holds its count at least
+      elementBytes += plyPropertyBytes(word, ascii);
+    } else if (word == "end_header") {
+      close(elementBytes);
+      const std::uintmax_t header = static_cast<std::uintmax_t>(in.tellg()), size = fs::file_size(path);
+      if (needed > size - std::min(size, header))
+        throw InputError(path + ": its PLY header claims more elements than the file's " + std::to_string(size) +
+                         " bytes can hold (the file is truncated or its header damaged); export the mesh again");
+      return;
+    }
+  }
+}
+
+}  // namespace
 
 ImportedMesh importMesh(const std::string& path, const MeshImportOptions& options) {
   const Eigen::Matrix3d toZUp = rotationToZUp(options.up);
@@ -21,6 +84,8 @@ ImportedMesh importMesh(const std::string& path, const MeshImportOptions& option
   if (!fs::exists(path, ec)) throw InputError(path + ": no such file; check the path");
   if (!fs::is_regular_file(path, ec)) throw InputError(path + ": not a regular file; give a mesh file (STL or OBJ)");
   if (fs::file_size(path, ec) == 0) throw InputError(path + ": the file is empty; give a mesh file (STL or OBJ)");
+
+  checkPlyCounts(path);
 
   Assimp::Importer importer;
   // Points and lines are not a surface: ask assimp to drop them.

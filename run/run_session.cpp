@@ -33,6 +33,12 @@ std::string readText(const std::string& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
+// threads: -1 the scene's, 0 all cores, else a count up to kMaxThreads.
+void checkThreadRequest(int threads) {
+  if (threads < -1 || threads > kMaxThreads)
+    throw InputError("threads must be 0 (all cores) or 1 to " + std::to_string(kMaxThreads) + ", got " + std::to_string(threads));
+}
+
 std::string bundleFile(const std::string& bundle) {
   return fs::is_directory(bundle) ? (fs::path(bundle) / kBundleFileName).string() : bundle;
 }
@@ -143,8 +149,7 @@ std::unique_ptr<RunSession> RunSession::start(const RunRequest& request, const R
   std::unique_ptr<RunSession> session(new RunSession());
   RunSession& s = *session;
   s.output_ = request.output;
-  if (request.threads < -1)
-    throw InputError("threads must be 0 (all cores) or a positive number, got " + std::to_string(request.threads));
+  checkThreadRequest(request.threads);
   if (!s.output_.empty() && fs::exists(checkpointFile(s.output_)))
     throw InputError(s.output_ + ": holds a run already; resume it with --resume " + s.output_ + " or choose another -o");
   const std::string sceneText = readText(request.scene);
@@ -205,7 +210,7 @@ std::unique_ptr<RunSession> RunSession::resume(const std::string& folder, const 
   RunSession& s = *session;
   s.output_ = folder;
   s.resumed_ = true;
-  if (threads < -1) throw InputError("threads must be 0 (all cores) or a positive number, got " + std::to_string(threads));
+  checkThreadRequest(threads);
   if (!fs::is_directory(folder)) throw InputError(folder + ": no such run folder to resume");
   s.lock_ = std::make_unique<FolderLock>(folder, "a run");
   s.source_ = readCheckpointSource(checkpointFile(folder));

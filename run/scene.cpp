@@ -200,7 +200,7 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   Table solver(path, "solver", root["solver"].as_table());
   solver.number("time_step", scene.solver.timeStep, 0, 1, "s; 0 = automatic");
   solver.number("time_step_factor", scene.solver.timeStepFactor, 1e-4, 1, "of the stability limit");
-  solver.integer("threads", scene.solver.threads, 0, 1024);
+  solver.integer("threads", scene.solver.threads, 0, kMaxThreads);
   solver.vector<3>("gravity", scene.solver.gravity, "m/s^2");
   if (!(scene.solver.gravity.norm() <= 1000))  // 100 g; also NaN
     throw InputError(path + ": solver.gravity must be at most 1000 m/s^2 (100 g) in size, e.g. [0, 0, -9.81]; 0 turns it off");

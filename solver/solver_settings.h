@@ -38,6 +38,10 @@ struct ImplicitSettings {
 };
 
 /// How the solver integrates (docs/physics.md). Units in the comments.
+/// The most threads a run may ask for: a thread pool of more slots than this exhausts memory
+/// (TBB sizes its arena by the request, 10^9 slots crashed) and buys nothing on any machine.
+constexpr int kMaxThreads = 1024;
+
 struct SolverSettings {
   double density = 2500.0;                      ///< kg/m^3
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};     ///< m/s^2
@@ -52,7 +56,7 @@ struct SolverSettings {
   bool allowUnsafeTimeStep = false;
   double localDamping = 0.0;                    ///< alpha in [0, 1): Cundall's local non-viscous damping
   double viscousDamping = 0.0;                  ///< c, 1/s: global viscous damping F -= c m v, tau -= c I omega
-  int threads = 0;                              ///< 0 = all cores
+  int threads = 0;                              ///< 0 = all cores, at most kMaxThreads
   /// m: bounding boxes are enlarged by this and the pairs found again when a body moves 0.4 of
   /// it; a pair's node candidates are the nodes within 1.25 of it of the other side, found again
   /// when the pair's sides have moved 1.25 / sqrt(3) of it relative to each other. Changes cost,

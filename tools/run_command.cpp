@@ -111,7 +111,8 @@ int runTest(const RunArguments& a) {
       !(fs::exists(a.output) && fs::exists(a.resume) && fs::equivalent(a.output, a.resume)))
     throw InputError("-o " + a.output + " with --resume " + a.resume + ": a run resumes in its own folder; leave out -o, or start "
                      "a new run in another folder from the scene with -o");
-  if (a.threads < -1) throw InputError("--threads must be 0 (all cores) or a positive number, got " + std::to_string(a.threads));
+  if (a.threads < -1 || a.threads > kMaxThreads)
+    throw InputError("--threads must be 0 (all cores) or 1 to " + std::to_string(kMaxThreads) + ", got " + std::to_string(a.threads));
   const RunLog log = [](const std::string& line) { std::cerr << "run: " << line << "\n"; };
   std::unique_ptr<RunSession> session;
   if (a.resume.empty()) {

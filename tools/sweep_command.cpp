@@ -6,6 +6,7 @@
 #include "io/output_directory.h"
 #include "io/safe_write.h"
 #include "run/slurm_sweep.h"
+#include "solver/solver_settings.h"
 #include "run/sweep.h"
 #include "tools/child_process.h"
 #include "tools/commands.h"
@@ -346,7 +347,8 @@ int resubmit(const SweepArguments& a) {
 }
 
 int runSweep(const SweepArguments& a) {
-  if (a.threads < 1) throw InputError("--threads must be at least 1 per case, got " + std::to_string(a.threads));
+  if (a.threads < 1 || a.threads > kMaxThreads)
+    throw InputError("--threads must be 1 to " + std::to_string(kMaxThreads) + " per case, got " + std::to_string(a.threads));
   const int modes = (a.status ? 1 : 0) + (a.resubmit ? 1 : 0) + (a.caseNumber >= 0 ? 1 : 0);
   if (modes > 1) throw InputError("give one of --status, --resubmit, --case");
   if (a.json && !a.status) throw InputError("--json goes with --status: tessera sweep DIR --status --json");

@@ -111,3 +111,22 @@ TEST_CASE("unreadable files are refused naming the file") {
   REQUIRE_THROWS_WITH(importAs(dir / "damaged.obj", 1),
                       Contains("damaged.obj: 10 of its 12 triangles collapsed") && Contains("spans 1.73e+30"));
 }
+
+TEST_CASE("a PLY header claiming more elements than its file holds is refused before any is read (issue #39)") {
+  // assimp reserves what the header claims: 2e9 vertices grew memory without bound.
+  test::TempDir dir;
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+                             "element face 12\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string body = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n";
+  for (const char* f : {"0 2 1", "0 3 2", "4 5 6", "4 6 7", "0 1 5", "0 5 4", "1 2 6", "1 6 5", "2 3 7", "2 7 6", "3 0 4", "3 4 7"})
+    body += std::string("3 ") + f + "\n";
+  test::writeFile(dir / "cube.ply", header + body);
+  REQUIRE(importAs(dir / "cube.ply", 1).mesh.triangles.size() == 12);
+  std::string claims = header;
+  claims.replace(claims.find("vertex 8"), 8, "vertex 2000000000");
+  test::writeFile(dir / "claims.ply", claims + body);
+  REQUIRE_THROWS_WITH(importAs(dir / "claims.ply", 1), Contains("claims.ply") && Contains("PLY header claims more"));
+  claims.replace(claims.find("vertex 2000000000"), 17, "vertex 18446744073709551615");
+  test::writeFile(dir / "overflow.ply", claims + body);
+  REQUIRE_THROWS_WITH(importAs(dir / "overflow.ply", 1), Contains("overflow.ply") && Contains("damaged"));
+}

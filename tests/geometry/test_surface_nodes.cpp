@@ -217,6 +217,16 @@ TEST_CASE("graded nodes: exact areas, the edge spacing along the edges, the face
   }
 }
 
+TEST_CASE("graded nodes at the steepest gradient allowed (100) end, with exact areas and the edge spacing at the edges") {
+  // A band of (s - s_e) / g = 4.5 um: the edges' look-up grid once had cells that small, and a
+  // look-up over a sub-triangle visited ~10^9 of them (no end in 300 s; issue #39).
+  const Sampled s = sample(makePlanarBlock(10e-3, 3.18e-3, 5 * M_PI / 180), 0.6e-3, 0.15e-3, 100);
+  const Sampled gentle = sample(makePlanarBlock(10e-3, 3.18e-3, 5 * M_PI / 180), 0.6e-3, 0.15e-3, 0.5);
+  requireAreaSums(s);
+  requireSharpEdgesCarryNodes(s, 0.6e-3);  // as uniform nodes do: only a 4.5 um band is finer
+  REQUIRE(s.nodes.size() < gentle.nodes.size());  // the band is almost gone
+}
+
 TEST_CASE("graded nodes on non-convex and smooth meshes: exact areas, and an edge spacing of 1 is uniform") {
   requireAreaSums(sample(test::lPrism(1.0), 0.1, 0.025));
   requireAreaSums(sample(makeWaveBlock(10e-3, 3.18e-3, 5 * M_PI / 180, 0.2e-3, 1, 24), 0.6e-3, 0.15e-3));
