@@ -70,14 +70,15 @@ Handle::~Handle() {
   if (id_ >= 0) H5Idec_ref(id_);
 }
 
-// Files are written in the HDF5 1.8+ format, whose metadata (superblock, object headers, B-trees,
-// heaps) carries checksums: a damaged file is then refused by the library when it is opened or an
-// object read, instead of being parsed (the 1.6 format has no checksums, and a damaged object
-// header could crash the library).
+// Files are written in the HDF5 1.10 format, whose metadata (superblock, object headers, heaps,
+// and the chunk indexes of arrays) carries checksums: a damaged file is then refused by the
+// library when it is opened or an object read, instead of being parsed (the 1.6 format has no
+// checksums, and a damaged object header could crash the library; 1.8's chunk index, a B-tree,
+// has none, and a flipped bit in it changed values read).
 Handle createFile(const std::string& path) {
   initializeLibrary();
   Handle access(check(H5Pcreate(H5P_FILE_ACCESS), "make file properties"));
-  check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST), "choose the file format");
+  check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_LATEST), "choose the file format");
   return Handle(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), "create " + path));
 }
 
@@ -120,26 +121,35 @@ std::vector<std::string> childNames(hid_t group) {
   return names;
 }
 
+namespace {
+// Every dataset with data is chunked and checksummed (Fletcher-32: HDF5 checks it on every read,
+// so a damaged chunk fails to read instead of changing an answer; the 1.10 format checksums the
+// metadata), large ones (grids) also compressed, in chunks of at most 2^16 elements.
+Handle checksummedProperties(const std::vector<hsize_t>& dims, hsize_t count, const std::string& name) {
+  Handle properties(check(H5Pcreate(H5P_DATASET_CREATE), "make dataset properties"));
+  if (count == 0) return properties;
+  constexpr hsize_t kChunkElements = 1 << 16;
+  std::vector<hsize_t> chunk(dims);
+  hsize_t total = count;
+  for (std::size_t a = 0; a < chunk.size() && total > kChunkElements; ++a) {
+    const hsize_t rest = total / chunk[a];
+    chunk[a] = std::max<hsize_t>(1, kChunkElements / rest);
+    total = chunk[a] * rest;
+  }
+  check(H5Pset_chunk(properties.get(), static_cast<int>(chunk.size()), chunk.data()), "chunk " + name);
+  check(H5Pset_fletcher32(properties.get()), "checksum " + name);
+  if (count >= 4096) check(H5Pset_deflate(properties.get(), 4), "compress " + name);
+  return properties;
+}
+}  // namespace
+
 template <class T>
 void writeDataset(hid_t parent, const std::string& name, const std::vector<T>& data, const std::vector<hsize_t>& dims) {
   hsize_t count = 1;
   for (hsize_t d : dims) count *= d;
   if (count != data.size()) throw std::logic_error("writeDataset " + name + ": size does not match dims");
   Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "make dataspace"));
-  Handle properties(check(H5Pcreate(H5P_DATASET_CREATE), "make dataset properties"));
-  constexpr hsize_t kChunkElements = 1 << 16;
-  if (count >= 4096) {  // chunk and compress large arrays (grids): chunks of at most kChunkElements
-    std::vector<hsize_t> chunk(dims);
-    hsize_t total = count;
-    for (std::size_t a = 0; a < chunk.size() && total > kChunkElements; ++a) {
-      const hsize_t rest = total / chunk[a];
-      chunk[a] = std::max<hsize_t>(1, kChunkElements / rest);
-      total = chunk[a] * rest;
-    }
-    check(H5Pset_chunk(properties.get(), static_cast<int>(chunk.size()), chunk.data()), "chunk " + name);
-    check(H5Pset_fletcher32(properties.get()), "checksum " + name);  // a damaged chunk fails to read
-    check(H5Pset_deflate(properties.get(), 4), "compress " + name);
-  }
+  Handle properties = checksummedProperties(dims, count, name);
   Handle set(check(H5Dcreate2(parent, name.c_str(), nativeType<T>(), space.get(), H5P_DEFAULT, properties.get(),
                               H5P_DEFAULT),
                    "create dataset " + name));
@@ -206,7 +216,8 @@ void writeStrings(hid_t parent, const std::string& name, const std::vector<std::
   Handle type = fixedStringType(width);
   const hsize_t count = values.size();
   Handle space(check(H5Screate_simple(1, &count, nullptr), "make dataspace"));
-  Handle set(check(H5Dcreate2(parent, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+  Handle properties = checksummedProperties({count}, count, name);
+  Handle set(check(H5Dcreate2(parent, name.c_str(), type.get(), space.get(), H5P_DEFAULT, properties.get(), H5P_DEFAULT),
                    "create dataset " + name));
   if (count > 0) check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data()), "write " + name);
 }

@@ -1,5 +1,6 @@
 #include "run/checkpoint.h"
 
+#include "io/file_digest.h"
 #include "io/input_error.h"
 #include "io/hdf5_file.h"
 #include "run/curve_table.h"
@@ -17,7 +18,7 @@ using h5::Handle;
 namespace {
 
 constexpr const char* kFormat = "tessera-checkpoint";
-constexpr std::int64_t kVersion = 6;
+constexpr std::int64_t kVersion = 7;
 
 hsize_t count(std::size_t n) { return static_cast<hsize_t>(n); }
 
@@ -280,6 +281,28 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
   writeFallen(h5::createGroup(g, "fallen").get(), r.fallen);
 }
 
+// The protocol state's numbers, each against what the protocol can have made of it: a damaged
+// value would resume with exit 0 and label the results wrongly.
+void checkProtocolValues(const IndentationState& s, const IndentationRecord& r) {
+  const auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::runtime_error(std::string("protocol state: ") + what);
+  };
+  for (double x : {s.loadStart, s.contactTravel, s.peak, s.nextSample, s.nextSnapshot, s.quietFrom, s.travelBase, s.pathBase,
+                   s.speedSince, s.contactPath, r.settleTime, r.thickness, r.deltaMax, r.timeStep, r.wallSeconds})
+    require(std::isfinite(x), "a value that is not finite");
+  for (const Eigen::Vector3d& x : s.settledPosition) require(x.allFinite(), "a settled position that is not finite");
+  for (double x : s.outAt) require(std::isfinite(x), "a body's fall deflection that is not finite");
+  require(s.loadStart >= 0 && s.speedSince >= s.loadStart && s.peak >= 0 && s.nextSample >= 0 && s.nextSnapshot >= 0,
+          "a time, load or sampling point out of range");
+  require(r.settleTime >= 0 && r.timeStep >= 0 && r.wallSeconds >= 0 && r.steps >= 0 && r.settleSteps >= 0,
+          "a time or step count out of range");
+  if (s.phase > 0)
+    require(r.thickness > 0 && r.deltaMax > 0, "the loaded block's thickness or delta_max is not positive");
+  // The first sample is taken at first contact, and every later one moves next_sample on.
+  require(s.contactTravel < 0 || !r.curve.empty(), "contact was made but the curve is empty");
+  require(s.nextSample == 0 || !r.curve.empty(), "samples were taken but the curve is empty");
+}
+
 void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t bodies) {
   s.phase = static_cast<int>(h5::readIntAttribute(g, "phase"));
   s.sphere = static_cast<int>(h5::readIntAttribute(g, "sphere"));
@@ -315,6 +338,7 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   if (s.phase < 0 || s.phase > 2 || r.target < -1 || r.target >= static_cast<int>(bodies) || (s.phase > 0 && r.target < 0) ||
       (s.phase > 0 && s.sphere < 0))
     throw std::runtime_error("protocol state out of range");
+  checkProtocolValues(s, r);
   r.snapshots = readSnapshots(h5::openGroup(g, "snapshots").get(), bodies);
   r.fallen = readFallen(h5::openGroup(g, "fallen").get());
 }
@@ -329,6 +353,7 @@ void writeCheckpoint(const std::string& path, const CheckpointSource& source, co
     h5::writeAttribute(f, "generator", generatorVersion());
     h5::writeAttribute(f, "scene", source.scene);
     h5::writeAttribute(f, "scene_text", source.sceneText);
+    h5::writeAttribute(f, "scene_text_digest", textDigest(source.sceneText));
     h5::writeAttribute(f, "scene_digest", source.sceneDigest);
     h5::writeAttribute(f, "preset", source.preset);
     h5::writeAttribute(f, "bundle", source.bundle);
@@ -354,6 +379,8 @@ CheckpointSource readCheckpointSource(const std::string& path) {
     CheckpointSource s;
     s.scene = h5::readStringAttribute(f.get(), "scene");
     s.sceneText = h5::readStringAttribute(f.get(), "scene_text");
+    if (textDigest(s.sceneText) != h5::readStringAttribute(f.get(), "scene_text_digest"))
+      throw std::runtime_error("the scene's text is not the one the run started with");
     s.sceneDigest = h5::readStringAttribute(f.get(), "scene_digest");
     s.preset = h5::readStringAttribute(f.get(), "preset");
     s.bundle = h5::readStringAttribute(f.get(), "bundle");
@@ -374,12 +401,15 @@ void readCheckpoint(const std::string& path, WorldState& world, IndentationState
     Handle f = h5::openFileReadOnly(path);
     Handle w = h5::openGroup(f.get(), "world");
     const std::size_t bodies = world.bodies.size();
+    const std::vector<char> fixedInBundle = world.bodies.fixed;
     readWorld(w.get(), world);
     if (world.bodies.position.size() != bodies) throw std::runtime_error("it holds a different number of bodies than the bundle");
     Handle r = h5::openGroup(f.get(), "run");
     readRecord(r.get(), state, record, bodies);
     if (state.sphere < -1 || state.sphere >= static_cast<int>(world.spheres.size()) || (state.phase > 0 && state.sphere < 0))
       throw std::runtime_error("the indenter's index is out of range");
+    if (record.target >= 0 && (fixedInBundle[record.target] || world.bodies.name[record.target] != record.targetName))
+      throw std::runtime_error("the loaded block is not the bundle's free body '" + record.targetName + "'");
   } catch (const std::exception& e) {
     throw InputError(path + ": cannot resume from this checkpoint (" + e.what() + "); " + kUnreadableCheckpointFix);
   }

@@ -2,6 +2,7 @@
 
 #include "io/hdf5_file.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -53,7 +54,11 @@ std::vector<CurveSample> readCurve(hid_t group) {
     if (values.size() != curve.size())
       throw std::runtime_error(std::string("curve column '") + c.name + "' has " + std::to_string(values.size()) +
                                " values, not " + std::to_string(curve.size()));
-    for (std::size_t i = 0; i < values.size(); ++i) curve[i].*c.field = values[i];
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (!std::isfinite(values[i]))
+        throw std::runtime_error(std::string("curve column '") + c.name + "' holds a value that is not finite");
+      curve[i].*c.field = values[i];
+    }
   }
   return curve;
 }

@@ -1,6 +1,7 @@
 // The run of one scene in process (run/run_session.h): checkpoint round trips, the sample hook
 // steering the indenter, presets and overrides, determinism across thread counts.
 #include "io/input_error.h"
+#include "run/curve_table.h"
 #include "run/presets.h"
 #include "run/run_session.h"
 #include "run/state_digest.h"
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 using namespace tessera;
 using Catch::Matchers::Contains;
@@ -83,6 +85,56 @@ TEST_CASE("checkpoint round trip: a run stopped mid-loading and resumed in proce
     REQUIRE(a.orientation[i].coeffs() == b.orientation[i].coeffs());
     REQUIRE(a.angularMomentum[i] == b.angularMomentum[i]);
   }
+}
+
+TEST_CASE("a bit flipped anywhere in checkpoint.h5 is refused or resumes exactly as before (issue #39)") {
+  // HDF5 checksums the metadata, Fletcher-32 every dataset; what is read is checked again.
+  SmallTest t;
+  auto first = RunSession::start(t.request(t.dir / "run"), {});
+  RunHooks stop;
+  stop.interrupted = [&] { return first->state().phase == 1 && first->record().curve.size() >= 5; };
+  first->run(stop);
+  first.reset();
+  const std::string file = t.dir / "run/checkpoint.h5";
+  const auto resumed = [&] {
+    auto r = RunSession::resume(t.dir / "run", "", "", -1, {});
+    const IndentationState& s = r->state();
+    std::ostringstream all;
+    all.precision(17);
+    all << stateDigest(r->world()) << r->source().sceneText << r->source().preset << r->source().threads << s.phase << s.sphere
+        << s.loadStart << s.contactTravel << s.peak << s.nextSample << s.nextSnapshot << s.quietFrom << s.travelBase
+        << s.pathBase << s.speedSince << s.contactPath << r->record().thickness << r->record().deltaMax
+        << r->record().target << r->record().timeStep << r->world().state().obstacleWork << r->world().state().friction;
+    for (const CurveSample& c : r->record().curve)
+      for (const CurveColumn& column : curveColumns()) all << ' ' << c.*column.field;
+    for (const PairContacts& p : r->world().state().pairs)
+      for (std::size_t i = 0; i < p.contacts.size(); ++i)
+        all << ' ' << p.contacts.key[i] << ' ' << p.contacts.springX[i] << ' ' << p.contacts.springY[i] << ' '
+            << p.contacts.springZ[i] << ' ' << p.contacts.energy[i] << ' ' << p.contacts.area[i];
+    return all.str();
+  };
+  const std::string original = resumed();
+  const std::string bytes = test::readFile(file);
+  std::uint64_t state = 777;
+  int refused = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;  // Knuth's MMIX LCG
+    const std::size_t at = (state >> 16) % bytes.size();
+    std::string damaged = bytes;
+    damaged[at] = static_cast<char>(damaged[at] ^ (1 << ((state >> 8) % 8)));
+    test::writeFile(file, damaged);
+    INFO("a bit of byte " << at << " of " << bytes.size() << " flipped");
+    std::string got;
+    try {
+      got = resumed();
+    } catch (const InputError& e) {
+      REQUIRE_THAT(e.what(), Contains("checkpoint.h5"));
+      ++refused;
+      continue;
+    }
+    REQUIRE(got == original);
+  }
+  REQUIRE(refused > 20);  // most of the file is free space and padding
 }
 
 TEST_CASE("sample hook: a run it does not steer is the protocol's run, a hold does no work and keeps delta") {

@@ -171,6 +171,15 @@ void replaceDataset(const std::string& file, const std::string& group, const std
   h5::writeDataset(g.get(), name, values, dims);
 }
 
+template <class T>
+void replaceAttribute(const std::string& file, const std::string& group, const std::string& name, const T& value) {
+  h5::Handle f(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  REQUIRE(f.valid());
+  h5::Handle g = group.empty() ? h5::Handle(H5Oopen(f.get(), "/", H5P_DEFAULT)) : h5::openGroup(f.get(), group);
+  REQUIRE(H5Adelete(g.get(), name.c_str()) >= 0);
+  h5::writeAttribute(g.get(), name, value);
+}
+
 }  // namespace
 
 TEST_CASE("reliability 1: a full disk is one clear error, exit 2, and the previous files stay whole") {
@@ -237,6 +246,36 @@ TEST_CASE("reliability 3: a damaged checkpoint is one clear error, never a crash
   falling.back() = -1;
   replaceDataset(checkpoint, "run/snapshots", "force_offset", falling, dims);
   refused("decreasing contact-record offsets");
+  // The protocol's state (issue #39): each value against what the protocol can have made of it.
+  const double nan = std::nan("");
+  for (const char* name : {"delta_max", "next_sample", "contact_travel", "peak", "load_start"}) {
+    replaceAttribute(checkpoint, "run", name, nan);
+    refused(std::string(name) + " NaN");
+  }
+  replaceAttribute(checkpoint, "run", "thickness", 0.0);
+  refused("zero thickness");
+  replaceAttribute(checkpoint, "run", "target", std::int64_t{0});  // r0c0, a fixed corner block
+  refused("the target moved to a fixed body");
+  const auto loads = [&] {
+    h5::Handle f = h5::openFileReadOnly(checkpoint);
+    return h5::readDataset<double>(h5::openGroup(f.get(), "run/curve").get(), "load", &dims);
+  }();
+  REQUIRE(loads.size() > 2);
+  std::vector<double> nanLoad = loads;
+  nanLoad[1] = nan;
+  replaceDataset(checkpoint, "run/curve", "load", nanLoad, dims);
+  refused("a NaN load in the curve");
+  {
+    h5::Handle f(H5Fopen(checkpoint.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+    h5::Handle curve = h5::openGroup(f.get(), "run/curve");
+    for (const std::string& column : h5::childNames(curve.get())) {
+      REQUIRE(H5Ldelete(curve.get(), column.c_str(), H5P_DEFAULT) >= 0);
+      h5::writeDataset(curve.get(), column, std::vector<double>{}, {0});
+    }
+  }
+  refused("an emptied curve");
+  replaceAttribute(checkpoint, "", "scene_text", std::string("bundle = \"slab\"\n[protocol]\ndelta_max = 0.9e-3\n"));
+  refused("an edited scene text");
   test::writeFile(checkpoint, "not HDF5 at all");
   refused("garbage");
   // Undamaged, it resumes.
