@@ -159,6 +159,9 @@ void writeDataset(hid_t parent, const std::string& name, const std::vector<T>& d
 template <class T>
 std::vector<T> readDataset(hid_t parent, const std::string& name, std::vector<hsize_t>* dims) {
   Handle set(check(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "open dataset '" + name + "'"));
+  Handle type(check(H5Dget_type(set.get()), "read type of " + name));
+  if (H5Tget_class(type.get()) != H5Tget_class(nativeType<T>()))  // HDF5 would convert 2.5 to 2 without a word
+    throw std::runtime_error("HDF5: dataset '" + name + "' holds another kind of number than expected");
   Handle space(check(H5Dget_space(set.get()), "read shape of " + name));
   const int rank = H5Sget_simple_extent_ndims(space.get());
   if (rank < 0) throw std::runtime_error("HDF5: cannot read rank of " + name);
@@ -286,6 +289,9 @@ double readDoubleAttribute(hid_t object, const std::string& name, double absent)
 
 std::int64_t readIntAttribute(hid_t object, const std::string& name) {
   Handle attribute = openAttribute(object, name);
+  Handle type(check(H5Aget_type(attribute.get()), "read type of " + name));
+  if (H5Tget_class(type.get()) != H5T_INTEGER)  // HDF5 would convert 2.5 to 2 without a word
+    throw std::runtime_error("HDF5: attribute '" + name + "' is not an integer");
   std::int64_t value = 0;
   check(H5Aread(attribute.get(), H5T_NATIVE_INT64, &value), "read attribute " + name);
   return value;

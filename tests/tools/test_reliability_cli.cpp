@@ -399,6 +399,17 @@ TEST_CASE("reliability 11: values inside a bundle are checked: a corrupt bundle 
       {[&](Bundle& b) { b.bodies[2].name = b.bodies[1].name; }, "a second body of that name"},
       {[&](Bundle& b) { b.bodies[4].orientation.coeffs()[0] = nan; }, "its orientation is not a unit quaternion"},
       {[&](Bundle& b) { b.bodies[0].position.z() = std::numeric_limits<double>::infinity(); }, "its position is not finite"},
+      // What prep derives from the mesh, recomputed from it (issue #39).
+      {[&](Bundle& b) { b.shapes[0].mesh.triangles.pop_back(); }, "the mesh is open"},
+      {[&](Bundle& b) { b.shapes[0].mesh.triangles[0][1] = b.shapes[0].mesh.triangles[0][0]; }, "has zero area"},
+      {[&](Bundle& b) { b.shapes[0].mass.volume = 1e300; }, "a volume or surface area that is not its mesh's"},
+      {[&](Bundle& b) { b.shapes[0].mass.principalMoments[1] *= 2; }, "principal moments that are not its mesh's"},
+      {[&](Bundle& b) { b.shapes[0].mass.principalAxes(0, 1) = nan; }, "principal axes"},
+      {[&](Bundle& b) { b.shapes[0].mass.centroid.x() = nan; }, "a centroid"},
+      {[&](Bundle& b) { b.shapes[0].nodes.positions[7].x() += 1.0; }, "node 7 is off the mesh's surface"},
+      {[&](Bundle& b) { b.shapes[0].nodes.areas[5] = 1e300; }, "node areas that do not sum"},
+      {[&](Bundle& b) { b.shapes[0].resolution.voxelSize = 0; }, "a voxel size or node spacing"},
+      {[&](Bundle& b) { b.shapes[0].sdf.voxelSize = nan; }, "positive voxel size"},
   };
   for (const auto& c : cases) {
     Bundle bad = good;
@@ -413,6 +424,13 @@ TEST_CASE("reliability 11: values inside a bundle are checked: a corrupt bundle 
       REQUIRE_THAT(r.err, Contains("corrupt or incomplete bundle") && Contains(c.expected));
     }
   }
+  // A count stored as a number with a fraction is not read as its integer part.
+  fs::remove_all(dir / "bad");
+  writeBundle(dir / "bad", good);
+  replaceAttribute(dir / "bad/bundle.h5", "bodies", "span_interfaces", 2.5);
+  const test::CliResult span = test::runTessera("inspect " + quoted(dir / "bad"));
+  REQUIRE(span.status == 2);
+  REQUIRE_THAT(span.err, Contains("corrupt or incomplete bundle") && Contains("'span_interfaces' is not an integer"));
 }
 
 TEST_CASE("reliability 13: a second writer of a run folder is refused while the first holds it") {
