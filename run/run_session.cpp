@@ -9,6 +9,7 @@
 #include "levelset/shape_builder.h"
 #include "run/load_point.h"
 #include "run/presets.h"
+#include "run/protocol_scale.h"
 #include "run/run_output.h"
 #include "run/state_digest.h"
 
@@ -79,6 +80,25 @@ void checkValuesAgainstSlab(const Scene& scene, const Bundle& bundle, const Worl
       << speed * world.timeStep() * 1e6 << " um a time step, more than a tenth of the broad-phase margin (" << margin * 1e6
       << " um), so its contacts would be found late; speeds are in m/s (" << speed << " mm/s is " << speed * 1e-3
       << " m/s), at most " << fastest << " m/s here, or set it to 0 for the automatic speed";
+    throw InputError(m.str());
+  }
+  // A run that cannot end: loading or settling that takes more than 10^9 time steps (hours on the
+  // smallest slab, weeks on a large one) is a value in the wrong unit, never a test.
+  constexpr double kMostSteps = 1e9;
+  const double dt = world.timeStep(), deltaMax = scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * h;
+  const double v = indenterSpeed(world, scene.indenter, h), settle = settleTimeLimit(world, scene.protocol);
+  if (!(deltaMax / (v * dt) <= kMostSteps)) {
+    std::ostringstream m;
+    m << std::setprecision(3) << scene.path << ": an indenter speed of " << v << " m/s takes " << deltaMax / (v * dt)
+      << " time steps of " << dt << " s to reach delta_max = " << deltaMax * 1e3 << " mm, more than 1e9; speeds are in m/s "
+      << "(indenter.speed, or indenter.speed_ratio of the automatic speed), at least " << deltaMax / (kMostSteps * dt)
+      << " m/s here";
+    throw InputError(m.str());
+  }
+  if (!(settle / dt <= kMostSteps)) {
+    std::ostringstream m;
+    m << std::setprecision(3) << scene.path << ": settling for up to " << settle << " s takes " << settle / dt
+      << " time steps of " << dt << " s, more than 1e9; lower protocol.settle_max_time (s) or settle_max_time_ratio";
     throw InputError(m.str());
   }
 }
