@@ -11,6 +11,10 @@ std::vector<Placement> squareGrid(const SquareGridOptions& o, const std::string&
   if (o.columns < 1 || o.rows < 1) throw InputError("--grid: need at least 1 x 1 blocks");
   if (!(o.pitch > 0) || !std::isfinite(o.pitch)) throw InputError("--pitch must be positive");
   if (!(o.gap >= 0) || !std::isfinite(o.gap)) throw InputError("--gap must be zero or positive");
+  if (o.fixPerimeter && std::min(o.columns, o.rows) < 3)
+    throw InputError("--grid " + std::to_string(o.columns) + "x" + std::to_string(o.rows) +
+                     " with --fix perimeter: every block is on the perimeter, so none is free to load; use at least 3x3, "
+                     "or --fix none");
   const double p = o.pitch + o.gap;
   const Eigen::Quaterniond quarterTurn(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
   std::vector<Placement> out;

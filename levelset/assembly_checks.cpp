@@ -34,8 +34,42 @@ void refuseOverlaps(const Bundle& bundle, const AssemblyCheck& check, double tol
                    std::to_string(check.overlaps.size()) + " overlapping pair(s) in all); " + fix);
 }
 
+namespace {
+
+// Positions and a span no arrangement of these blocks can have: a body farther from the middle of
+// the others than all of them side by side, or a span longer than the whole assembly (a layout's
+// 1e300 mm was accepted and made a bundle).
+void refuseBeyondReach(const Bundle& bundle) {
+  double block = 0;
+  for (const Shape& s : bundle.shapes) block = std::max(block, boundingBox(s.mesh.vertices).diagonal().norm());
+  const double reach = static_cast<double>(bundle.bodies.size()) * block;
+  Eigen::Vector3d middle;
+  for (int k = 0; k < 3; ++k) {
+    std::vector<double> x;
+    for (const Body& b : bundle.bodies) x.push_back(b.position[k]);
+    std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
+    middle[k] = x[x.size() / 2];
+  }
+  Eigen::AlignedBox3d extent;
+  for (const Body& b : bundle.bodies) {
+    const double away = (b.position - middle).stableNorm();
+    if (!(away <= reach))
+      throw InputError("body '" + b.name + "' lies " + formatMillimetres(away) + " from the middle of the assembly, farther than all " +
+                       std::to_string(bundle.bodies.size()) + " blocks side by side (" + formatMillimetres(reach) +
+                       "); check its position and the layout's unit");
+    extent.extend(b.position);
+  }
+  const double across = extent.diagonal().norm() + block;
+  if (bundle.spanLength > across)
+    throw InputError("the span length " + formatMillimetres(bundle.spanLength) + " is longer than the whole assembly (" +
+                     formatMillimetres(across) + " across); give the free span L in the layout's unit");
+}
+
+}  // namespace
+
 AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
                                            const std::string& overlapFix, const std::string& apartFix, bool refuseApart) {
+  if (!bundle.bodies.empty()) refuseBeyondReach(bundle);
   const double voxel = finestVoxel(bundle);
   const double tolerance = overlapTolerance ? *overlapTolerance : 0.1 * voxel;
   const double touch = gap + 0.5 * voxel;

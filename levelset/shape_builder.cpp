@@ -84,6 +84,11 @@ void checkResolution(const Eigen::Vector3d& extents, const ShapeResolution& reso
     log.warnings.push_back("under-resolved: the thinnest dimension (" + formatMillimetres(thinnest) + ") spans only " +
                            std::to_string(across).substr(0, 4) + " voxels; use a voxel below " +
                            formatMillimetres(thinnest / 10) + " (rule of thumb: 1/10 of the smallest feature)");
+  const double largest = extents.maxCoeff();
+  if (spacing > largest)  // 1e300 m gave "-nan surface nodes"
+    throw InputError(label + ": node spacing " + formatMillimetres(spacing) + " is larger than the block (" +
+                     formatMillimetres(largest) + " across), so no node falls on a face; use a spacing below " +
+                     formatMillimetres(thinnest / 2) + ", or check --unit");
   if (thinnest / spacing < 2)
     log.warnings.push_back("coarse nodes: the thinnest dimension (" + formatMillimetres(thinnest) +
                            ") spans fewer than 2 node spacings; use a spacing below " + formatMillimetres(thinnest / 2));

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <sstream>
 
 namespace tessera::tools {
 
@@ -26,7 +27,7 @@ struct BlockArguments {
   std::string unit;
   std::string output;
   double size = 10;         // in --unit: side a (planar, wave, box, osteomorphic) or inradius r (hex)
-  double width = -1;        // in --unit: side b of box and osteomorphic [default: size]
+  std::optional<double> width;  // in --unit: side b of box and osteomorphic [default: size]
   double thickness = 3.18;  // in --unit
   double angle = 5;         // degrees
   std::optional<double> amplitude;  // in --unit (wave, osteomorphic) [default: kAmplitudePerSize x size]
@@ -36,19 +37,41 @@ struct BlockArguments {
   bool ascii = false;
 };
 
+// Every length and angle checked as it comes in: a block of 1 um to 1 km with a finite angle below
+// 90 degrees ("--size inf" wrote infinite vertices; "--width -3" was silently replaced by --size).
+void checkBlockArguments(const BlockArguments& a, double metres) {
+  const auto length = [&](const char* flag, double value, bool zeroAllowed) {
+    if (zeroAllowed && value == 0) return;
+    if (!(std::abs(value) * metres >= 1e-6 && std::abs(value) * metres <= 1e3) || (!zeroAllowed && value < 0)) {
+      std::ostringstream m;
+      m << flag << " = " << value << " " << a.unit << " is not a " << (zeroAllowed ? "" : "positive ")
+        << "length of 1 um to 1 km; give it in --unit " << a.unit;
+      throw InputError(m.str());
+    }
+  };
+  length("--size", a.size, false);
+  length("--thickness", a.thickness, false);
+  if (a.width) length("--width", *a.width, false);
+  if (a.amplitude) length("--amplitude", *a.amplitude, true);
+  length("--y-amplitude", a.amplitudeY, true);
+  if (!(a.angle >= 0 && a.angle < 90))
+    throw InputError("--angle = " + std::to_string(a.angle) + " must be at least 0 and below 90 degrees");
+}
+
 void runBlock(const BlockArguments& a) {
   const LengthUnit unit = parseLengthUnit(a.unit);
-  const double m = unit.metres, theta = a.angle * M_PI / 180;
+  checkBlockArguments(a, unit.metres);
+  const double m = unit.metres, theta = a.angle * M_PI / 180, width = a.width ? *a.width : a.size;
   const double amplitude = a.amplitude ? *a.amplitude : kAmplitudePerSize * a.size;
   if (a.amplitudeY != 0 && a.family != "osteomorphic")
     throw InputError("--y-amplitude applies to the osteomorphic family only; leave it out for " + a.family);
   TriangleMesh mesh;
   if (a.family == "planar") mesh = makePlanarBlock(a.size * m, a.thickness * m, theta);
-  else if (a.family == "box") mesh = makeBox(a.size * m, (a.width > 0 ? a.width : a.size) * m, a.thickness * m);
+  else if (a.family == "box") mesh = makeBox(a.size * m, width * m, a.thickness * m);
   else if (a.family == "wave")
     mesh = makeWaveBlock(a.size * m, a.thickness * m, theta, amplitude * m, a.waves, a.levels != 0 ? a.levels : 24);
   else if (a.family == "osteomorphic")
-    mesh = makeOsteomorphicBlock(a.size * m, (a.width > 0 ? a.width : a.size) * m, a.thickness * m, amplitude * m,
+    mesh = makeOsteomorphicBlock(a.size * m, width * m, a.thickness * m, amplitude * m,
                                  a.amplitudeY * m, a.levels != 0 ? a.levels : 12);
   else if (a.family == "hex") mesh = makeHexBlock(a.size * m, a.thickness * m, theta);
   else throw InputError("unknown block family '" + a.family + "'; use planar, box, wave, osteomorphic or hex");
