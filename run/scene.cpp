@@ -264,8 +264,16 @@ std::string sceneWithOverrides(const std::string& path, const std::vector<std::p
     if (!root.contains(table)) root.insert(table, toml::table{});
     toml::table* t = root[table].as_table();
     if (!t) throw InputError("scene key '" + key + "': [" + table + "] is not a table of the scene");
-    if (name == "interfaces" || name == "threads") t->insert_or_assign(name, static_cast<std::int64_t>(std::llround(value)));
-    else t->insert_or_assign(name, value);
+    if (key == "span.interfaces" || key == "solver.threads" || key == "solver.implicit_max_iterations") {  // Table::integer
+      if (!(std::isfinite(value) && value == std::round(value) && std::abs(value) < 1e15)) {
+        std::ostringstream m;
+        m << "scene key '" << key << "' takes a whole number, not " << value << " (its run would not be the value it is labelled)";
+        throw InputError(m.str());
+      }
+      t->insert_or_assign(name, static_cast<std::int64_t>(value));
+    } else {
+      t->insert_or_assign(name, value);
+    }
     // k_t is given one way or the other: the swept one replaces the scene's.
     if (key == "material.tangential_stiffness") t->erase("tangential_ratio");
     if (key == "material.tangential_ratio") t->erase("tangential_stiffness");

@@ -152,6 +152,11 @@ SweepAxis parseSweepAxis(const std::string& text, long maxCases) {
   if (axis.values.empty()) throw InputError("--set '" + text + "': no values; " + form);
   for (double v : axis.values)
     if (!std::isfinite(v)) throw InputError("--set '" + text + "': " + formatValue(v) + " is not a finite number");
+  std::vector<double> sorted = axis.values;
+  std::sort(sorted.begin(), sorted.end());
+  const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
+  if (twice != sorted.end())  // identical cases, each labelled as if it were another
+    throw InputError("--set '" + text + "': " + formatValue(*twice) + " is given twice; give each value once");
   return axis;
 }
 

@@ -104,3 +104,14 @@ TEST_CASE("campaign 3: tilings and layouts no arrangement of their blocks can ha
   requireRefused(layout("1e300", ""), "lies 1e+300 mm from the middle of the assembly");
   requireRefused(layout("20", ", \"span\": {\"length\": 1e300, \"interfaces\": 2}"), "is longer than the whole assembly");
 }
+
+TEST_CASE("campaign 5: a sweep value a run would not take as labelled, or one given twice, is refused before any case is made") {
+  test::TempDir dir;
+  smallSlab(dir);
+  const std::string sweep = "sweep " + quoted(dir / "scene.toml") + " -o " + quoted(dir / "s") + " --set ";
+  requireRefused(test::runTessera(sweep + "span.interfaces=2.5,2.4"), "'span.interfaces' takes a whole number, not 2.5");
+  requireRefused(test::runTessera(sweep + "solver.threads=1.5"), "'solver.threads' takes a whole number, not 1.5");
+  requireRefused(test::runTessera(sweep + "mu=0.2,0.2,0.2"), "0.2 is given twice");
+  requireRefused(test::runTessera(sweep + "mu=0.3:0.3:2"), "0.3 is given twice");
+  REQUIRE_FALSE(fs::exists(dir / "s/sweep.json"));
+}
