@@ -88,7 +88,13 @@ Handle openFileReadOnly(const std::string& path) {
 }
 
 void writeFile(const std::filesystem::path& target, const std::function<void(hid_t file)>& write) {
-  writeFileSafely(
+  FileSetWriter file;
+  addFile(file, target, write);
+  file.commit();
+}
+
+void addFile(FileSetWriter& files, const std::filesystem::path& target, const std::function<void(hid_t file)>& write) {
+  files.add(
       target,
       [&](const std::filesystem::path& temporary) {
         Handle file = createFile(temporary.string());

@@ -1,4 +1,6 @@
 #pragma once
+#include "io/safe_write.h"
+
 #include <hdf5.h>
 
 #include <cstdint>
@@ -40,6 +42,8 @@ Handle openFileReadOnly(const std::string& path);
 /// lets `write` fill the open file, closes it checking the flush (a full disk shows up there), and
 /// reopens it (the library checks its end-of-file address) before the rename. Throws WriteError.
 void writeFile(const std::filesystem::path& target, const std::function<void(hid_t file)>& write);
+/// The same, as one file of a set written together (FileSetWriter: renamed at its commit).
+void addFile(FileSetWriter& files, const std::filesystem::path& target, const std::function<void(hid_t file)>& write);
 Handle createGroup(hid_t parent, const std::string& name);
 Handle openGroup(hid_t parent, const std::string& name);
 std::vector<std::string> childNames(hid_t group);

@@ -73,14 +73,20 @@ void removeStaleTemporaries(const fs::path& directory) {
   }
 }
 
-void writeFileSafely(const fs::path& target, const std::function<void(const fs::path&)>& write,
-                     const std::function<void(const fs::path&)>& verify) {
+FileSetWriter::~FileSetWriter() {
+  std::error_code ignored;
+  for (const Staged& s : staged_) fs::remove(s.temporary, ignored);
+}
+
+void FileSetWriter::add(const fs::path& target, const Step& write, const Step& verify) {
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   removeStaleTemporaries(dir);
   const fs::path temporary = dir / (kPrefix + std::to_string(::getpid()) + "@" + thisHost() + "@" + target.filename().string());
   const auto fail = [&](int error, const std::string& detail) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
+    for (const Staged& s : staged_) fs::remove(s.temporary, ignored);
+    staged_.clear();
     throw WriteError(target.string() + ": cannot write: " + cause(error, detail));
   };
   errno = 0;
@@ -98,10 +104,32 @@ void writeFileSafely(const fs::path& target, const std::function<void(const fs::
     }
   }
   if (const int error = syncPath(temporary, O_RDONLY)) fail(error, "");
-  std::error_code renamed;
-  fs::rename(temporary, target, renamed);
-  if (renamed) fail(renamed.value(), renamed.message());
-  syncPath(dir, O_RDONLY | O_DIRECTORY);  // best effort: some file systems cannot sync a directory
+  staged_.push_back({temporary, target});
+}
+
+void FileSetWriter::commit() {
+  std::vector<Staged> staged;
+  staged.swap(staged_);
+  for (std::size_t i = 0; i < staged.size(); ++i) {
+    std::error_code renamed;
+    fs::rename(staged[i].temporary, staged[i].target, renamed);
+    if (renamed) {
+      std::error_code ignored;
+      for (std::size_t j = i; j < staged.size(); ++j) fs::remove(staged[j].temporary, ignored);
+      throw WriteError(staged[i].target.string() + ": cannot write: " + cause(renamed.value(), renamed.message()));
+    }
+  }
+  for (const Staged& s : staged) {  // best effort: some file systems cannot sync a directory
+    const fs::path dir = s.target.parent_path().empty() ? fs::path(".") : s.target.parent_path();
+    syncPath(dir, O_RDONLY | O_DIRECTORY);
+  }
+}
+
+void writeFileSafely(const fs::path& target, const std::function<void(const fs::path&)>& write,
+                     const std::function<void(const fs::path&)>& verify) {
+  FileSetWriter file;
+  file.add(target, write, verify);
+  file.commit();
 }
 
 void writeTextFileSafely(const fs::path& target, const std::string& text) {

@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace tessera {
 
@@ -17,6 +18,27 @@ namespace tessera {
 /// removed first.
 void writeFileSafely(const std::filesystem::path& target, const std::function<void(const std::filesystem::path&)>& write,
                      const std::function<void(const std::filesystem::path&)>& verify = {});
+
+/// Several files replaced together (a bundle's bundle.h5 and its grids): each is written, verified
+/// and synced under its temporary name as by writeFileSafely when it is added; only when every one
+/// is, commit() renames them over their targets. A failure while adding (WriteError), or an unused
+/// set, removes every temporary and leaves every target as it was.
+class FileSetWriter {
+public:
+  using Step = std::function<void(const std::filesystem::path&)>;
+  FileSetWriter() = default;
+  FileSetWriter(const FileSetWriter&) = delete;
+  FileSetWriter& operator=(const FileSetWriter&) = delete;
+  ~FileSetWriter();
+  void add(const std::filesystem::path& target, const Step& write, const Step& verify = {});
+  void commit();
+
+private:
+  struct Staged {
+    std::filesystem::path temporary, target;
+  };
+  std::vector<Staged> staged_;
+};
 
 /// writeFileSafely of a text.
 void writeTextFileSafely(const std::filesystem::path& target, const std::string& text);

@@ -290,8 +290,10 @@ void writeBundle(const std::string& directory, const Bundle& bundle) {
   const bool created = !fs::exists(dir);
   try {
     fs::create_directories(dir);
-    for (const Shape& s : bundle.shapes) writeVdb(s.sdf, (dir / (s.name + ".vdb")).string(), s.name);
-    h5::writeFile(dir / kBundleFileName, [&](hid_t f) {
+    // The grids and bundle.h5 replace what was there together, or not at all.
+    FileSetWriter files;
+    for (const Shape& s : bundle.shapes) writeVdb(files, s.sdf, (dir / (s.name + ".vdb")).string(), s.name);
+    h5::addFile(files, dir / kBundleFileName, [&](hid_t f) {
       h5::writeAttribute(f, "format", std::string(kBundleFormatName));
       h5::writeAttribute(f, "format_version", static_cast<std::int64_t>(kBundleFormatVersion));
       h5::writeAttribute(f, "generator", bundle.generator.empty() ? generatorVersion() : bundle.generator);
@@ -301,6 +303,7 @@ void writeBundle(const std::string& directory, const Bundle& bundle) {
         writeShape(shapes.get(), bundle.shapes[i], static_cast<std::int64_t>(i));
       writeBodies(f, bundle);
     });
+    files.commit();
   } catch (...) {
     std::error_code ignored;
     if (created) fs::remove_all(dir, ignored);

@@ -82,7 +82,7 @@ openvdb::Coord originCoord(const DenseSdf& sdf) {
 
 }  // namespace
 
-void writeVdb(const DenseSdf& sdf, const std::string& path, const std::string& gridName) {
+void writeVdb(FileSetWriter& files, const DenseSdf& sdf, const std::string& path, const std::string& gridName) {
   initializeOpenVdb();
   auto grid = openvdb::FloatGrid::create(sdf.background);
   grid->setTransform(openvdb::math::Transform::createLinearTransform(sdf.voxelSize));
@@ -100,7 +100,7 @@ void writeVdb(const DenseSdf& sdf, const std::string& path, const std::string& g
 
   namespace fs = std::filesystem;
   // OpenVDB does not report every failed write: the grid is read back before the rename.
-  writeFileSafely(
+  files.add(
       fs::path(path),
       [&](const fs::path& temporary) {
         openvdb::io::File file(temporary.string());

@@ -1,6 +1,7 @@
 #pragma once
 #include "geometry/triangle_mesh.h"
 #include "levelset/dense_sdf.h"
+#include "io/safe_write.h"
 
 #include <string>
 
@@ -18,8 +19,9 @@ struct SignedDistanceOptions {
 DenseSdf buildSignedDistance(const TriangleMesh& mesh, const SignedDistanceOptions& options);
 
 /// Writes the field as an OpenVDB level-set grid named `gridName` (viewable in ParaView,
-/// Houdini, Blender). Metadata records the unit (m). Written to a temporary file, then renamed.
-void writeVdb(const DenseSdf& sdf, const std::string& path, const std::string& gridName);
+/// Houdini, Blender). Metadata records the unit (m). Added to `files`: written to a temporary file,
+/// read back, and renamed with the set's other files.
+void writeVdb(FileSetWriter& files, const DenseSdf& sdf, const std::string& path, const std::string& gridName);
 
 /// Reads the grid named `gridName` back into a dense field over the given grid's layout
 /// (origin, dims, voxel size of `layout`). Throws InputError if the file or grid is missing.

@@ -99,7 +99,10 @@ TEST_CASE("the .vdb file holds the same grid") {
   SignedDistanceOptions options;
   options.voxelSize = 0.1;
   const DenseSdf sdf = buildSignedDistance(mesh, options);
-  writeVdb(sdf, dir / "l.vdb", "l");
+  FileSetWriter files;
+  writeVdb(files, sdf, dir / "l.vdb", "l");
+  REQUIRE_FALSE(std::filesystem::exists(dir / "l.vdb"));  // until the set is committed
+  files.commit();
   const DenseSdf back = readVdb(dir / "l.vdb", "l", sdf);
   // The .vdb is a level set: the inside and the band are stored, beyond the band reads background.
   REQUIRE(back.background == sdf.background);

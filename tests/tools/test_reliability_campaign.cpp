@@ -5,7 +5,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
+#include <vector>
+
+#include <sys/stat.h>
 
 using namespace tessera;
 using tessera::test::kDefaultBlock;
@@ -114,4 +118,64 @@ TEST_CASE("campaign 5: a sweep value a run would not take as labelled, or one gi
   requireRefused(test::runTessera(sweep + "mu=0.2,0.2,0.2"), "0.2 is given twice");
   requireRefused(test::runTessera(sweep + "mu=0.3:0.3:2"), "0.3 is given twice");
   REQUIRE_FALSE(fs::exists(dir / "s/sweep.json"));
+}
+
+TEST_CASE("campaign 6: figures are written whole or not at all, and a bad experiments file is one line") {
+  test::TempDir dir;
+  smallSlab(dir, "[indenter]\nspeed = 0.05\n");
+  REQUIRE(test::runTessera("sweep " + quoted(dir / "scene.toml") + " --set mu=0.2 -o " + quoted(dir / "mu")).status == 0);
+  const std::string report = "report " + quoted(dir / "mu");
+  // A full disk (files of at most 8 KiB): exit 2 naming the figure, no figure and no temporary left.
+  const test::CliResult full = test::runTessera(report, "ulimit -f 8; trap '' XFSZ;");
+  INFO(full.err);
+  REQUIRE(full.status == 2);
+  REQUIRE_THAT(full.err, Contains("cannot write: disk full"));
+  REQUIRE_THAT(full.err, !Contains("Traceback"));
+  for (const auto& e : fs::directory_iterator(dir / "mu/report")) {
+    INFO(e.path());
+    REQUIRE(false);  // nothing half-written, and no temporary
+  }
+  // Experiments: missing, short, not numbers.
+  test::writeFile(dir / "short.csv", "label,E_Pa,L_m,h_m,P_peak_N,delta_peak_m\nA,4.2e9,0.05\n");
+  test::writeFile(dir / "words.csv", "label,E_Pa,L_m,h_m,P_peak_N,delta_peak_m\nA,4.2e9,0.05,3e-3,high,4e-3\n");
+  test::writeFile(dir / "columns.csv", "label,E,L\nA,1,2\n");
+  const std::pair<std::string, std::string> cases[] = {{"missing.csv", "cannot read it"},
+                                                       {"short.csv", "line 2: a value missing or not a number"},
+                                                       {"words.csv", "line 2: a value missing or not a number"},
+                                                       {"columns.csv", "no column E_Pa, L_m, h_m"}};
+  for (const auto& [file, expected] : cases) {
+    const test::CliResult r = test::runTessera(report + " --experiments " + quoted(dir / file));
+    INFO(r.err);
+    REQUIRE(r.status == 2);
+    REQUIRE_THAT(r.err, Contains(file + ": " + expected) && !Contains("Traceback"));
+    REQUIRE(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  test::writeFile(dir / "good.csv", "label,E_Pa,L_m,h_m,P_peak_N,delta_peak_m\nA,4.2e9,0.05,3.18e-3,150,4e-3\n");
+  REQUIRE(test::runTessera(report + " --experiments " + quoted(dir / "good.csv")).status == 0);
+  REQUIRE(fs::file_size(dir / "mu/report/normalised.svg") > 1000);
+}
+
+TEST_CASE("campaign 6: adding a shape to a bundle on a full disk leaves the bundle and its grids as they were") {
+  test::TempDir dir;
+  const std::string prep = "prep " + quoted(kDefaultBlock) + " --unit mm -o " + quoted(dir / "b");
+  REQUIRE(test::runTessera(prep).status == 0);
+  const std::string grid = dir / "b/planar_a10_h3.18_5deg.vdb";
+  const std::string before = test::readFile(dir / "b/bundle.h5"), gridBefore = test::readFile(grid);
+  const auto inode = [](const std::string& path) {
+    struct stat s {};
+    ::stat(path.c_str(), &s);
+    return s.st_ino;
+  };
+  const auto gridInode = inode(grid);
+  const test::CliResult full = test::runTessera(prep + " --name second", "ulimit -f 100; trap '' XFSZ;");
+  INFO(full.err);
+  REQUIRE(full.status == 2);
+  REQUIRE_THAT(full.err, Contains("cannot write: disk full"));
+  REQUIRE(test::readFile(dir / "b/bundle.h5") == before);
+  REQUIRE(test::readFile(grid) == gridBefore);
+  REQUIRE(inode(grid) == gridInode);  // not even rewritten
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir / "b")) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  REQUIRE(names == std::vector<std::string>{"bundle.h5", "planar_a10_h3.18_5deg.vdb"});  // no orphan second.vdb
 }

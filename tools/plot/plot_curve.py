@@ -16,6 +16,7 @@ except ImportError:
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from figure_file import save_figure  # noqa: E402
 
 
 def main():
@@ -51,7 +52,7 @@ def main():
     ax.grid(alpha=0.3)
     ax.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
-    fig.savefig(f"{run}/curve.png")
+    save_figure(fig, f"{run}/curve.png")
 
 
 if __name__ == "__main__":

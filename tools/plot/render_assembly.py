@@ -14,6 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from blocks import block_colours, load_blocks  # noqa: E402
+from figure_file import save_figure  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 
@@ -45,7 +46,7 @@ def main():
     if args.title:
         axes.set_title(args.title)
     figure.tight_layout()
-    figure.savefig(args.output)
+    save_figure(figure, args.output)
     print(f"{args.output}: {len(fixed)} triangles rendered ({int(fixed.sum())} on fixed blocks)")
 
 

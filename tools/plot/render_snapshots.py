@@ -17,6 +17,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from blocks import block_colours, load_blocks as load  # noqa: E402
+from figure_file import save_figure  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 
@@ -60,7 +61,7 @@ def main():
     figure.text(0.01, 0.72, "from below", rotation=90, fontsize=9)
     figure.text(0.01, 0.25, "from the side (z x 3)", rotation=90, fontsize=9)
     figure.tight_layout()
-    figure.savefig(f"{args.run}/snapshots.png")
+    save_figure(figure, f"{args.run}/snapshots.png")
 
 
 if __name__ == "__main__":

@@ -12,7 +12,9 @@ Experiments CSV columns: label,E_Pa,L_m,h_m,P_peak_N,delta_peak_m (docs/reproduc
 import argparse
 import csv
 import json
+import math
 import os
+import sys
 
 try:
     import matplotlib
@@ -22,6 +24,7 @@ except ImportError:
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from figure_file import save_figure  # noqa: E402
 
 NAMES = {"material.youngs_modulus": ("E", "GPa", 1e-9), "material.friction": ("μ", "", 1.0),
          "indenter.speed": ("speed", "mm/s", 1e3), "indenter.radius": ("R", "mm", 1e3)}
@@ -40,7 +43,7 @@ def read_curve(path):
 
 def save(figure, directory, name):
     for extension in ("png", "svg"):
-        figure.savefig(os.path.join(directory, f"{name}.{extension}"))
+        save_figure(figure, os.path.join(directory, f"{name}.{extension}"))
     plt.close(figure)
 
 
@@ -56,6 +59,40 @@ def fit(ax, x, y, points, style, colour):
     ax.plot(xs, slope * xs + intercept, style, color=colour, lw=0.9)
 
 
+EXPERIMENT_COLUMNS = ["label", "E_Pa", "L_m", "h_m", "P_peak_N", "delta_peak_m"]
+
+
+def read_experiments(path):
+    """(label, E, L, h, P_peak, delta_peak) per row of the experiments CSV, each value a positive
+    number; anything else ends the report with one line naming the file, the row and the fix."""
+    def refuse(why):
+        sys.stderr.write(f"report: error: {path}: {why}; give a CSV with the columns {','.join(EXPERIMENT_COLUMNS)} "
+                         "(docs/reproduction.md)\n")
+        sys.exit(2)
+    try:
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            rows = list(reader)
+            header = reader.fieldnames or []
+    except (OSError, UnicodeDecodeError, csv.Error) as e:
+        refuse(f"cannot read it ({e})")
+    missing = [c for c in EXPERIMENT_COLUMNS if c not in header]
+    if missing:
+        refuse(f"no column {', '.join(missing)}")
+    points = []
+    for line, row in enumerate(rows, start=2):
+        try:
+            values = [float(row[c]) for c in EXPERIMENT_COLUMNS[1:]]
+        except (TypeError, ValueError):
+            refuse(f"line {line}: a value missing or not a number")
+        if not all(math.isfinite(v) and v > 0 for v in values):
+            refuse(f"line {line}: every value must be a positive number")
+        points.append((row["label"], *values))
+    if not points:
+        refuse("no rows")
+    return points
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("sweep")
@@ -66,6 +103,7 @@ def main():
             manifest = json.load(f)
     except (OSError, ValueError) as e:
         raise SystemExit(f"report: error: {args.sweep}: not a readable sweep folder ({e}); give the -o folder of tessera sweep")
+    experiments = read_experiments(args.experiments) if args.experiments else []  # checked before anything is drawn
     key = manifest["keys"][0]
     name, unit, scale = label(key)
     out = os.path.join(args.sweep, "report")
@@ -130,13 +168,10 @@ def main():
         h = summary["response"].get("thickness_mm", 0) * 1e-3
         if h > 0:
             ax.plot(delta * 1e-3 / h, load / (e * span * span), color=colour, lw=1.0, label=f"{name} = {value:g} {unit}".strip())
-    if args.experiments:
-        with open(args.experiments) as f:
-            for row in csv.DictReader(f):
-                p_star = float(row["P_peak_N"]) / (float(row["E_Pa"]) * float(row["L_m"]) ** 2)
-                d_star = float(row["delta_peak_m"]) / float(row["h_m"])
-                ax.plot([d_star], [p_star], "s", color="tab:red")
-                ax.annotate(row["label"], (d_star, p_star), fontsize=7)
+    for label_text, e, span, h, p_peak, delta_peak in experiments:
+        p_star, d_star = p_peak / (e * span ** 2), delta_peak / h
+        ax.plot([d_star], [p_star], "s", color="tab:red")
+        ax.annotate(label_text, (d_star, p_star), fontsize=7)
     ax.set_xlabel("δ* = δ / h")
     ax.set_ylabel("P* = P / (E L²)")
     ax.grid(alpha=0.3)
@@ -147,4 +182,8 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except OSError as e:  # a folder that cannot be made or read: one line, not a traceback
+        sys.stderr.write(f"report: error: {e.filename or ''}: {e.strerror or e}\n")
+        sys.exit(2)
