@@ -28,7 +28,11 @@ FolderLock::FolderLock(const std::string& folder, const std::string& what) {
     const ssize_t n = ::pread(fd_, holder, sizeof holder - 1, 0);
     ::close(fd_);
     fd_ = -1;
-    throw InputError(folder + ": another tessera process (pid " + std::string(n > 0 ? holder : "?") + ") is writing " + what +
+    const std::string pid = n > 0 ? std::string(holder) : "?";
+    if (pid == std::to_string(::getpid()))  // Python: a Simulation on the folder is still open
+      throw InputError(folder + ": this process still holds " + what +
+                       " there (a session on it is still open); close that one first (in Python: del sim)");
+    throw InputError(folder + ": another tessera process (pid " + pid + ") is writing " + what +
                      " there; wait for it to end, or stop it (Ctrl-C) first");
   }
   const std::string pid = std::to_string(::getpid());

@@ -69,7 +69,6 @@ void refuseBeyondReach(const Bundle& bundle) {
 
 AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<double> overlapTolerance, double gap,
                                            const std::string& overlapFix, const std::string& apartFix, bool refuseApart) {
-  if (!bundle.bodies.empty()) refuseBeyondReach(bundle);
   const double voxel = finestVoxel(bundle);
   const double tolerance = overlapTolerance ? *overlapTolerance : 0.1 * voxel;
   const double touch = gap + 0.5 * voxel;
@@ -83,6 +82,7 @@ AssemblySummary checkAssemblyBeforeWriting(const Bundle& bundle, std::optional<d
     if (refuseApart) throw InputError(apart);
     summary.warnings.push_back(apart);
   }
+  refuseBeyondReach(bundle);
   for (int i : summary.check.isolated)
     summary.warnings.push_back("body '" + bundle.bodies[i].name + "' touches no other body (nothing within " +
                                formatMillimetres(touch) + ")");

@@ -1,4 +1,5 @@
 #include "levelset/layout_file.h"
+#include "io/json_text.h"
 
 #include "io/input_error.h"
 #include "geometry/length_unit.h"
@@ -197,7 +198,7 @@ void writeLayout(const std::string& path, const Layout& layout) {
   }
   if (layout.spanInterfaces > 0)
     root["span"] = {{"length", layout.spanLength / scale}, {"interfaces", layout.spanInterfaces}};
-  writeTextFileSafely(fs::path(path), root.dump(2) + "\n");
+  writeTextFileSafely(fs::path(path), jsonText(root));
 }
 
 }  // namespace tessera

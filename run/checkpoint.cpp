@@ -292,6 +292,10 @@ void checkProtocolValues(const IndentationState& s, const IndentationRecord& r) 
     require(std::isfinite(x), "a value that is not finite");
   for (const Eigen::Vector3d& x : s.settledPosition) require(x.allFinite(), "a settled position that is not finite");
   for (double x : s.outAt) require(std::isfinite(x), "a body's fall deflection that is not finite");
+  const std::string& reason = r.stopReason;  // IndentationRecord::stopReason, or "" while running
+  require(reason.empty() || reason == "delta_max" || reason == "failure" || reason == "requested" || reason == "interrupted" ||
+              reason == "instability",
+          "a stop reason the protocol does not give");
   require(s.loadStart >= 0 && s.speedSince >= s.loadStart && s.peak >= 0 && s.nextSample >= 0 && s.nextSnapshot >= 0,
           "a time, load or sampling point out of range");
   require(r.settleTime >= 0 && r.timeStep >= 0 && r.wallSeconds >= 0 && r.steps >= 0 && r.settleSteps >= 0,

@@ -1,4 +1,5 @@
 #include "run/run_output.h"
+#include "io/json_text.h"
 
 #include "io/safe_write.h"
 #include "levelset/assembly_export.h"
@@ -262,7 +263,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
                      {largestForce > 0 ? 3 * record.thickness / largestForce : 0.0, record.thickness, largestDisplacement});
   // Last: a summary.json that says how the run stopped means every file above was written then
   // (a resumed run that had finished relies on it, RunSession::finishedAndWritten).
-  writeTextFileSafely(dir / "summary.json", summary.dump(2) + "\n");
+  writeTextFileSafely(dir / "summary.json", jsonText(summary));
 }
 
 }  // namespace tessera

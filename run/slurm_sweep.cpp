@@ -1,4 +1,5 @@
 #include "run/slurm_sweep.h"
+#include "io/json_text.h"
 
 #include "io/input_error.h"
 #include "io/safe_write.h"
@@ -130,7 +131,7 @@ void writeSlurmRecord(const std::string& folder, const SlurmRecord& record) {
                         {"max_concurrent", s.maxConcurrent}, {"sbatch_options", s.extraOptions}}},
                       {"jobs", nlohmann::json::array()}};
   for (const SlurmJob& job : record.jobs) j["jobs"].push_back({{"job_id", job.id}, {"cases", job.cases}});
-  writeTextFileSafely(fs::path(folder) / "slurm" / "jobs.json", j.dump(2) + "\n");
+  writeTextFileSafely(fs::path(folder) / "slurm" / "jobs.json", jsonText(j));
 }
 
 }  // namespace tessera

@@ -1,4 +1,5 @@
 #include "run/sweep.h"
+#include "io/json_text.h"
 
 #include "io/file_digest.h"
 #include "io/folder_lock.h"
@@ -221,7 +222,7 @@ std::vector<SweepCase> placeSweepCases(const std::string& folder, const SweepPla
   // The manifest first, then the case scenes: a sweep stopped in between is found again by its values.
   manifest["scene"] = fs::absolute(plan.scene).string();
   manifest["preset"] = plan.preset;
-  writeTextFileSafely(dir / "sweep.json", manifest.dump(2) + "\n");
+  writeTextFileSafely(dir / "sweep.json", jsonText(manifest));
   for (const SweepCase& c : cases) {
     fs::create_directories(c.dir);
     if (!fs::exists(fs::path(c.dir) / "scene.toml")) writeTextFileSafely(fs::path(c.dir) / "scene.toml", c.scene);
@@ -320,7 +321,7 @@ void recordCaseAttempt(const std::string& caseDir, int exitStatus, const std::st
   nlohmann::json attempt = {{"state", exitStatus < 0 ? "started" : "ended"}, {"host", hostName()},
                             {"pid", static_cast<long>(::getpid())}, {"slurm_job", slurmJob}};
   if (exitStatus >= 0) attempt["exit_status"] = exitStatus;
-  writeTextFileSafely(fs::path(caseDir) / "attempt.json", attempt.dump(2) + "\n");
+  writeTextFileSafely(fs::path(caseDir) / "attempt.json", jsonText(attempt));
 }
 
 bool sweepCaseComplete(const std::string& runDir) {

@@ -1,5 +1,6 @@
 // tessera inspect: what a bundle holds, and the signed distance of a shape at a point.
 #include "io/input_error.h"
+#include "io/json_text.h"
 #include "geometry/length_unit.h"
 #include "geometry/point_spacing.h"
 #include "levelset/bundle.h"
@@ -129,13 +130,11 @@ void runInspect(const InspectArguments& a) {
     const Eigen::Vector3d x = parsePoint(a.point, unit.metres);
     const SdfSample sample = s.sdf.sample(x);
     if (a.json) {
-      std::cout << nlohmann::json{{"shape", s.name},
-                                  {"point_m", toJson(x)},
-                                  {"inside_grid", s.sdf.contains(x)},
-                                  {"phi_m", sample.phi},
-                                  {"gradient", toJson(sample.gradient)}}
-                       .dump(2)
-                << "\n";
+      std::cout << jsonText(nlohmann::json{{"shape", s.name},
+                                           {"point_m", toJson(x)},
+                                           {"inside_grid", s.sdf.contains(x)},
+                                           {"phi_m", sample.phi},
+                                           {"gradient", toJson(sample.gradient)}});
     } else {
       std::printf("shape '%s' at (%s) %s, body frame:\n", s.name.c_str(), a.point.c_str(), unit.name.c_str());
       std::printf("  signed distance  %.6g %s (%s)%s\n", sample.phi / unit.metres, unit.name.c_str(),
@@ -151,15 +150,13 @@ void runInspect(const InspectArguments& a) {
     if (a.shape.empty() || s.name == a.shape) shapes.push_back(describeShape(s));
   if (!a.shape.empty() && shapes.empty()) throw InputError(a.bundle + ": no shape named '" + a.shape + "'");
   if (a.json) {
-    std::cout << nlohmann::json{{"bundle", a.bundle},
-                                {"format_version", kBundleFormatVersion},
-                                {"generator", bundle.generator},
-                                {"length_unit", "m"},
-                                {"shapes", shapes},
-                                {"bodies", describeBodies(bundle)},
-                                {"span", {{"length_m", bundle.spanLength}, {"interfaces", bundle.spanInterfaces}}}}
-                     .dump(2)
-              << "\n";
+    std::cout << jsonText(nlohmann::json{{"bundle", a.bundle},
+                                         {"format_version", kBundleFormatVersion},
+                                         {"generator", bundle.generator},
+                                         {"length_unit", "m"},
+                                         {"shapes", shapes},
+                                         {"bodies", describeBodies(bundle)},
+                                         {"span", {{"length_m", bundle.spanLength}, {"interfaces", bundle.spanInterfaces}}}});
     return;
   }
   std::printf("bundle %s (format %d, written by %s): %zu shape(s), %zu bodies\n", a.bundle.c_str(), kBundleFormatVersion,

@@ -2,6 +2,7 @@
 // machine or as a Slurm job array; --status, --resubmit and --case on a sweep folder;
 // tessera report: the paper's figures from a sweep.
 #include "io/folder_lock.h"
+#include "io/json_text.h"
 #include "io/input_error.h"
 #include "io/output_directory.h"
 #include "io/safe_write.h"
@@ -287,7 +288,7 @@ int printStatus(const SweepArguments& a) {
                             {"exit_status", r.files.exitStatus >= 0 ? nlohmann::json(r.files.exitStatus) : nlohmann::json()},
                             {"slurm_job", r.slurmJob},
                             {"slurm_state", r.slurmState}});
-    std::printf("%s\n", j.dump(2).c_str());
+    std::fputs(jsonText(j).c_str(), stdout);
     return 0;
   }
   std::printf("sweep %s: %zu cases: %d complete, %d queued, %d running, %d interrupted, %d failed, %d missing%s\n",

@@ -132,6 +132,11 @@ def test_bad_input_is_a_value_error_naming_the_problem(slab, tmp_path):
         tessera.Simulation(str(tmp_path / "missing.toml"), bundle=slab)
     with pytest.raises(tessera.InputError, match="material.nonsense"):
         tessera.Simulation(SCENE, bundle=slab, overrides={"material.nonsense": 1.0})
+    # Values a run would not take as given (issue #39): refused, never rounded or crashed on.
+    with pytest.raises(tessera.InputError, match="'span.interfaces' takes a whole number, not 2.5"):
+        tessera.Simulation(SCENE, bundle=slab, overrides={"span.interfaces": 2.5})
+    with pytest.raises(tessera.InputError, match="threads must be 0 .all cores. or 1 to 1024"):
+        tessera.Simulation(SCENE, bundle=slab, threads=10**9)
     with pytest.raises(ValueError, match="overlap"):
         tessera.tile(BLOCK, "mm", str(tmp_path / "tight"), grid=(3, 3), pitch=8e-3)
     # A pitch given in mm (10 m): no two blocks touch, refused before anything is written.
@@ -194,6 +199,8 @@ def test_a_callback_that_raises_stops_the_run_resumably(slab, tmp_path):
     with pytest.raises(ArithmeticError, match="my controller"):
         sim.run(fails)
     assert sim.stop_reason == "interrupted"
+    with pytest.raises(tessera.InputError, match="this process still holds a run there"):
+        tessera.Simulation.resume(out)  # the first session still holds the folder (not "another process")
     del sim  # releases the folder
     resumed = tessera.Simulation.resume(out)
     assert resumed.run() == "delta_max"
