@@ -134,7 +134,13 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   const int fallen = static_cast<int>(record.fallen.size());
   const bool loadedOut = std::any_of(record.fallen.begin(), record.fallen.end(),
                                      [&](const FallenBody& f) { return f.name == record.targetName; });
-  if (fallen == 0) r.failureMode = record.finished() ? "no failure" : "none yet (run incomplete)";
+  // With nothing out, the mode says how far the run looked: "no failure" alone read as a verdict
+  // on a run a user had stopped at a delta_max of their choosing.
+  if (fallen == 0)
+    r.failureMode = record.stopReason == "delta_max"   ? "none up to delta_max"
+                    : record.stopReason == "failure"   ? "load lost, no block out"
+                    : record.stopReason == "requested" ? "none up to the requested stop"
+                                                       : "none yet (run incomplete)";
   else if (settings.freeBodies > 1 && fallen >= settings.freeBodies) r.failureMode = "collapse";
   else if (fallen == 1 && loadedOut) r.failureMode = "loaded block out";
   else r.failureMode = std::to_string(fallen) + (fallen == 1 ? " block out" : " blocks out");

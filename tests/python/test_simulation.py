@@ -81,7 +81,7 @@ def test_backing_off_is_no_failure(slab):
 
     assert sim.run(on_sample) == "requested"
     assert sim.response["failure_deflection"] is None
-    assert sim.response["failure_mode"] == "no failure"
+    assert sim.response["failure_mode"] == "none up to the requested stop"
 
 
 def test_results_as_arrays_in_si_units(slab):

@@ -60,7 +60,7 @@ TEST_CASE("response: K, P_max, failure deflection and W of a triangular curve") 
   REQUIRE(r.ultimateDeflection == Approx(2e-3).epsilon(1e-9));
   REQUIRE(r.quasiStaticRatio == Approx(1e-3).epsilon(1e-9));
   REQUIRE(r.quasiStatic);
-  REQUIRE(r.failureMode == "no failure");
+  REQUIRE(r.failureMode == "none up to delta_max");
   REQUIRE(r.peakLoadNormalised == Approx(100.0 / (4.2e9 * 50e-3 * 50e-3)).epsilon(1e-12));
   REQUIRE(r.deltaAtPeakNormalised == Approx(1e-3 / kH).epsilon(1e-12));
 }
@@ -94,7 +94,11 @@ TEST_CASE("response: the failure mode follows the bodies out, and an unfinished 
   record.stopReason = "interrupted";
   REQUIRE(analyseResponse(record, settings).failureMode == "none yet (run incomplete)");
   record.stopReason = "requested";  // the sample hook ended it: a finished run
-  REQUIRE(analyseResponse(record, settings).failureMode == "no failure");
+  REQUIRE(analyseResponse(record, settings).failureMode == "none up to the requested stop");
+  record.stopReason = "failure";  // the load lost with nothing out
+  REQUIRE(analyseResponse(record, settings).failureMode == "load lost, no block out");
+  record.stopReason = "delta_max";
+  REQUIRE(analyseResponse(record, settings).failureMode == "none up to delta_max");
   REQUIRE(analyseResponse(IndentationRecord{}, settings).failureMode == "no contact");
 }
 

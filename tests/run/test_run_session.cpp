@@ -184,7 +184,7 @@ TEST_CASE("sample hook: stop() ends the run as requested, a finished run") {
   REQUIRE(session->record().curve.back().delta >= 0.1e-3);
   REQUIRE(session->record().curve.back().delta < 0.1e-3 + 2 * 10e-6);
   REQUIRE(session->state().phase == 2);
-  REQUIRE(session->response().failureMode == "no failure");
+  REQUIRE(session->response().failureMode == "none up to delta_max");
 }
 
 TEST_CASE("presets and overrides reach the scene, and the span is resolved once") {
