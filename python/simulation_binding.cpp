@@ -230,7 +230,8 @@ void bindSimulation(py::module_& m) {
       .def_readonly("load", &Progress::load)
       .def_readonly("steps", &Progress::steps)
       .def_readonly("eta_seconds", &Progress::etaSeconds)
-      .def_readonly("settling", &Progress::settling);
+      .def_readonly("settling", &Progress::settling)
+      .def_readonly("settle_eta_seconds", &Progress::settleEtaSeconds);
 
   py::class_<Simulation>(m, "Simulation",
                          "One indentation test of a slab: a scene, its bundle, the World, the record.")

@@ -154,8 +154,12 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
       const double travel = scene.indenter.clearance +
                             (scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * h);
       const EnergyBudget e = world.energy();
-      hooks.progress({0.0, 0.0, e.kinetic, e.obstacleWork, 0, world.stepCount(),
-                      world.stepCount() / (wallBefore + wall()), eta(travel, indenterSpeed(world, scene.indenter, h)), true});
+      // The settling's steps left to its limit, at the simulated time a step has taken so far.
+      const double sessionRate = (world.stepCount() - stepsBefore) / std::max(wall(), 1e-9);
+      const double settleStepsLeft = (record.settleMaxTime - world.time()) * world.stepCount() / std::max(world.time(), 1e-300);
+      hooks.progress({0.0, 0.0, e.kinetic, e.obstacleWork, 0, world.stepCount(), world.stepCount() / (wallBefore + wall()),
+                      eta(travel, indenterSpeed(world, scene.indenter, h)), true,
+                      std::max(0.0, settleStepsLeft) / std::max(sessionRate, 1e-9)});
     }
     checkpointDue();
   }
@@ -321,7 +325,7 @@ void runIndentation(World& world, const Bundle& bundle, const Scene& scene, Inde
       const EnergyBudget e = world.energy();
       hooks.progress({delta, load, e.kinetic, e.obstacleWork, static_cast<long>(countContacts(world, record.target).all),
                       world.stepCount(), world.stepCount() / (wallBefore + wall()),
-                      eta(std::max(left, 0.0), velocity > 0 ? velocity : speed), false});
+                      eta(std::max(left, 0.0), velocity > 0 ? velocity : speed), false, 0.0});
     }
     const bool reachedMax = (state.contactTravel >= 0 && delta >= record.deltaMax) ||
                             travel > travelMax + record.deltaMax;  // the latter: never touched anything

@@ -104,6 +104,9 @@ struct Progress {
   long contacts, steps;
   double stepsPerSecond, etaSeconds;
   bool settling;  ///< still settling: no load yet, the ETA counts the loading to come
+  /// s of wall time, while settling: the most the settling can still take (to its time limit, at
+  /// this session's rate); it ends sooner once the slab is at rest. 0 once loading.
+  double settleEtaSeconds = 0;
 };
 
 /// Where the protocol is: enough, with the World's state and the record, to resume it exactly.

@@ -57,6 +57,25 @@ void drawPicture(const std::string& script, const fs::path& out, const std::stri
   fs::remove(log, ignored);
 }
 
+// The result files in the run folder, as a list for the summary's last line.
+std::string writtenFiles(const std::string& out) {
+  std::string files;
+  for (const char* f : {"results.h5", "curve.csv", "summary.json", "curve.png", "snapshots.png", "paraview/slab.pvd", "checkpoint.h5"})
+    if (fs::exists(fs::path(out) / f)) files += (files.empty() ? "" : ", ") + std::string(f);
+  return files;
+}
+
+// A run stopped while it settled has nothing to analyse: where the settling was, and how to go on.
+void printSettlingSummary(const RunSession& session, const std::string& out) {
+  const IndentationRecord& record = session.record();
+  const World& world = session.world();
+  std::printf("stopped: %s while settling, at %.4g s of up to %.4g s simulated (kinetic energy %.3e J; at rest below "
+              "%.3e J); nothing loaded yet\n",
+              record.stopReason.c_str(), world.time(), record.settleMaxTime, world.energy().kinetic, record.settleKinetic);
+  std::printf("  %ld %s in %.1f s\n", record.steps, record.implicit ? "implicit increments" : "steps", record.wallSeconds);
+  std::printf("written to %s (%s); go on with: tessera run --resume %s\n", out.c_str(), writtenFiles(out).c_str(), out.c_str());
+}
+
 void printSummary(const IndentationRecord& record, const ResponseParameters& r, double failureFraction, const std::string& out) {
   std::printf("settled in %.4g s (%ld steps)%s; loaded block '%s'; stopped: %s\n", record.settleTime, record.settleSteps,
               record.settled ? "" : " (not settled)", record.targetName.c_str(), record.stopReason.c_str());
@@ -98,10 +117,7 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
                 record.wallSeconds);
   else
     std::printf("  %ld steps of %.3g s in %.1f s\n", record.steps, record.timeStep, record.wallSeconds);
-  std::string files;
-  for (const char* f : {"results.h5", "curve.csv", "summary.json", "curve.png", "snapshots.png", "paraview/slab.pvd", "checkpoint.h5"})
-    if (fs::exists(fs::path(out) / f)) files += (files.empty() ? "" : ", ") + std::string(f);
-  std::printf("written to %s (%s)\n", out.c_str(), files.c_str());
+  std::printf("written to %s (%s)\n", out.c_str(), writtenFiles(out).c_str());
 }
 
 int runTest(const RunArguments& a) {
@@ -151,8 +167,8 @@ int runTest(const RunArguments& a) {
   RunHooks hooks;
   hooks.progress = [](const Progress& p) {
     if (p.settling) {
-      std::fprintf(stderr, "run: settling  KE %.3e J  step %9ld  %6.0f steps/s  ETA %.0f s + settling\n", p.kinetic, p.steps,
-                   p.stepsPerSecond, p.etaSeconds);
+      std::fprintf(stderr, "run: settling  KE %.3e J  step %9ld  %6.0f steps/s  ETA %.0f s loading + at most %.0f s settling\n",
+                   p.kinetic, p.steps, p.stepsPerSecond, p.etaSeconds, p.settleEtaSeconds);
       return;
     }
     std::fprintf(stderr, "run: delta %7.3f mm  P %9.3f N  KE/W %.2e  contacts %7ld  step %9ld  %6.0f steps/s  ETA %.0f s\n",
@@ -177,7 +193,8 @@ int runTest(const RunArguments& a) {
     drawPicture("plot_curve.py", out, "curve.png");
     drawPicture("render_snapshots.py", out, "snapshots.png");
   }
-  printSummary(record, session->response(), session->scene().protocol.failureLoadFraction, out);
+  if (session->state().phase == 0) printSettlingSummary(*session, out);
+  else printSummary(record, session->response(), session->scene().protocol.failureLoadFraction, out);
   if (!failure.empty()) {
     std::cerr << "tessera: error: the run became unstable and was stopped: " << failure << "\n";
     return 3;

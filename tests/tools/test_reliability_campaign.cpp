@@ -179,3 +179,17 @@ TEST_CASE("campaign 6: adding a shape to a bundle on a full disk leaves the bund
   std::sort(names.begin(), names.end());
   REQUIRE(names == std::vector<std::string>{"bundle.h5", "planar_a10_h3.18_5deg.vdb"});  // no orphan second.vdb
 }
+
+TEST_CASE("campaign 8: a run stopped while it settles says where it was and how to go on, not a summary of zeros") {
+  test::TempDir dir;
+  // Never at rest (a threshold of 1e-30 J) for up to 10 s simulated: Ctrl-C after a second lands in the settling.
+  smallSlab(dir);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[protocol]\ndelta_max = 0.2e-3\nsettle_kinetic = 1e-30\nsettle_max_time = 10\n");
+  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "run"),
+                                             "timeout --preserve-status -s INT 1");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 130);
+  REQUIRE_THAT(r.out, Contains("stopped: interrupted while settling, at ") && Contains("nothing loaded yet") &&
+                          Contains("go on with: tessera run --resume"));
+  REQUIRE_THAT(r.out, !Contains("loaded block ''") && !Contains("P_max = 0 N"));
+}
