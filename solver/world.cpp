@@ -430,18 +430,30 @@ void World::checkStability() {
       throw SolverInstability(where(i) + ": non-finite position or velocity; the time step " + format("%.3g s", dt_) +
                               " is probably too large (automatic: " + format("%.3g s)", automaticDt_));
   }
-  // Between bodies the bound is a fraction of the thinnest block; against the analytic indenter,
-  // whose penalty contact legitimately sinks deep at high loads (P = pi k_n R d^2), its radius.
-  const int sphereCount = static_cast<int>(state_.spheres.size());
-  for (const PairContacts& p : state_.pairs)
-    if (p.maxDepth > (p.b < 0 && -1 - p.b < sphereCount ? state_.spheres[-1 - p.b].radius : penetrationLimit_))
-      throw SolverInstability(where(p.a) + ": penetration " + format("%.4g mm", p.maxDepth * 1e3) + " beyond the bound (" +
-                              format("%.4g mm", penetrationLimit_ * 1e3) + ", the indenter's radius against it; against " +
-                              (p.b >= 0 ? "body '" + state_.bodies.name[p.b] + "'" : std::string("an obstacle")) +
-                              "); the time step " + format("%.3g s", dt_) + " or the loading rate is too large");
   const EnergyBudget e = energy();
   state_.mostSupplied = std::max(state_.mostSupplied, e.initial + std::abs(e.gravityWork) + std::abs(e.obstacleWork));
   const double supplied = state_.mostSupplied + 1e-12;
+  // Between bodies the bound is a fraction of the thinnest block; against the analytic indenter,
+  // whose penalty contact legitimately sinks deep at high loads (P = pi k_n R d^2), its radius.
+  // The cause named from the motion: a slab at rest (kinetic energy under 1e-3 of the energy
+  // supplied) sank in because the penalty is too soft for its forces, not because of the step.
+  const int sphereCount = static_cast<int>(state_.spheres.size());
+  for (const PairContacts& p : state_.pairs) {
+    const bool indenter = p.b < 0 && -1 - p.b < sphereCount;
+    const double bound = indenter ? state_.spheres[-1 - p.b].radius : penetrationLimit_;
+    if (!(p.maxDepth > bound)) continue;
+    const std::string against = p.b >= 0 ? "body '" + state_.bodies.name[p.b] + "'" : indenter ? "the indenter" : "an obstacle";
+    const std::string rule = indenter ? "the indenter's radius" : "solver.max_penetration";
+    const std::string cause =
+        e.kinetic < 1e-3 * supplied
+            ? format("the slab was at rest (kinetic energy %.2g of the energy supplied): the contact stiffness k_n = E M / L is "
+                     "too soft for these forces; set [span] length and interfaces to the assembly's (a shorter L or more "
+                     "interfaces M stiffen it), or raise solver.max_penetration if this depth is acceptable",
+                     e.kinetic / supplied)
+            : "the time step " + format("%.3g s", dt_) + " or the loading rate is too large";
+    throw SolverInstability(where(p.a) + ": penetration " + format("%.4g mm", p.maxDepth * 1e3) + " into " + against +
+                            ", beyond the bound " + format("%.4g mm", bound * 1e3) + " (" + rule + "); " + cause);
+  }
   if (e.kinetic > settings_.energyGrowthLimit * supplied) {
     std::size_t worst = 0;
     for (std::size_t i = 0; i < state_.bodies.size(); ++i)
