@@ -446,10 +446,10 @@ void World::checkStability() {
     const std::string rule = indenter ? "the indenter's radius" : "solver.max_penetration";
     const std::string cause =
         e.kinetic < 1e-3 * supplied
-            ? format("the slab was at rest (kinetic energy %.2g of the energy supplied): the contact stiffness k_n = E M / L is "
-                     "too soft for these forces; set [span] length and interfaces to the assembly's (a shorter L or more "
-                     "interfaces M stiffen it), or raise solver.max_penetration if this depth is acceptable",
-                     e.kinetic / supplied)
+            ? format("the slab was at rest (kinetic energy %.2g of the energy supplied): ", e.kinetic / supplied) +
+                  "the contact stiffness k_n = E M / L is too soft for these forces; set [span] length and interfaces to the "
+                  "assembly's (a shorter L or more interfaces M stiffen it), or raise solver.max_penetration if this depth "
+                  "is acceptable"
             : "the time step " + format("%.3g s", dt_) + " or the loading rate is too large";
     throw SolverInstability(where(p.a) + ": penetration " + format("%.4g mm", p.maxDepth * 1e3) + " into " + against +
                             ", beyond the bound " + format("%.4g mm", bound * 1e3) + " (" + rule + "); " + cause);
