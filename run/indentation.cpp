@@ -46,11 +46,18 @@ void startLoading(World& world, const Bundle& bundle, const Scene& scene, Indent
   record.deltaMax = scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * record.thickness;
   SphereObstacle indenter;
   indenter.radius = scene.indenter.radius > 0 ? scene.indenter.radius : scene.indenter.radiusRatio * record.thickness;
-  indenter.center = Eigen::Vector3d(at.x(), at.y(), top + indenter.radius + scene.indenter.clearance);
   // With the adaptive loading rate, the indenter starts at its slowest speed and speeds up while
   // the slab follows quasi-statically.
   const double speed = indenterSpeed(world, scene.indenter, record.thickness);
   indenter.velocity = Eigen::Vector3d(0, 0, -(scene.protocol.quasiStaticTarget > 0 ? kSlowestSpeedFraction * speed : speed));
+  // Above the block's top by its radius, but never more than 5 % of h above its first contact
+  // with the block's surface nodes there: on a tilted block the top is far above that contact (a
+  // dome's indenter travelled 23 mm to it), on a flat one it is the top (an approach of r^2 / 2R).
+  const std::optional<double> touch =
+      sphereTouchHeight(bundle.shapes[bodies.shape[record.target]].nodes, bodies.orientation[record.target],
+                        bodies.position[record.target], at, indenter.radius);
+  const double start = std::min(top + indenter.radius, touch ? *touch + 0.05 * record.thickness : INFINITY);
+  indenter.center = Eigen::Vector3d(at.x(), at.y(), start + scene.indenter.clearance);
   indenter.stiffnessFactor = scene.indenter.stiffnessFactor;
   state.sphere = world.addSphere(indenter);
   state.settledPosition = bodies.position;

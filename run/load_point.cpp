@@ -22,6 +22,19 @@ std::pair<double, double> heightRange(const TriangleMesh& mesh, const Eigen::Qua
   return {bottom, top};
 }
 
+std::optional<double> sphereTouchHeight(const SurfaceNodes& nodes, const Eigen::Quaterniond& orientation,
+                                        const Eigen::Vector3d& position, const Eigen::Vector2d& at, double radius) {
+  std::optional<double> height;
+  for (const Eigen::Vector3d& node : nodes.positions) {
+    const Eigen::Vector3d x = orientation * node + position;
+    const double r2 = (x.head<2>() - at).squaredNorm();
+    if (r2 >= radius * radius) continue;
+    const double z = x.z() + std::sqrt(radius * radius - r2);
+    height = height ? std::max(*height, z) : z;
+  }
+  return height;
+}
+
 namespace {
 
 // The highest point of body i's surface on the vertical line through (x, y), if the line meets it.

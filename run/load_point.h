@@ -2,6 +2,7 @@
 #include "levelset/bundle.h"
 #include "run/scene.h"
 
+#include <optional>
 #include <utility>
 
 namespace tessera {
@@ -10,6 +11,14 @@ namespace tessera {
 /// position): a body's thickness h is their difference.
 std::pair<double, double> heightRange(const TriangleMesh& mesh, const Eigen::Quaterniond& orientation,
                                       const Eigen::Vector3d& position);
+
+/// m, the height of the centre of a sphere of `radius` coming down the vertical through `at` (x, y)
+/// when it first touches a body posed at (orientation, position): the highest z_i + sqrt(R^2 - r_i^2)
+/// over the body's surface nodes within R of that vertical (r_i the distance from it). The solver
+/// finds contact at exactly these nodes (each against the sphere's level set), so a sphere put this
+/// high touches nothing. Nothing when no node is within R.
+std::optional<double> sphereTouchHeight(const SurfaceNodes& nodes, const Eigen::Quaterniond& orientation,
+                                        const Eigen::Vector3d& position, const Eigen::Vector2d& at, double radius);
 
 /// Where the indenter comes down, decided once from the bundle's poses, before any work (so a
 /// resumed run loads the same body): the body it loads and the plan offset (x, y) from that body's

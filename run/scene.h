@@ -33,7 +33,7 @@ struct IndenterSettings {
   Eigen::Vector2d offset{0, 0};  ///< m, where to load in plan, from the target's centroid
   bool atPoint = false;          ///< load at `point` instead: the topmost free body under it
   Eigen::Vector2d point{0, 0};   ///< m, (x, y) on the slab's upper surface
-  double clearance = 1e-6;  ///< m, start this far above the target's top
+  double clearance = 1e-6;  ///< m, start this far above the first contact with the target (its surface nodes)
   double stiffnessFactor = 1.0;  ///< its contact stiffnesses are this x the blocks' k_n and k_t
 };
 

@@ -82,3 +82,28 @@ TEST_CASE("loading anywhere: the central body by default, a point on the upper s
   indenter.target = "r0c0";
   REQUIRE_THROWS_WITH(chooseLoadPoint(slab, indenter), Catch::Contains("is a fixed body"));
 }
+
+TEST_CASE("the indenter's first contact with a tilted surface: R / cos(tilt) above the surface on its axis, far below the top") {
+  // Nodes 0.01 R apart on a plane tilted 30 degrees about y, z = x tan 30, over a block 4 R wide
+  // (its top 2 R tan 30 = 1.15 R above the axis point). A sphere coming down the z axis first
+  // touches the plane with its centre R / cos 30 above it (continuous plane; nodes: from below).
+  const double R = 2.5e-3, tilt = 30 * M_PI / 180;
+  SurfaceNodes nodes;
+  for (int i = -200; i <= 200; ++i)
+    for (int j = -200; j <= 200; ++j) {
+      const double x = 0.01 * R * i, y = 0.01 * R * j;
+      nodes.positions.emplace_back(x, y, x * std::tan(tilt));
+    }
+  const Eigen::Quaterniond identity = Eigen::Quaterniond::Identity();
+  const std::optional<double> h = sphereTouchHeight(nodes, identity, Eigen::Vector3d::Zero(), Eigen::Vector2d::Zero(), R);
+  REQUIRE(h.has_value());
+  REQUIRE(*h <= R / std::cos(tilt));
+  REQUIRE(*h == Approx(R / std::cos(tilt)).epsilon(1e-4));
+  // Posed: the same nodes raised by 1 mm and turned about z, at another axis point.
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()));
+  const std::optional<double> posed =
+      sphereTouchHeight(nodes, turn, Eigen::Vector3d(0.1, 0.2, 1e-3), Eigen::Vector2d(0.1, 0.2), R);
+  REQUIRE(*posed == Approx(*h + 1e-3).epsilon(1e-9));
+  // No node within R of the axis: nothing.
+  REQUIRE_FALSE(sphereTouchHeight(nodes, identity, Eigen::Vector3d::Zero(), Eigen::Vector2d(1.0, 0), R).has_value());
+}

@@ -184,7 +184,7 @@ TEST_CASE("sample hook: stop() ends the run as requested, a finished run") {
   REQUIRE(session->record().curve.back().delta >= 0.1e-3);
   REQUIRE(session->record().curve.back().delta < 0.1e-3 + 2 * 10e-6);
   REQUIRE(session->state().phase == 2);
-  REQUIRE(session->response().failureMode == "none up to delta_max");
+  REQUIRE(session->response().failureMode == "none up to the requested stop");
 }
 
 TEST_CASE("presets and overrides reach the scene, and the span is resolved once") {
@@ -223,7 +223,7 @@ TEST_CASE("presets and overrides reach the scene, and the span is resolved once"
 TEST_CASE("a run folder holds one run: a second start is refused while the first holds it, and after") {
   SmallTest t;
   auto first = RunSession::start(t.request(t.dir / "run"), {});
-  REQUIRE_THROWS_WITH(RunSession::start(t.request(t.dir / "run"), {}), Contains("another tessera process"));
+  REQUIRE_THROWS_WITH(RunSession::start(t.request(t.dir / "run"), {}), Contains("this process still holds a run there"));
   first->run({});
   first.reset();
   REQUIRE_THROWS_WITH(RunSession::start(t.request(t.dir / "run"), {}), Contains("holds a run already"));
