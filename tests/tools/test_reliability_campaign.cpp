@@ -193,3 +193,14 @@ TEST_CASE("campaign 8: a run stopped while it settles says where it was and how 
                           Contains("go on with: tessera run --resume"));
   REQUIRE_THAT(r.out, !Contains("loaded block ''") && !Contains("P_max = 0 N"));
 }
+
+TEST_CASE("campaign 8: an unsettled slab's warning says it was loaded as it was and how to settle it") {
+  test::TempDir dir;
+  smallSlab(dir);
+  test::writeFile(dir / "scene.toml", "bundle = \"slab\"\n[protocol]\ndelta_max = 0.05e-3\nsettle_kinetic = 1e-30\nsettle_max_time = 1e-4\n");
+  const test::CliResult r = test::runTessera("run " + quoted(dir / "scene.toml") + " --no-plot -o " + quoted(dir / "run"));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.err, Contains("had not settled after") && Contains("was loaded as it was") && Contains("damping.local = 0 here") &&
+                          Contains("protocol.settle_max_time_ratio"));
+}
