@@ -140,6 +140,13 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
+// The number a body's name ends in (Part_043 and part43 are 43), or -1 when it ends in none.
+long nameNumber(const std::string& name) {
+  const std::size_t start = name.find_last_not_of("0123456789") + 1;  // npos + 1 = 0: all digits
+  if (start >= name.size() || name.size() - start > 15) return -1;
+  return std::stol(name.substr(start));
+}
+
 }  // namespace
 
 std::vector<int> outerRingBodies(const Bundle& bundle) { return outerRing(planCentres(bundle)); }
@@ -186,12 +193,20 @@ Bundle assembleParts(const std::vector<std::string>& files, const AssembleOption
       if (fnmatch(pattern.c_str(), pieces[i].name.c_str(), 0) == 0) pieces[i].fixed = true;
     centres.push_back(computeMassProperties(pieces[i].mesh).centroid.head<2>());
   }
+  for (long id : options.fixIds) {
+    bool found = false;
+    for (Piece& piece : pieces)
+      if (nameNumber(piece.name) == id) piece.fixed = found = true;
+    if (!found)
+      throw InputError("--fix-ids: no part's name ends in " + std::to_string(id) +
+                       " (the ids are the numbers at the end of the part files' names, e.g. Part_43.obj is 43)");
+  }
   if (options.fixOuterRing)
     for (int i : outerRing(centres)) pieces[i].fixed = true;
   const auto fixedCount = std::count_if(pieces.begin(), pieces.end(), [](const Piece& p) { return p.fixed; });
   if (fixedCount == 0)
-    throw InputError("no body is fixed: name the supports with --fix PATTERN, give the frame mesh with --frame FILE, "
-                     "or use --fix-outer-ring");
+    throw InputError("no body is fixed: name the supports with --fix PATTERN or --fix-ids LIST, give the frame mesh "
+                     "with --frame FILE, or use --fix-outer-ring");
   if (fixedCount == static_cast<long>(pieces.size()))
     throw InputError("every body is fixed (" + std::to_string(fixedCount) + "): nothing can move; check --fix patterns");
 

@@ -13,6 +13,9 @@ struct AssembleOptions {
   std::string unit;                      ///< length unit of every file (required)
   std::string up = "z";                  ///< the files' up axis; turned into +z (rotationToZUp)
   std::vector<std::string> fixPatterns;  ///< bodies whose name matches a glob pattern are fixed
+  /// Bodies whose name ends in one of these numbers are fixed (a design tool's list of support
+  /// parts: TopoLite's Boundary_PartIDs 43,44,... name Part_43.obj, Part_44.obj, ...).
+  std::vector<long> fixIds;
   std::vector<std::string> frameFiles;   ///< every piece of these files is a fixed body
   bool fixOuterRing = false;             ///< fix the bodies on the outer ring (outerRingBodies)
   double spanLength = 0;                 ///< m, L of k_n = E M / L; 0: estimated (estimateSpan)

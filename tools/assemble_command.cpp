@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 namespace tessera::tools {
 
@@ -24,6 +25,7 @@ struct AssembleArguments {
   std::vector<std::string> parts;
   std::string unit, up = "z", output;
   std::vector<std::string> fix, frames;
+  std::string fixIds;
   bool fixOuterRing = false, replace = false;
   std::optional<double> spanLength;  // in --unit
   int spanInterfaces = 0;
@@ -59,6 +61,27 @@ std::vector<std::string> partFiles(const std::vector<std::string>& given, const 
   return files;
 }
 
+// "43,44,50-74": whole numbers and ranges, each once; refused whole on anything else.
+std::vector<long> parseIdList(const std::string& text) {
+  std::vector<long> ids;
+  if (text.empty()) return ids;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    long from = -1, to = -1;
+    char dash = 0, rest = 0;
+    std::istringstream words(item);
+    const bool range = item.find('-') != std::string::npos;
+    const bool read = range ? static_cast<bool>(words >> from >> dash >> to) && dash == '-' : static_cast<bool>(words >> from);
+    if (!read || (words >> rest) || from < 0 || (range && (to < from || to - from > 100000)))
+      throw InputError("--fix-ids '" + text + "': '" + item + "' is not a part number or a range a-b; give e.g. 43,44,50-74");
+    for (long id = from; id <= (range ? to : from); ++id) ids.push_back(id);
+  }
+  std::sort(ids.begin(), ids.end());
+  if (std::adjacent_find(ids.begin(), ids.end()) != ids.end())
+    throw InputError("--fix-ids '" + text + "': a part number given twice");
+  return ids;
+}
+
 void runAssemble(const AssembleArguments& a) {
   const auto start = std::chrono::steady_clock::now();
   checkBundleOutput(a.output, a.replace);
@@ -67,6 +90,7 @@ void runAssemble(const AssembleArguments& a) {
   options.unit = a.unit;
   options.up = a.up;
   options.fixPatterns = a.fix;
+  options.fixIds = parseIdList(a.fixIds);
   options.frameFiles = a.frames;
   options.fixOuterRing = a.fixOuterRing;
   if (a.spanLength && !(*a.spanLength > 0)) throw InputError("--span-length must be positive (in --unit)");
@@ -114,6 +138,8 @@ void addAssembleCommand(CLI::App& app) {
   cmd->add_option("--up", args->up, "The files' up axis (x, y or z), turned into +z")->capture_default_str();
   cmd->add_option("--fix", args->fix, "Fix the bodies whose name matches this glob pattern (repeatable), e.g. 'frame*'");
   cmd->add_option("--frame", args->frames, "A mesh of the fixed frame: each of its pieces is a fixed body (repeatable)");
+  cmd->add_option("--fix-ids", args->fixIds,
+                  "Fix the parts whose file names end in these numbers, e.g. TopoLite's Boundary_PartIDs: 43,44,50-74");
   cmd->add_flag("--fix-outer-ring", args->fixOuterRing, "Fix the bodies on the assembly's outer ring (in plan)");
   cmd->add_option("--span-length", args->spanLength, "L of k_n = E M / L, in --unit [default: estimated, docs/tiling.md]");
   cmd->add_option("--span-interfaces", args->spanInterfaces, "M of k_n = E M / L [default: estimated]");

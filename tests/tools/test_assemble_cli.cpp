@@ -73,6 +73,13 @@ TEST_CASE("assemble imports a y-up metre export in one command and reports each 
                           Contains("16 fixed, 9 free") && Contains("9 of 9 free bodies held") &&
                           Contains("L = 180 mm free span, M = 4"));
   REQUIRE(fs::exists(dir / "slab/bundle.h5"));
+  // Supports by part number, as TopoLite lists them (Boundary_PartIDs): 5 fixes parts_5 (and frame_05, fixed already).
+  const test::CliResult ids = test::runTessera("assemble " + quoted(dir / "export/parts.obj") + " --frame " +
+                                               quoted(dir / "export/frame.obj") + " --fix-ids 5 --unit m --up y -o " +
+                                               quoted(dir / "ids"));
+  INFO(ids.err);
+  REQUIRE(ids.status == 0);
+  REQUIRE_THAT(ids.out, Contains("17 fixed, 8 free"));
   // Written once: again without --replace is refused.
   const test::CliResult again = test::runTessera("assemble " + quoted(dir / "export") + " --frame " +
                                                  quoted(dir / "export/frame.obj") + " --unit m --up y -o " + quoted(dir / "slab"));
@@ -95,6 +102,9 @@ TEST_CASE("assemble refuses bad input in one line with the file, the problem and
       {parts + frame + " --unit mm --up y", "check --unit"},
       {parts + frame + " --unit m --up y --max-memory 0.001", "above the budget"},
       {parts + frame + " --unit m --up w", "up axis 'w'"},
+      {parts + frame + " --unit m --up y --fix-ids 99", "no part's name ends in 99"},
+      {parts + frame + " --unit m --up y --fix-ids 3-x", "'3-x' is not a part number or a range"},
+      {parts + frame + " --unit m --up y --fix-ids 3,1-4", "a part number given twice"},
   };
   for (const auto& c : cases) {
     const test::CliResult r = test::runTessera("assemble " + c.arguments + " -o " + quoted(dir / "out"));
