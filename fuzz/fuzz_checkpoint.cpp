@@ -1,5 +1,7 @@
 // Fuzz target: the checkpoint reader and the World's check of a restored state, on a two-block
-// stack. A damaged checkpoint must be an InputError (or the World's refusal), never a crash.
+// stack, the indenter pressing on it: the world's state and a loading run's protocol state (phase,
+// first contact, sampling, curve). A damaged checkpoint must be an InputError (or the World's
+// refusal), never a crash.
 // `fuzz_checkpoint --seeds DIR` writes the seeds: DIR/bundle/stack.h5 and DIR/checkpoint/stack.h5.
 #include "fuzz/input_file.h"
 #include "geometry/block_generators.h"
@@ -56,9 +58,31 @@ extern "C" int LLVMFuzzerInitialize(int* argc, char*** argv) {
     fs::copy_file(bundleDir / "bundle.h5", dir / "bundle/stack.h5", fs::copy_options::overwrite_existing);
     fs::remove_all(bundleDir);
     tessera::World& w = world();
+    tessera::SphereObstacle indenter;  // pressing on the top block: a loading run's protocol state
+    indenter.center = Eigen::Vector3d(0, 0, 4.5e-3 + indenter.radius - 1e-6);
+    indenter.velocity = Eigen::Vector3d(0, 0, -0.01);
+    w.addSphere(indenter);
     for (int i = 0; i < 200; ++i) w.step();  // springs and pairs to read back
     tessera::IndentationState state;
     tessera::IndentationRecord record;
+    state.phase = 1;
+    state.sphere = 0;
+    state.contactTravel = state.contactPath = 1e-6;
+    state.peak = 2.0;
+    state.nextSample = state.nextSnapshot = 2e-6;
+    state.settledPosition = w.bodies().position;
+    state.outAt.assign(w.bodies().size(), -1.0);
+    record.target = 1;
+    record.targetName = "top";
+    record.thickness = 3e-3;
+    record.deltaMax = 1e-3;
+    record.timeStep = w.timeStep();
+    for (int k = 0; k < 3; ++k) {
+      tessera::CurveSample c;
+      c.time = c.delta = 1e-6 * k;
+      c.load = 1.0 * k;
+      record.curve.push_back(c);
+    }
     tessera::writeCheckpoint((dir / "checkpoint/stack.h5").string(), {}, w.state(), state, record);
     std::exit(0);
   }
