@@ -74,6 +74,8 @@ void checkPlyCounts(const std::string& path) {
       return;
     }
   }
+  // assimp's reader loops forever on a header that never ends (found by fuzz_mesh_import).
+  throw InputError(path + ": its PLY header has no end_header line (the file is truncated or damaged); export the mesh again");
 }
 
 }  // namespace

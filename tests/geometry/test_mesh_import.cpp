@@ -112,7 +112,7 @@ TEST_CASE("unreadable files are refused naming the file") {
                       Contains("damaged.obj: 10 of its 12 triangles collapsed") && Contains("spans 1.73e+30"));
 }
 
-TEST_CASE("a PLY header claiming more elements than its file holds is refused before any is read (issue #39)") {
+TEST_CASE("a PLY header claiming more elements than its file holds, or never ending, is refused before any is read (issue #39)") {
   // assimp reserves what the header claims: 2e9 vertices grew memory without bound.
   test::TempDir dir;
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
@@ -129,4 +129,9 @@ TEST_CASE("a PLY header claiming more elements than its file holds is refused be
   claims.replace(claims.find("vertex 2000000000"), 17, "vertex 18446744073709551615");
   test::writeFile(dir / "overflow.ply", claims + body);
   REQUIRE_THROWS_WITH(importAs(dir / "overflow.ply", 1), Contains("overflow.ply") && Contains("damaged"));
+  // A header that never ends (assimp's reader looped forever on it: found by fuzz_mesh_import).
+  test::writeFile(dir / "endless.ply", "ply\nformat ascii 1.0\nelement ver\x02ply\nformat ascii 1.0\nelement vertex 8\n"
+                                       "property float x\nty float y\nproperty float z\nelement face 12\ntex 8\n"
+                                       "property float xproperty list uch\nar int p");
+  REQUIRE_THROWS_WITH(importAs(dir / "endless.ply", 1), Contains("endless.ply") && Contains("no end_header"));
 }
