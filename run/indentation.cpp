@@ -39,10 +39,10 @@ void startLoading(World& world, const Bundle& bundle, const Scene& scene, Indent
   record.target = load.body;
   const Eigen::Vector2d at = bodies.position[record.target].head<2>() + load.offset;
   record.targetName = bodies.name[record.target];
-  // h: the settled block's extent along the loading direction (z), from its mesh as posed.
-  const auto [bottom, top] =
-      heightRange(bundle.shapes[bodies.shape[record.target]].mesh, bodies.orientation[record.target], bodies.position[record.target]);
-  record.thickness = top - bottom;
+  // h: the settled block's extent along the loading direction (z) through the load point.
+  const TriangleMesh& mesh = bundle.shapes[bodies.shape[record.target]].mesh;
+  const double top = heightRange(mesh, bodies.orientation[record.target], bodies.position[record.target]).second;
+  record.thickness = loadedThickness(mesh, bodies.orientation[record.target], bodies.position[record.target], at);
   record.deltaMax = scene.protocol.deltaMax > 0 ? scene.protocol.deltaMax : scene.protocol.deltaMaxRatio * record.thickness;
   SphereObstacle indenter;
   indenter.radius = scene.indenter.radius > 0 ? scene.indenter.radius : scene.indenter.radiusRatio * record.thickness;

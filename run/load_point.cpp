@@ -22,6 +22,32 @@ std::pair<double, double> heightRange(const TriangleMesh& mesh, const Eigen::Qua
   return {bottom, top};
 }
 
+std::optional<std::pair<double, double>> verticalExtent(const TriangleMesh& mesh, const Eigen::Quaterniond& orientation,
+                                                        const Eigen::Vector3d& position, const Eigen::Vector2d& at) {
+  std::optional<std::pair<double, double>> extent;
+  for (const auto& t : mesh.triangles) {
+    Eigen::Vector3d p[3];
+    for (int k = 0; k < 3; ++k) p[k] = orientation * mesh.vertices[t[k]] + position;
+    // Barycentric coordinates of (x, y) in the triangle's plan projection.
+    const Eigen::Vector2d e1 = (p[1] - p[0]).head<2>(), e2 = (p[2] - p[0]).head<2>(), r = at - p[0].head<2>();
+    const double det = e1.x() * e2.y() - e1.y() * e2.x();
+    if (std::abs(det) < 1e-30) continue;  // a vertical triangle
+    const double u = (r.x() * e2.y() - r.y() * e2.x()) / det, v = (e1.x() * r.y() - e1.y() * r.x()) / det;
+    if (u < 0 || v < 0 || u + v > 1) continue;
+    const double z = p[0].z() + u * (p[1] - p[0]).z() + v * (p[2] - p[0]).z();
+    extent = extent ? std::make_pair(std::min(extent->first, z), std::max(extent->second, z)) : std::make_pair(z, z);
+  }
+  return extent;
+}
+
+double loadedThickness(const TriangleMesh& mesh, const Eigen::Quaterniond& orientation, const Eigen::Vector3d& position,
+                       const Eigen::Vector2d& at) {
+  if (const auto through = verticalExtent(mesh, orientation, position, at); through && through->second > through->first)
+    return through->second - through->first;
+  const auto [bottom, top] = heightRange(mesh, orientation, position);
+  return top - bottom;
+}
+
 std::optional<double> sphereTouchHeight(const SurfaceNodes& nodes, const Eigen::Quaterniond& orientation,
                                         const Eigen::Vector3d& position, const Eigen::Vector2d& at, double radius) {
   std::optional<double> height;
@@ -40,21 +66,9 @@ namespace {
 // The highest point of body i's surface on the vertical line through (x, y), if the line meets it.
 std::optional<double> topAt(const Bundle& bundle, int i, const Eigen::Vector2d& at) {
   const Body& body = bundle.bodies[i];
-  const TriangleMesh& mesh = bundle.shapes[body.shape].mesh;
-  std::optional<double> top;
-  for (const auto& t : mesh.triangles) {
-    Eigen::Vector3d p[3];
-    for (int k = 0; k < 3; ++k) p[k] = body.orientation * mesh.vertices[t[k]] + body.position;
-    // Barycentric coordinates of (x, y) in the triangle's plan projection.
-    const Eigen::Vector2d e1 = (p[1] - p[0]).head<2>(), e2 = (p[2] - p[0]).head<2>(), r = at - p[0].head<2>();
-    const double det = e1.x() * e2.y() - e1.y() * e2.x();
-    if (std::abs(det) < 1e-30) continue;  // a vertical triangle
-    const double u = (r.x() * e2.y() - r.y() * e2.x()) / det, v = (e1.x() * r.y() - e1.y() * r.x()) / det;
-    if (u < 0 || v < 0 || u + v > 1) continue;
-    const double z = p[0].z() + u * (p[1] - p[0]).z() + v * (p[2] - p[0]).z();
-    top = top ? std::max(*top, z) : z;
-  }
-  return top;
+  const auto extent = verticalExtent(bundle.shapes[body.shape].mesh, body.orientation, body.position, at);
+  if (!extent) return std::nullopt;
+  return extent->second;
 }
 
 std::string planPoint(const Eigen::Vector2d& p) {

@@ -12,6 +12,18 @@ namespace tessera {
 std::pair<double, double> heightRange(const TriangleMesh& mesh, const Eigen::Quaterniond& orientation,
                                       const Eigen::Vector3d& position);
 
+/// m, the lowest and highest points of a mesh posed at (orientation, position) on the vertical
+/// line through `at` (x, y); nothing when the line misses it.
+std::optional<std::pair<double, double>> verticalExtent(const TriangleMesh& mesh, const Eigen::Quaterniond& orientation,
+                                                        const Eigen::Vector3d& position, const Eigen::Vector2d& at);
+
+/// m, the loaded block's thickness h along the loading direction: its extent on the vertical
+/// through the load point `at` (a tilted block's is about t / cos(tilt), not its z-extent: a dome
+/// block 100 mm thick, tilted, spans 177 mm in z), or its z-extent where that line misses it. h sets
+/// K's fit window, the indenter's radius and delta_max (their ratios).
+double loadedThickness(const TriangleMesh& mesh, const Eigen::Quaterniond& orientation, const Eigen::Vector3d& position,
+                       const Eigen::Vector2d& at);
+
 /// m, the height of the centre of a sphere of `radius` coming down the vertical through `at` (x, y)
 /// when it first touches a body posed at (orientation, position): the highest z_i + sqrt(R^2 - r_i^2)
 /// over the body's surface nodes within R of that vertical (r_i the distance from it). The solver

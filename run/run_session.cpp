@@ -59,9 +59,10 @@ std::string keptScenePath(const std::string& output) { return (fs::path(output) 
 // steering has), is almost always a value in mm or mm/s. Refused before a run starts, naming the
 // value and the fix (a resumed run keeps what it started with).
 void checkValuesAgainstSlab(const Scene& scene, const Bundle& bundle, const World& world) {
-  const Body& loaded = bundle.bodies[chooseLoadPoint(bundle, scene.indenter).body];
-  const auto [bottom, top] = heightRange(bundle.shapes[loaded.shape].mesh, loaded.orientation, loaded.position);
-  const double h = top - bottom;
+  const LoadPoint load = chooseLoadPoint(bundle, scene.indenter);
+  const Body& loaded = bundle.bodies[load.body];
+  const double h = loadedThickness(bundle.shapes[loaded.shape].mesh, loaded.orientation, loaded.position,
+                                   loaded.position.head<2>() + load.offset);
   const auto length = [&](const std::string& key, double value, const std::string& ratioKey) {
     if (value <= 0 || (value >= 1e-3 * h && value <= 100 * h)) return;
     std::ostringstream m;

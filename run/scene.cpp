@@ -213,6 +213,11 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   if (method != "explicit" && method != "implicit")
     throw InputError(path + ": solver.method must be \"explicit\" or \"implicit\", got \"" + method + "\"");
   scene.solver.method = method == "implicit" ? SolverMethod::Implicit : SolverMethod::Explicit;
+  std::string evaluation = scene.contact.evaluation == ContactEvaluation::OneWay ? "one-way" : "two-way";
+  solver.text("contact_evaluation", evaluation);
+  if (evaluation != "two-way" && evaluation != "one-way")
+    throw InputError(path + ": solver.contact_evaluation must be \"two-way\" or \"one-way\", got \"" + evaluation + "\"");
+  scene.contact.evaluation = evaluation == "one-way" ? ContactEvaluation::OneWay : ContactEvaluation::TwoWay;
   ImplicitSettings& implicit = scene.solver.implicit;
   solver.number("implicit_tolerance", implicit.tolerance, 1e-14, 1e-2, "of the force scale");
   solver.integer("implicit_max_iterations", implicit.maxIterations, 1, 1000);

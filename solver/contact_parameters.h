@@ -2,6 +2,13 @@
 
 namespace tessera {
 
+/// Which nodes of a pair of bodies are tested, and with what share of their areas (docs/physics.md,
+/// "Contact evaluation"): both bodies' nodes in the other's level set with half their areas
+/// (two-way, Tessera's default: symmetric in a and b), or only the smaller body's nodes, with their
+/// whole areas, in the larger body's level set (one-way: the master-slave rule of YADE's LS-DEM,
+/// LAMMPS ls/dem and Kawamoto et al. 2016; equal volumes: a's nodes).
+enum class ContactEvaluation { TwoWay, OneWay };
+
 /// The contact law's parameters (docs/physics.md). Defaults: the paper's material and slab.
 struct ContactParameters {
   double youngsModulus = 4.2e9;   ///< E, Pa
@@ -15,6 +22,16 @@ struct ContactParameters {
   /// > 0: replace the traction law by a per-node stiffness (N/m, f = k_node d), which does not
   /// converge under node refinement. For demonstrating exactly that; never for results.
   double perNodeStiffness = 0.0;
+  ContactEvaluation evaluation = ContactEvaluation::TwoWay;  ///< scene: solver.contact_evaluation
+
+  /// The share of its area each node of side `side` of a body pair (a, b) carries (side 0: a's
+  /// nodes in b; side 1: b's in a), given the bodies' volumes: 0.5 two-way; one-way 1 for the
+  /// smaller body's side, 0 (not evaluated) for the other's.
+  double sideAreaShare(int side, double volumeA, double volumeB) const {
+    if (evaluation == ContactEvaluation::TwoWay) return 0.5;
+    const int evaluated = volumeB < volumeA * (1 - 1e-9) ? 1 : 0;  // ties (the same shape): a's nodes
+    return side == evaluated ? 1.0 : 0.0;
+  }
 
   /// k_n = E M / L, N/m^3: normal traction per unit penetration (Feldfogel et al., Eq. 1).
   double normalStiffness() const { return youngsModulus * spanInterfaces / spanLength; }

@@ -329,11 +329,13 @@ void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, 
       const ShapeModel& sm = side == 0 ? sa : sb;
       const ShapeModel& so = side == 0 ? sb : sa;
       const SidePoses s = side == 0 ? posesOf(Ra, ca, Rb, cb, Ra0, ca0, Rb0, cb0) : posesOf(Rb, cb, Ra, ca, Rb0, cb0, Ra0, ca0);
-      // Half of each node's area from either side (evaluateBodyPair).
+      // Each node's share of its area from its side (evaluateBodyPair): half, or one-way all or none.
+      const double share = scene.parameters.sideAreaShare(static_cast<int>(side), sa.volume, sb.volume);
+      if (share == 0) continue;
       Eigen::AlignedBox3d region = boxInNodeFrame(so.box, s);
       region.min().array() -= band;
       region.max().array() += band;
-      visitSide(acc, sm, s, region, side, 0.5, candidates, listing, band, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
+      visitSide(acc, sm, s, region, side, share, candidates, listing, band, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
         if (so.planes.empty()) return so.meshLevelSet(y, normal);
         // The exact level set of a convex polyhedron: max_f (n_f . y - d_f), the first plane of
         // largest value giving the normal.

@@ -223,10 +223,11 @@ std::uint64_t planesNear(const SideCandidates& c, const PlanesInFrame& all, doub
   return kept;
 }
 
-// Four nodes' facingArea with half their areas, from their areas projected on the contact plane,
-// -a n_i . n (each node's area a times its outward normal n_i: CandidateNodes).
-__attribute__((always_inline)) inline void facingHalfArea(Lanes& area, const Lanes& projectedArea) {
-  area = 0.5 * (projectedArea > 0 ? projectedArea : Lanes{});
+// Four nodes' facingArea with `share` of their areas (ContactParameters::sideAreaShare), from
+// their areas projected on the contact plane, -a n_i . n (each node's area a times its outward
+// normal n_i: CandidateNodes).
+__attribute__((always_inline)) inline void facingSharedArea(Lanes& area, const Lanes& projectedArea, double share) {
+  area = share * (projectedArea > 0 ? projectedArea : Lanes{});
 }
 
 // The batch's contact arrays from entry `start` on, as the listing functions write them.
@@ -361,11 +362,11 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
 // best; phi and the best plane's normal in M's frame kept in registers across the planes), and
 // for the candidates inside (phi < 0), packed to the front of the lanes without branches
 // (storeKept): key, lever r = RM p + (c_M - c_a), the best plane's world normal RM n, depth -phi,
-// and area: half the node's, projected on the contact plane, -n_i . n (taken in M's frame),
-// clipped at 0 (facingHalfArea). The batch needs room for four entries past the last candidate.
+// and area: `share` of the node's, projected on the contact plane, -n_i . n (taken in M's frame),
+// clipped at 0 (facingSharedArea). The batch needs room for four entries past the last candidate.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& planes, const SideMotion& side,
-                   const Eigen::Matrix3d& RM, PairBatch& batch) {
+                   const Eigen::Matrix3d& RM, double share, PairBatch& batch) {
   const BatchSlice out(batch, start);
   const double sx = side.shift.x(), sy = side.shift.y(), sz = side.shift.z();
   const double r00 = RM(0, 0), r01 = RM(0, 1), r02 = RM(0, 2), r10 = RM(1, 0), r11 = RM(1, 1), r12 = RM(1, 2), r20 = RM(2, 0),
@@ -401,7 +402,7 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
     b.depth = -value;
     Lanes ax, ay, az;
     lanes.loadAreaNormals(ax, ay, az, i);
-    facingHalfArea(b.area, -(ax * nnx + ay * nny + az * nnz));
+    facingSharedArea(b.area, -(ax * nnx + ay * nny + az * nnz), share);
     lanes.loadKeys(b.key, i);
     count = storeKept(b, mask, out, count);
   }
@@ -430,13 +431,14 @@ void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double*
 // phi and unit normal g in O's frame, n of them, with room for four more: phi NaN there) as
 // contacts of the batch from entry `start` on; their count. Four candidates at a time
 // (CandidateLanes), those inside (phi < 0) packed to the front of the lanes (storeKept): key,
-// lever r = RO o + (c_O - c_M) + (c_M - c_a), the world normal RO g, depth -phi, and area: half
-// the node's, projected on the contact plane, -(RM n_i) . (RO g), clipped at 0 (facingHalfArea).
+// lever r = RO o + (c_O - c_M) + (c_M - c_a), the world normal RO g, depth -phi, and area: `share`
+// of the node's, projected on the contact plane, -(RM n_i) . (RO g), clipped at 0 (facingSharedArea).
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side, const double* __restrict ox,
                      const double* __restrict oy, const double* __restrict oz, const double* __restrict phi,
                      const double* __restrict gx, const double* __restrict gy, const double* __restrict gz,
-                     const Eigen::Matrix3d& RO, const Eigen::Matrix3d& RM, const Eigen::Vector3d& offset, PairBatch& batch) {
+                     const Eigen::Matrix3d& RO, const Eigen::Matrix3d& RM, const Eigen::Vector3d& offset, double share,
+                     PairBatch& batch) {
   const BatchSlice out(batch, start);
   const double o00 = RO(0, 0), o01 = RO(0, 1), o02 = RO(0, 2), o10 = RO(1, 0), o11 = RO(1, 1), o12 = RO(1, 2), o20 = RO(2, 0),
                o21 = RO(2, 1), o22 = RO(2, 2);
@@ -471,7 +473,7 @@ int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side,
     Lanes ax, ay, az;
     lanes.loadAreaNormals(ax, ay, az, i);
     const Lanes mx = m00 * ax + m01 * ay + m02 * az, my = m10 * ax + m11 * ay + m12 * az, mz = m20 * ax + m21 * ay + m22 * az;
-    facingHalfArea(b.area, -(mx * b.nx + my * b.ny + mz * b.nz));
+    facingSharedArea(b.area, -(mx * b.nx + my * b.ny + mz * b.nz), share);
     lanes.loadKeys(b.key, i);
     count = storeKept(b, mask, out, count);
   }
@@ -747,11 +749,11 @@ void visitSide(const NodeBins& nodes, const Eigen::AlignedBox3d& region, std::ui
 
 // The contacts of one side's candidates in a convex other side (convexContacts), added to the batch.
 void convexSideContacts(PairContacts& pair, std::uint32_t side, const PlanesInFrame& planes, const Eigen::Matrix3d& RM,
-                        const SideMotion& motion, PairBatch& batch) {
+                        const SideMotion& motion, double share, PairBatch& batch) {
   const SideCandidates c = candidatesOf(pair, side);
   pair.evaluations += c.n;
   batch.reserve(batch.count + c.n + kLanes);
-  batch.count += convexContacts(batch.count, c, planes, motion, RM, batch);
+  batch.count += convexContacts(batch.count, c, planes, motion, RM, share, batch);
 }
 
 // The contacts of one side's candidates in a non-convex other side O (its exact mesh or grid level
@@ -761,7 +763,7 @@ void convexSideContacts(PairContacts& pair, std::uint32_t side, const PlanesInFr
 // has one; and their contacts. `toO`, `shift`: O's frame from M's; `offset` = c_O - c_M.
 void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeModel& so, const Eigen::Matrix3d& toO,
                           const Eigen::Vector3d& shift, const Eigen::Matrix3d& RM, const Eigen::Matrix3d& RO,
-                          const Eigen::Vector3d& offset, const SideMotion& motion, Scratch& scratch) {
+                          const Eigen::Vector3d& offset, const SideMotion& motion, double share, Scratch& scratch) {
   const SideCandidates c = candidatesOf(pair, side);
   const int n = c.n;
   scratch.reserve(n + kLanes);
@@ -808,7 +810,7 @@ void levelSetSideContacts(PairContacts& pair, std::uint32_t side, const ShapeMod
   std::fill_n(phi + n, kLanes, NAN);  // the last block's padding: never inside
   PairBatch& batch = scratch.batch;
   batch.reserve(batch.count + n + kLanes);
-  batch.count += levelSetContacts(batch.count, c, motion, ox, oy, oz, phi, gx, gy, gz, RO, RM, offset, batch);
+  batch.count += levelSetContacts(batch.count, c, motion, ox, oy, oz, phi, gx, gy, gz, RO, RM, offset, share, batch);
 }
 
 // The other side's world pose: body b's; an obstacle's centre or point, unturned.
@@ -922,6 +924,9 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
     const int m = side == 0 ? pair.a : pair.b, o = side == 0 ? pair.b : pair.a;
     const ShapeModel& sm = shapes[bodies.shape[m]];
     const ShapeModel& so = shapes[bodies.shape[o]];
+    const double share = scene.parameters.sideAreaShare(static_cast<int>(side), shapes[bodies.shape[pair.a]].volume,
+                                                        shapes[bodies.shape[pair.b]].volume);
+    if (share == 0) continue;  // one-way: the larger body's nodes are not tested
     const Eigen::Matrix3d &RM = scene.kinematics->rotation[m], &RO = scene.kinematics->rotation[o];
     const Eigen::Matrix3d toO = RO.transpose() * RM;  // M body -> O body
     const Eigen::Vector3d shift = RO.transpose() * (bodies.position[m] - bodies.position[o]);
@@ -951,7 +956,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
         pair.planesKept[side] = planesNear(candidatesOf(pair, side), all, scene.candidateBand);
       }
       const PlanesInFrame planes(so.planes, toO, shift, pair.planesKept[side]);
-      convexSideContacts(pair, side, planes, RM, motion, scratch.batch);
+      convexSideContacts(pair, side, planes, RM, motion, share, scratch.batch);
     } else {
       // As for a convex side: the candidates first (if rebuilt), then the level set of all of them.
       if (rebuild)
@@ -959,7 +964,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
           ++pair.evaluations;
           return so.candidateValue(toO * sm.nodes.position[key & kRankMask] + shift);
         });
-      levelSetSideContacts(pair, side, so, toO, shift, RM, RO, other.position - node.position, motion, scratch);
+      levelSetSideContacts(pair, side, so, toO, shift, RM, RO, other.position - node.position, motion, share, scratch);
     }
   }
   acc.finish();

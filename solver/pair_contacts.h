@@ -31,6 +31,8 @@ struct ShapeModel {
   /// m, the farthest point of the shape from its centroid (its mesh's vertices, its nodes): no
   /// point inside it is farther.
   double radius = 0.0;
+  /// m^3, the shape's volume: which body is the smaller for one-way evaluation.
+  double volume = 0.0;
 
   /// The level set of a shape without planes at a body-frame point, as gridLevelSet: the exact
   /// mesh level set where the grid's value is within its interpolation error of the surface or

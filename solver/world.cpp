@@ -19,6 +19,7 @@ ShapeModel makeShapeModel(const Shape& shape, bool exactConvex, bool exactMesh) 
   m.sdf = shape.sdf;
   if (exactConvex && shape.convex) m.planes = shape.convex->planes;
   if (exactMesh && m.planes.empty()) m.exactMesh = shape.exactMesh;
+  m.volume = shape.mass.volume;
   for (const auto* points : {&shape.nodes.positions, &shape.mesh.vertices})
     for (const Eigen::Vector3d& x : *points) {
       m.box.extend(x);

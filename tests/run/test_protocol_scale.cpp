@@ -1,5 +1,6 @@
 // The protocol's defaults are ratios (docs/scene.md, "Scale"): the paper's values on its slab, in
 // proportion elsewhere.
+#include "geometry/block_generators.h"
 #include "run/load_point.h"
 #include "run/protocol_scale.h"
 #include "tests/fixtures/scenes.h"
@@ -106,4 +107,19 @@ TEST_CASE("the indenter's first contact with a tilted surface: R / cos(tilt) abo
   REQUIRE(*posed == Approx(*h + 1e-3).epsilon(1e-9));
   // No node within R of the axis: nothing.
   REQUIRE_FALSE(sphereTouchHeight(nodes, identity, Eigen::Vector3d::Zero(), Eigen::Vector2d(1.0, 0), R).has_value());
+}
+
+TEST_CASE("the loaded block's thickness: its extent on the vertical through the load point, t / cos(tilt) on a tilted block") {
+  // A 10 x 10 x 3 mm box tilted 30 degrees about y: 3 / cos 30 = 3.46 mm through its centre, while
+  // its z-extent is 10 sin 30 + 3 cos 30 = 7.60 mm (what h was: K's window, R and delta_max from it).
+  const TriangleMesh box = makeBox(10e-3, 10e-3, 3e-3);
+  const Eigen::Quaterniond tilt(Eigen::AngleAxisd(30 * M_PI / 180, Eigen::Vector3d::UnitY()));
+  const Eigen::Vector3d at(0.02, -0.01, 0.5);
+  REQUIRE(loadedThickness(box, tilt, at, at.head<2>()) == Approx(3e-3 / std::cos(30 * M_PI / 180)).epsilon(1e-12));
+  const auto [bottom, top] = heightRange(box, tilt, at);
+  REQUIRE(top - bottom == Approx(10e-3 * 0.5 + 3e-3 * std::cos(30 * M_PI / 180)).epsilon(1e-12));
+  // Level: the same as the z-extent; off the block: the z-extent.
+  const Eigen::Quaterniond level = Eigen::Quaterniond::Identity();
+  REQUIRE(loadedThickness(box, level, at, at.head<2>() + Eigen::Vector2d(1e-3, 2e-3)) == Approx(3e-3).epsilon(1e-12));
+  REQUIRE(loadedThickness(box, tilt, at, at.head<2>() + Eigen::Vector2d(1.0, 0)) == Approx(top - bottom).epsilon(1e-12));
 }

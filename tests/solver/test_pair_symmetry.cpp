@@ -77,6 +77,34 @@ TEST_CASE("pair symmetry: (a, b) and (b, a) give the same forces, torques and co
   }
 }
 
+TEST_CASE("one-way evaluation: only the smaller block's nodes, whole areas, whichever block is a (issue #38)") {
+  // A 6 mm box on the 10 mm TIS block: the box's nodes in the block's level set, in either order.
+  const TriangleMesh lower = makePlanarBlock(kA, kH, 5.0 * M_PI / 180);
+  const TriangleMesh upper = makeBox(0.6 * kA, 0.6 * kA, kH);
+  SolverSettings s;
+  s.threads = 1;
+  ContactParameters p;
+  p.friction = 0.3;
+  p.evaluation = ContactEvaluation::OneWay;
+  World asBuilt(test::stackedBlocks(lower, upper, 0.25e-3, 0.6e-3, false), p, s);  // pair (lower, upper)
+  World swapped(test::stackedBlocks(lower, upper, 0.25e-3, 0.6e-3, true), p, s);   // pair (upper, lower)
+  const PairContacts& one = pressedPair(asBuilt, 1);
+  const PairContacts& two = pressedPair(swapped, 0);
+  REQUIRE_FALSE(one.contacts.empty());
+  for (const NodeContact& c : one.contacts) REQUIRE(c.key >> 31 == 1);  // b's (the box's) nodes only
+  for (const NodeContact& c : two.contacts) REQUIRE(c.key >> 31 == 0);  // a's (the box's) nodes only
+  REQUIRE(one.contacts.size() == two.contacts.size());
+  const double scale = one.forceA.norm(), rounding = 1e-6;
+  CHECK((one.forceB - two.forceA).norm() <= rounding * scale);
+  CHECK((one.forceA - two.forceB).norm() <= rounding * scale);
+  CHECK((one.forceA + one.forceB).norm() <= rounding * scale);  // Newton's third law within the pair
+  CHECK(one.tally.elastic == Approx(two.tally.elastic).epsilon(rounding));
+  // Whole areas: the box's nodes carry their areas once, where two-way gives each side half.
+  double area = 0;
+  for (const NodeContact& c : one.contacts) area += c.area;
+  CHECK(area == Approx(0.36 * kA * kA).epsilon(0.05));
+}
+
 TEST_CASE("viscous damping: a free spinning, moving block slows as exp(-c t), and the balance books the loss") {
   // Far from everything and without gravity: F = -c m v and tau = -c I omega alone.
   Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
