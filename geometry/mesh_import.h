@@ -18,7 +18,8 @@ struct ImportedMesh {
   WeldReport weld;
 };
 
-/// Reads STL (ASCII or binary), OBJ and the other formats assimp knows, triangulates polygons,
+/// Reads STL (ASCII or binary), OBJ and the other formats assimp knows, and PLY (readPly: Tessera's
+/// own reader, assimp's failed on damaged files), triangulates polygons,
 /// joins identical vertices, bakes node transforms, scales to metres, welds vertices closer than
 /// the tolerance (STL facets repeat their corners, sometimes with rounding differences) and turns
 /// the up axis into +z. Throws InputError naming the file for: missing or unreadable file, empty

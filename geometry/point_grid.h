@@ -30,8 +30,12 @@ public:
   }
 
 private:
+  // Clamped to +-2^30 cells: a point far beyond them (a coordinate 10^9 cells out) shares the
+  // outermost cell, which costs time, never a wrong answer (the caller checks the distance); a
+  // plain cast there was undefined behaviour (found by fuzz_mesh_import).
   Eigen::Array3i cellOf(const Eigen::Array3d& p) const {
-    return (p / cell_).floor().cast<int>();
+    constexpr double kLimit = 1 << 30;
+    return (p / cell_).floor().max(-kLimit).min(kLimit).cast<int>();
   }
   static std::uint64_t key(const Eigen::Array3i& c) {
     const auto part = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v) & 0x1FFFFFu); };

@@ -20,6 +20,8 @@ cmake --build "$build_dir" -j "$jobs"  # the solver's unit tests are left out of
 
 # TBB's and OpenVDB's static objects are not ours: leaks at exit are not reported.
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+# The fuzzers look for leaks (libFuzzer's own check), except inside assimp (fuzz/lsan.supp).
+export LSAN_OPTIONS="suppressions=$here/fuzz/lsan.supp"
 # Left out as well: the long slab runs, and the tests that repeat whole runs or sweeps (each
 # over 10 s here), and the Slurm test (a cluster started for it; label slurm): the main build runs them all.
 slow='default run: the natural failure|a 15 x 15 slab|mu = 9 to 6 mm|scale invariance|sweep regression'

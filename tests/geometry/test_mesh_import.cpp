@@ -11,6 +11,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cstdio>
+
 using namespace tessera;
 using Catch::Matchers::Contains;
 
@@ -133,5 +136,80 @@ TEST_CASE("a PLY header claiming more elements than its file holds, or never end
   test::writeFile(dir / "endless.ply", "ply\nformat ascii 1.0\nelement ver\x02ply\nformat ascii 1.0\nelement vertex 8\n"
                                        "property float x\nty float y\nproperty float z\nelement face 12\ntex 8\n"
                                        "property float xproperty list uch\nar int p");
-  REQUIRE_THROWS_WITH(importAs(dir / "endless.ply", 1), Contains("endless.ply") && Contains("no end_header"));
+  REQUIRE_THROWS_WITH(importAs(dir / "endless.ply", 1), Contains("endless.ply") && Contains("not a PLY mesh Tessera reads"));
+  std::string shouting = header + body;  // keywords as assimp's reader half-understood them
+  shouting.replace(shouting.find("end_header"), 10, "end_headeR");
+  test::writeFile(dir / "shouting.ply", shouting);
+  REQUIRE_THROWS_WITH(importAs(dir / "shouting.ply", 1), Contains("shouting.ply") && Contains("not a PLY mesh Tessera reads"));
+}
+
+namespace {
+
+// The mesh as PLY: ASCII, or binary in either byte order; each vertex with an extra property and
+// an extra element after the faces, which a reader must read past.
+std::string plyOf(const TriangleMesh& mesh, const std::string& format) {
+  std::string header = "ply\nformat " + format + " 1.0\ncomment written by the test\nelement vertex " +
+                       std::to_string(mesh.vertices.size()) + "\nproperty double x\nproperty double y\nproperty double z\n" +
+                       "property uchar red\nelement face " + std::to_string(mesh.triangles.size()) +
+                       "\nproperty list uchar int vertex_indices\nelement edge 1\nproperty int a\nproperty int b\nend_header\n";
+  std::string body;
+  const bool big = format == "binary_big_endian";
+  const auto raw = [&](const void* p, std::size_t n) {
+    std::string b(static_cast<const char*>(p), n);
+    if (big) std::reverse(b.begin(), b.end());  // the test host is little-endian
+    body += b;
+  };
+  for (const Eigen::Vector3d& v : mesh.vertices) {
+    if (format == "ascii") {
+      char line[128];
+      std::snprintf(line, sizeof line, "%.17g %.17g %.17g 7\n", v.x(), v.y(), v.z());
+      body += line;
+    } else {
+      for (int d = 0; d < 3; ++d) raw(&v[d], 8);
+      body += '\7';
+    }
+  }
+  for (const auto& t : mesh.triangles) {
+    if (format == "ascii") {
+      body += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+    } else {
+      body += '\3';
+      for (int k = 0; k < 3; ++k) raw(&t[k], 4);
+    }
+  }
+  const std::int32_t edge[2] = {0, 1};
+  if (format == "ascii") body += "0 1\n";
+  else for (const std::int32_t& e : edge) raw(&e, 4);
+  return header + body;
+}
+
+}  // namespace
+
+TEST_CASE("PLY in ASCII and binary of either byte order imports to the mesh written, other properties read past") {
+  test::TempDir dir;
+  const TriangleMesh source = test::lPrism(0.5);
+  for (const std::string format : {"ascii", "binary_little_endian", "binary_big_endian"}) {
+    INFO(format);
+    test::writeFile(dir / "l.ply", plyOf(source, format));
+    const ImportedMesh m = importAs(dir / "l.ply", 1.0);
+    REQUIRE(m.mesh.vertices.size() == source.vertices.size());
+    REQUIRE(m.mesh.triangles.size() == source.triangles.size());
+    for (int t = 0; t < static_cast<int>(source.triangles.size()); ++t)
+      for (int k = 0; k < 3; ++k) REQUIRE(triangleCorner(m.mesh, t, k) == triangleCorner(source, t, k));
+  }
+  // Quads, as design tools write them: split into two triangles each, the same solid.
+  test::writeFile(dir / "quads.ply", "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+                                      "element face 6\nproperty list uchar int vertex_indices\nend_header\n"
+                                      "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                      "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n");
+  const ImportedMesh cube = importAs(dir / "quads.ply", 1.0);
+  REQUIRE(cube.mesh.triangles.size() == 12);
+  REQUIRE(computeMassProperties(cube.mesh).volume == Approx(1.0).epsilon(1e-12));
+  // A face naming a vertex that is not there, and a body cut short: one line each.
+  std::string text = plyOf(source, "ascii");
+  test::writeFile(dir / "short.ply", text.substr(0, text.size() - 30));
+  REQUIRE_THROWS_WITH(importAs(dir / "short.ply", 1), Contains("short.ply") && Contains("export the mesh again"));
+  text.replace(text.find("\n3 ") + 3, 1, "999");
+  test::writeFile(dir / "index.ply", text);
+  REQUIRE_THROWS_WITH(importAs(dir / "index.ply", 1), Contains("index.ply") && Contains("names a vertex that is not there"));
 }
