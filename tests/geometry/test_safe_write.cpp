@@ -17,11 +17,6 @@ using namespace tessera;
 namespace fs = std::filesystem;
 
 namespace {
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 std::size_t entries(const fs::path& dir) {
   return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
 }
@@ -42,23 +37,23 @@ TEST_CASE("a failed safe write leaves the previous file whole and no temporary b
   test::TempDir dir;
   const fs::path target = dir.path() / "result.txt";
   writeTextFileSafely(target, "first");
-  REQUIRE(read(target) == "first");
+  REQUIRE(test::readFile(target) == "first");
   REQUIRE_THROWS_AS(writeFileSafely(target,
                                     [](const fs::path& p) {
                                       std::ofstream(p) << "half of the second";
                                       throw std::runtime_error("the writer failed");
                                     }),
                     WriteError);
-  REQUIRE(read(target) == "first");
+  REQUIRE(test::readFile(target) == "first");
   REQUIRE(entries(dir.path()) == 1);
   // A check that fails after writing counts as a failed write too.
   REQUIRE_THROWS_WITH(writeFileSafely(
                           target, [](const fs::path& p) { std::ofstream(p) << "second"; },
                           [](const fs::path&) { throw std::runtime_error("does not read back"); }),
                       Catch::Contains("result.txt: cannot write") && Catch::Contains("does not read back"));
-  REQUIRE(read(target) == "first");
+  REQUIRE(test::readFile(target) == "first");
   writeTextFileSafely(target, "second");
-  REQUIRE(read(target) == "second");
+  REQUIRE(test::readFile(target) == "second");
 }
 
 TEST_CASE("temporaries of killed writers are removed, a live writer's and another machine's are kept") {
@@ -97,7 +92,7 @@ TEST_CASE("a temporary carries its writer's pid and this machine's name's digest
     std::ofstream(p) << "x";
   });
   REQUIRE(seen == expected);
-  REQUIRE(read(dir.path() / "out.txt") == "x");
+  REQUIRE(test::readFile(dir.path() / "out.txt") == "x");
 }
 
 TEST_CASE("writing into a folder that is not writable is a WriteError naming the file") {

@@ -5,6 +5,7 @@
 #include "io/hdf5_file.h"
 #include "levelset/shape_builder.h"
 #include "tests/fixtures/analytic_meshes.h"
+#include "tests/fixtures/bit_flips.h"
 #include "tests/fixtures/temp_dir.h"
 
 #include <catch2/catch.hpp>
@@ -77,18 +78,14 @@ TEST_CASE("a bit flipped anywhere in bundle.h5 is refused or changes nothing rea
   writeBundle(dir / "b", sampleBundle());
   const Bundle original = readBundle(dir / "b");
   const std::string file = dir / "b/bundle.h5";
-  const std::string bytes = test::readFile(file);
-  std::uint64_t state = 12345;
+  test::BitFlips flips(test::readFile(file), 12345);
   int refused = 0, unchanged = 0;
   for (int trial = 0; trial < 400; ++trial) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;  // Knuth's MMIX LCG
-    const std::size_t at = (state >> 16) % bytes.size();
-    std::string damaged = bytes;
-    damaged[at] = static_cast<char>(damaged[at] ^ (1 << ((state >> 8) % 8)));
-    test::writeFile(file, damaged);
+    const test::BitFlip flip = flips.next();
+    test::writeFile(file, flip.bytes);
     try {
       const Bundle read = readBundle(dir / "b");
-      INFO("a bit of byte " << at << " of " << bytes.size() << " flipped");
+      INFO("a bit of byte " << flip.at << " of " << flip.bytes.size() << " flipped");
       REQUIRE(sameValues(read, original));
       ++unchanged;
     } catch (const InputError& e) {

@@ -5,6 +5,7 @@
 #include "run/presets.h"
 #include "run/run_session.h"
 #include "run/state_digest.h"
+#include "tests/fixtures/bit_flips.h"
 #include "tests/fixtures/scenes.h"
 #include "tests/fixtures/temp_dir.h"
 
@@ -114,16 +115,12 @@ TEST_CASE("a bit flipped anywhere in checkpoint.h5 is refused or resumes exactly
     return all.str();
   };
   const std::string original = resumed();
-  const std::string bytes = test::readFile(file);
-  std::uint64_t state = 777;
+  test::BitFlips flips(test::readFile(file), 777);
   int refused = 0;
   for (int trial = 0; trial < 400; ++trial) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;  // Knuth's MMIX LCG
-    const std::size_t at = (state >> 16) % bytes.size();
-    std::string damaged = bytes;
-    damaged[at] = static_cast<char>(damaged[at] ^ (1 << ((state >> 8) % 8)));
-    test::writeFile(file, damaged);
-    INFO("a bit of byte " << at << " of " << bytes.size() << " flipped");
+    const test::BitFlip flip = flips.next();
+    test::writeFile(file, flip.bytes);
+    INFO("a bit of byte " << flip.at << " of " << flip.bytes.size() << " flipped");
     std::string got;
     try {
       got = resumed();

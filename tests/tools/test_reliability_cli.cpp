@@ -10,9 +10,7 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <limits>
 
 using namespace tessera;
@@ -102,8 +100,7 @@ TEST_CASE("reliability 2: a sweep re-run with other values is refused, not relab
   REQUIRE(other.status == 2);
   REQUIRE_THAT(other.err, Contains("holds a sweep of other values") && Contains("material.friction = 0.8") &&
                              Contains("--extend"));
-  std::ifstream held(dir / "mu/case_000/scene.toml");
-  const std::string text((std::istreambuf_iterator<char>(held)), std::istreambuf_iterator<char>());
+  const std::string text = test::readFile(dir / "mu/case_000/scene.toml");
   REQUIRE_THAT(text, Contains("friction = 0.2"));
   // The same sweep again finishes what is missing (here: nothing).
   const test::CliResult same = test::runTessera(sweep + "0.2,0.3");
@@ -302,8 +299,7 @@ TEST_CASE("reliability 4a: a finished run resumed is left as it is, and a resume
   // Its last write cut short (a full disk, a kill): summary.json, written last, is still the one of
   // an earlier checkpoint ("running"). Resuming writes the results again.
   {
-    std::ifstream in(dir / "run/summary.json");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string text = test::readFile(dir / "run/summary.json");
     const std::string final = "\"stop_reason\": \"delta_max\"";
     REQUIRE(text.find(final) != std::string::npos);
     text.replace(text.find(final), final.size(), "\"stop_reason\": \"running\"");
@@ -311,8 +307,7 @@ TEST_CASE("reliability 4a: a finished run resumed is left as it is, and a resume
   }
   r = test::runTessera("run --resume " + quoted(dir / "run") + " --no-plot");
   REQUIRE(r.status == 0);
-  std::ifstream written(dir / "run/summary.json");
-  const std::string text((std::istreambuf_iterator<char>(written)), std::istreambuf_iterator<char>());
+  const std::string text = test::readFile(dir / "run/summary.json");
   REQUIRE_THAT(text, Contains("\"stop_reason\": \"delta_max\""));
 }
 
