@@ -109,8 +109,12 @@ TriangleMesh makeOsteomorphicBlock(double a, double b, double h, double amplitud
     return v;
   };
   // Each face as quads over its two in-plane axes u, w (cyclic after the normal's axis, so that
-  // e_u x e_w is the outward normal of the + face), split on the same diagonal on both faces of a
-  // pair: one is the other moved by the side.
+  // e_u x e_w is the outward normal of the + face). A flat quad is split on a diagonal, the same on
+  // both faces of a pair (one is the other moved by the side). A curved quad is a fan of four
+  // triangles about a vertex on the surface over its middle: a diagonal would break the block's
+  // mirror and rotational symmetries (each maps the diagonal onto the other one), and its nodes
+  // would lose them too.
+  const auto curved = [&](int axis) { return (axis == 0 && amplitude != 0) || (axis == 1 && amplitudeY != 0); };
   for (int axis = 0; axis < 3; ++axis) {
     const int u = (axis + 1) % 3, w = (axis + 2) % 3;
     for (int s = 0; s < 2; ++s)
@@ -124,7 +128,18 @@ TriangleMesh makeOsteomorphicBlock(double a, double b, double h, double amplitud
             return vertex(g);
           };
           const int p = at(0, 0), q = at(1, 0), r = at(1, 1), t = at(0, 1);
-          if (s == 1) {
+          if (curved(axis)) {
+            Eigen::Vector3d middle;
+            middle[axis] = (s - 0.5) * side[axis];
+            middle[u] = side[u] * ((i + 0.5) / n[u] - 0.5);
+            middle[w] = side[w] * ((j + 0.5) / n[w] - 0.5);
+            if (axis == 0) middle.x() += amplitude * std::sin(2 * M_PI * middle.y() / b) * std::cos(M_PI * middle.z() / h);
+            else middle.y() += amplitudeY * std::sin(2 * M_PI * middle.x() / a) * std::cos(M_PI * middle.z() / h);
+            const int c = static_cast<int>(mesh.vertices.size());
+            mesh.vertices.push_back(middle);
+            const std::array<int, 4> ring = s == 1 ? std::array<int, 4>{p, q, r, t} : std::array<int, 4>{p, t, r, q};
+            for (int k = 0; k < 4; ++k) mesh.triangles.push_back({ring[k], ring[(k + 1) % 4], c});
+          } else if (s == 1) {
             mesh.triangles.push_back({p, q, r});
             mesh.triangles.push_back({p, r, t});
           } else {

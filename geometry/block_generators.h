@@ -34,7 +34,8 @@ TriangleMesh makeWaveBlock(double a, double h, double theta, double amplitude, i
 /// A_y != 0 the y-faces are curved the same way, y = ±b/2 + A_y sin(2 pi x / a) cos(pi z / h), and
 /// the block interlocks with all four neighbours; with A_y = 0 they are flat. The z-faces are flat
 /// and the corner edges straight (the displacements vanish on the faces' edges). `halfWaveSegments`
-/// flat quads per half-wave resolve the surfaces. Every chord x = const meets the solid over length
+/// quads per half-wave resolve the surfaces, each a fan of four triangles about a point of the
+/// surface over its middle (keeping the block's symmetries: z -> -z and a half turn about z). Every chord x = const meets the solid over length
 /// a, and the y-faces are each other's translates, so the volume is a b h exactly, mesh or smooth
 /// (divergence theorem with the field (x, 0, 0)). Requires |A| < a / 2, |A_y| < b / 2 and
 /// 4 pi^2 |A A_y| < a b (the faces meet at the corner edges without crossing).

@@ -2,6 +2,7 @@
 
 #include "io/input_error.h"
 #include "geometry/closest_point_on_triangle.h"
+#include "geometry/mesh_symmetry.h"
 #include "geometry/point_grid.h"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <deque>
 #include <limits>
 #include <queue>
+#include <stdexcept>
 
 namespace tessera {
 
@@ -21,6 +23,12 @@ namespace {
 constexpr double kCoverageRadius = 0.9;
 // Candidate points for farthest-point sampling: sub-triangles of edge <= spacing / 4.
 constexpr double kCandidatesPerSpacing = 4.0;
+// Images of a node closer than this (in units of the spacing) are one node: a point on a mirror,
+// moved by rounding or by a mesh written to single precision.
+constexpr double kSamePoint = 1e-3;
+// Symmetries are found to this fraction of the block's size (a mesh written to single precision
+// is symmetric to about 1e-7 of it).
+constexpr double kSymmetryTolerance = 1e-6;
 
 // |a - b|^2 written out: these loops run millions of times, and unoptimized (sanitizer) builds
 // do not inline Eigen's expression templates.
@@ -211,8 +219,45 @@ struct PatchNodes {
 // of the local spacing, until every candidate is within kCoverageRadius x its local spacing of a
 // node. Priorities are d s / l (s the face spacing, l the candidate's): with uniform spacing the
 // distances themselves.
+// Thrown when the symmetries are finer than the spacing: a pick's images crowd it with no point
+// nearby that they all fix (two mirrors closer than a spacing apart, as on a finely faceted torus).
+// The block is then sampled without symmetries.
+struct CrowdedSymmetry {};
+
+// A pick whose images would crowd it (an image closer than `reach`: a point near a mirror or an
+// axis) moves onto the set those images fix: the mean of its near images, repeated until every
+// image is either the point itself (to kSamePoint x reach) or at least `reach` from it, within
+// `reach` of the pick (so that the pick is covered). On a flat
+// patch the mean stays on it; on a curved one it sits inside by about the orbit's sagitta, which
+// only places a cell.
+Eigen::Vector3d ontoNearbyFixedSet(const SymmetryGroup& symmetry, const std::vector<std::size_t>& stabilizer,
+                                   const Eigen::Vector3d& pick, double reach) {
+  Eigen::Vector3d x = pick;
+  for (int round = 0; round < 8; ++round) {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    int near = 0, fixing = 0;
+    for (std::size_t g : stabilizer) {
+      const Eigen::Vector3d image = symmetry.apply(g, x);
+      const double d = (image - x).norm();
+      if (d >= reach) continue;
+      mean += image;
+      ++near;
+      if (d <= kSamePoint * reach) ++fixing;
+    }
+    if (fixing == near) {
+      if (!((x - pick).norm() < reach)) break;  // moved too far to cover the pick
+      return x;
+    }
+    x = mean / near;
+  }
+  throw CrowdedSymmetry{};
+}
+
+// With a symmetry group, `stabilizer` lists the elements that map the patch onto itself, and each
+// pick adds the candidate's images under them too (once each where images coincide: a point on a
+// mirror), so the nodes keep the patch's symmetries when seeds and candidates do.
 PatchNodes farthestPointSample(const std::vector<SeedNode>& seeds, const std::vector<QuadraturePoint>& candidates,
-                               double spacing) {
+                               double spacing, const SymmetryGroup& symmetry, const std::vector<std::size_t>& stabilizer) {
   const int n = static_cast<int>(candidates.size());
   // distance[i]: from candidate i to its nearest node, capped at `cap`. The cap keeps every
   // update local; while distances sit at the cap, the picks pack the patch greedily in index
@@ -257,7 +302,16 @@ PatchNodes farthestPointSample(const std::vector<SeedNode>& seeds, const std::ve
     if (d != priority(c)) continue;  // stale entry
     if (d < coverage) break;
     // A candidate j can come closer only if distance[j] <= d 1e-9 s (priorities scale d s / l, l <= s).
-    addNode(candidates[c].position, NodeKind::Face, (d + 1) * 1e-9 * spacing, true);
+    const Eigen::Vector3d pick = ontoNearbyFixedSet(symmetry, stabilizer, candidates[c].position,
+                                                    kCoverageRadius * candidates[c].spacing);
+    const std::size_t first = nodes.positions.size();
+    for (std::size_t g : stabilizer) {
+      const Eigen::Vector3d x = symmetry.apply(g, pick);
+      bool repeated = false;
+      for (std::size_t k = first; k < nodes.positions.size(); ++k)
+        repeated = repeated || squaredDistance(nodes.positions[k], x) <= kSamePoint * kSamePoint * spacing * spacing;
+      if (!repeated) addNode(x, NodeKind::Face, (d + 1) * 1e-9 * spacing, true);
+    }
   }
   return nodes;
 }
@@ -331,6 +385,100 @@ Eigen::Vector3d onCell(const TriangleMesh& mesh, const std::vector<int>& triangl
   return bestDistance <= (kOnSurface * spacing) * (kOnSurface * spacing) ? centroid : best;
 }
 
+// The fundamental region of a patch under its stabilizer: the points x for which no image h x
+// lies farther along a fixed direction w (one no mirror of a block contains), ties included.
+// Restricted to it and completed with their images, seeds and candidates keep the symmetries.
+bool inFundamentalRegion(const SymmetryGroup& symmetry, const std::vector<std::size_t>& stabilizer,
+                         const Eigen::Vector3d& x, double tolerance) {
+  static const Eigen::Vector3d w = Eigen::Vector3d(std::sqrt(2.0), std::sqrt(3.0), M_PI).normalized();
+  const double key = w.dot(x - symmetry.centre);
+  for (std::size_t h : stabilizer)
+    if (w.dot(symmetry.apply(h, x) - symmetry.centre) > key + tolerance) return false;
+  return true;
+}
+
+// Nodes of every patch by farthest-point sampling. Under a symmetry group each orbit of patches is
+// sampled once, on its lowest patch P: P's seeds and candidates are restricted to the fundamental
+// region of P's stabilizer and completed with their images (seeds closer than kSamePoint x the
+// seed spacing are one), and sampled with orbit picks; every other patch Q of the orbit gets the
+// images of P's nodes under an element mapping P onto Q.
+std::vector<PatchNodes> sampleAllPatches(const std::vector<std::vector<SeedNode>>& seeds,
+                                         const std::vector<std::vector<QuadraturePoint>>& candidates, double spacing,
+                                         double seedSpacing, const SymmetryGroup& symmetry) {
+  const int patches = static_cast<int>(seeds.size());
+  std::vector<PatchNodes> nodes(patches);
+  if (symmetry.size() == 1) {
+    for (int p = 0; p < patches; ++p) nodes[p] = farthestPointSample(seeds[p], candidates[p], spacing, symmetry, {0});
+    return nodes;
+  }
+  const double tolerance = 1e-9 * spacing;
+  for (int p = 0; p < patches; ++p) {
+    int first = p;
+    for (const std::vector<int>& image : symmetry.patchImages) first = std::min(first, image[p]);
+    if (first < p) {
+      std::size_t g = 0;
+      while (symmetry.patchImages[g][first] != p) ++g;
+      nodes[p].kinds = nodes[first].kinds;
+      for (const Eigen::Vector3d& x : nodes[first].positions) nodes[p].positions.push_back(symmetry.apply(g, x));
+      continue;
+    }
+    std::vector<std::size_t> stabilizer;
+    for (std::size_t g = 0; g < symmetry.size(); ++g)
+      if (symmetry.patchImages[g][p] == p) stabilizer.push_back(g);
+    std::vector<SeedNode> seedOrbits;
+    for (const SeedNode& seed : seeds[p]) {
+      if (!inFundamentalRegion(symmetry, stabilizer, seed.position, tolerance)) continue;
+      for (std::size_t h : stabilizer) {
+        const Eigen::Vector3d x = symmetry.apply(h, seed.position);
+        bool repeated = false;
+        for (const SeedNode& other : seedOrbits)
+          repeated = repeated || (other.position - x).norm() <= kSamePoint * seedSpacing;
+        if (!repeated) seedOrbits.push_back({x, seed.kind});
+      }
+    }
+    std::vector<QuadraturePoint> candidateOrbits;
+    for (const QuadraturePoint& q : candidates[p])
+      if (inFundamentalRegion(symmetry, stabilizer, q.position, tolerance))
+        for (std::size_t h : stabilizer) candidateOrbits.push_back({symmetry.apply(h, q.position), q.area, q.spacing});
+    nodes[p] = farthestPointSample(seedOrbits, candidateOrbits, spacing, symmetry, stabilizer);
+  }
+  return nodes;
+}
+
+// Under a symmetry group: each node's area, normal and position taken over its orbit (the mean
+// area; the area-weighted mean of the images' normals and positions brought back by the inverse
+// maps), so that a node's cell and its images' cells are exact images of each other. A patch's
+// areas still sum to its area: each is the mean of its orbit's patches, whose areas are equal.
+void averageOverOrbits(const SymmetryGroup& symmetry, const std::vector<PatchNodes>& patchNodes,
+                       std::vector<NearestNode>& nearest, double spacing, std::vector<std::vector<double>>& area,
+                       std::vector<std::vector<Eigen::Vector3d>>& normal,
+                       std::vector<std::vector<Eigen::Vector3d>>& position) {
+  std::vector<std::vector<double>> meanArea = area;
+  std::vector<std::vector<Eigen::Vector3d>> meanNormal = normal, meanPosition = position;
+  for (std::size_t p = 0; p < patchNodes.size(); ++p)
+    for (std::size_t k = 0; k < patchNodes[p].positions.size(); ++k) {
+      double total = 0.0;
+      Eigen::Vector3d n = Eigen::Vector3d::Zero(), x = Eigen::Vector3d::Zero();
+      for (std::size_t g = 0; g < symmetry.size(); ++g) {
+        const int q = symmetry.patchImages[g][p];
+        const Eigen::Vector3d image = symmetry.apply(g, patchNodes[p].positions[k]);
+        const int j = nearest[q](image);
+        if (j < 0 || (patchNodes[q].positions[j] - image).norm() > kSamePoint * spacing)
+          throw std::logic_error("surface nodes: the image of a node under a symmetry of the block is not a node");
+        const Eigen::Matrix3d back = symmetry.elements[g].transpose();
+        total += area[q][j];
+        n += back * normal[q][j];
+        if (area[q][j] > 0.0) x += area[q][j] * (symmetry.centre + back * (position[q][j] - symmetry.centre));
+      }
+      meanArea[p][k] = total / static_cast<double>(symmetry.size());
+      meanNormal[p][k] = n;
+      meanPosition[p][k] = total > 0.0 ? Eigen::Vector3d(x / total) : Eigen::Vector3d::Zero();
+    }
+  area = std::move(meanArea);
+  normal = std::move(meanNormal);
+  position = std::move(meanPosition);
+}
+
 }  // namespace
 
 SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& features,
@@ -363,8 +511,17 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
     forEachQuadraturePoint(mesh, t, p, local, kCandidatesPerSpacing,
                            [&](const QuadraturePoint& q) { candidates[p].push_back(q); });
   }
-  std::vector<PatchNodes> patchNodes(features.patchCount);
-  for (int p = 0; p < features.patchCount; ++p) patchNodes[p] = farthestPointSample(seeds[p], candidates[p], spacing);
+  SymmetryGroup symmetry =
+      options.keepSymmetries
+          ? findSymmetries(mesh, features, kSymmetryTolerance * boundingBox(mesh.vertices).diagonal().norm())
+          : SymmetryGroup{};
+  std::vector<PatchNodes> patchNodes;
+  try {
+    patchNodes = sampleAllPatches(seeds, candidates, spacing, local.edge(), symmetry);
+  } catch (const CrowdedSymmetry&) {
+    symmetry = SymmetryGroup{};
+    patchNodes = sampleAllPatches(seeds, candidates, spacing, local.edge(), symmetry);
+  }
 
   // Area weights: a fine quadrature of each triangle, every point given to the nearest node of
   // its patch. Every candidate is within coverage of a node and every fine point within one
@@ -395,11 +552,19 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
     });
   }
 
+  std::vector<std::vector<Eigen::Vector3d>> position(features.patchCount);
+  for (int p = 0; p < features.patchCount; ++p)
+    for (std::size_t k = 0; k < patchNodes[p].positions.size(); ++k)
+      position[p].push_back(area[p][k] > 0.0 ? onCell(mesh, cellTriangles[p][k], centroid[p][k] / area[p][k], spacing)
+                                              : Eigen::Vector3d::Zero());
+  if (symmetry.size() > 1) averageOverOrbits(symmetry, patchNodes, nearest, spacing, area, normal, position);
+
   SurfaceNodes out;
+  out.symmetries = symmetry.size();
   for (int p = 0; p < features.patchCount; ++p)
     for (std::size_t k = 0; k < patchNodes[p].positions.size(); ++k) {
       if (area[p][k] <= 0.0) continue;  // a seed that owns no quadrature point carries no load
-      out.positions.push_back(onCell(mesh, cellTriangles[p][k], centroid[p][k] / area[p][k], spacing));
+      out.positions.push_back(position[p][k]);
       out.normals.push_back(normal[p][k].normalized());
       out.areas.push_back(area[p][k]);
       out.patches.push_back(p);

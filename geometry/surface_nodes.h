@@ -18,6 +18,7 @@ struct SurfaceNodeOptions {
   double sizeGradient = 0.5;       ///< growth of the spacing per unit distance from a sharp edge
   double featureAngle = 0.5236;    ///< rad (30 deg); edges bending more than this are sharp
   int quadraturePerSpacing = 12;   ///< area quadrature points per spacing length (area accuracy)
+  bool keepSymmetries = true;      ///< nodes with the block's mirror and rotational symmetries (findSymmetries)
 };
 
 /// Surface nodes of a solid with area weights, as arrays (one entry per node).
@@ -33,6 +34,7 @@ struct SurfaceNodes {
   std::vector<double> areas;               ///< m^2; sum = surface area
   std::vector<int> patches;                ///< patch id (see MeshFeatures)
   std::vector<NodeKind> kinds;
+  std::size_t symmetries = 1;              ///< order of the block's symmetry group the nodes keep (1: none)
 
   std::size_t size() const { return positions.size(); }
 };
@@ -54,6 +56,10 @@ struct SurfaceNodes {
 ///    would read zero; the move onto the surface keeps a node on a curved face from sitting off it
 ///    by the sagitta of its cell (about kappa l^2 / 8), which a matching neighbour would read as
 ///    overlap.
+///  - symmetries (keepSymmetries): a block with mirror or rotational symmetries (findSymmetries)
+///    gets a node set with the same symmetries, to rounding: each orbit of patches is sampled on
+///    one patch, within the fundamental region of the maps that keep that patch, and mapped to the
+///    others; each node's area, normal and position are then the mean over its orbit.
 /// Throws InputError when spacing <= 0 or sizeGradient <= 0.
 SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& features,
                                 const SurfaceNodeOptions& options);
