@@ -138,9 +138,6 @@ Shape buildShape(const std::string& name, TriangleMesh mesh, const ShapeSource& 
   nodeOptions.sizeGradient = resolved.sizeGradient;
   nodeOptions.featureAngle = resolved.featureAngle;
   shape.nodes = sampleSurfaceNodes(shape.mesh, features, nodeOptions);
-  if (shape.nodes.symmetries > 1)
-    log.notes.push_back("surface nodes keep the block's " + std::to_string(shape.nodes.symmetries) +
-                        " symmetries (mirrors and rotations)");
 
   SignedDistanceOptions sdfOptions;
   sdfOptions.voxelSize = resolved.voxelSize;

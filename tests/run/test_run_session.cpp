@@ -22,14 +22,15 @@ using Catch::Matchers::Contains;
 namespace {
 
 // A 3 x 3 slab of the default block and the default scene on it, loaded to 0.6 mm (n x n and
-// another delta_max, `solver` the text of a [solver] table, if given).
+// another delta_max, `solver` the text of a [solver] table, `indenter` more [indenter] keys, if
+// given).
 struct SmallTest {
   test::TempDir dir;
   std::string scene = dir / "scene.toml";
-  explicit SmallTest(int n = 3, double deltaMax = 0.6e-3, const std::string& solver = "") {
+  explicit SmallTest(int n = 3, double deltaMax = 0.6e-3, const std::string& solver = "", const std::string& indenter = "") {
     writeBundle(dir / "slab", test::smallSlab(n, 0.25e-3, 1.0e-3));
     test::writeFile(scene, "bundle = \"slab\"\n[material]\nyoungs_modulus = 4.2e9\nfriction = 0.23\n"
-                           "[indenter]\nradius = 2.5e-3\nspeed = 0.03\n[protocol]\ndelta_max = " +
+                           "[indenter]\nradius = 2.5e-3\nspeed = 0.03\n" + indenter + "[protocol]\ndelta_max = " +
                                std::to_string(deltaMax) + "\n[damping]\nlocal = 0.3\n[output]\ncheckpoint_seconds = 1e5\n" +
                                (solver.empty() ? "" : "[solver]\n" + solver + "\n"));
   }
@@ -276,4 +277,27 @@ TEST_CASE("implicit against explicit on a 5 x 5 slab past its peak: P_max and K 
   const CurveSample& end = b->record().curve.back();
   REQUIRE(std::abs(end.residual) < 0.03 * end.externalWork);
   REQUIRE(b->world().stepCount() < a->world().stepCount() / 50);
+}
+
+TEST_CASE("mirrored loads on a 5 x 5 slab give the same answer: P_max, K and W within 0.1 %, the same failure (issue #38)") {
+  // The slab is symmetric under x -> -x and y -> -y (the block under both mirrors, the checkerboard
+  // of turns too), and so are the blocks' nodes; a load at (12, 3) mm and its two mirror images
+  // must then give the same response.
+  std::vector<ResponseParameters> responses;
+  for (const char* point : {"[0.012, 0.003]", "[-0.012, 0.003]", "[0.012, -0.003]"}) {
+    SmallTest test(5, 2.5e-3, "", std::string("point = ") + point + "\n");
+    auto run = RunSession::start(test.request(), {});
+    run->run({});
+    responses.push_back(run->response());
+  }
+  const ResponseParameters& a = responses[0];
+  REQUIRE(a.peakLoad > 0);
+  for (const ResponseParameters& b : responses) {
+    INFO("P_max " << a.peakLoad << " / " << b.peakLoad << ", K " << a.stiffness << " / " << b.stiffness << ", W "
+                  << a.energyToEnd << " / " << b.energyToEnd << ", failure " << a.failureMode << " / " << b.failureMode);
+    REQUIRE(b.peakLoad == Approx(a.peakLoad).epsilon(1e-3));
+    REQUIRE(b.stiffness == Approx(a.stiffness).epsilon(1e-3));
+    REQUIRE(b.energyToEnd == Approx(a.energyToEnd).epsilon(1e-3));
+    REQUIRE(b.failureMode == a.failureMode);
+  }
 }
