@@ -6,9 +6,13 @@
 # per case) with the Pareto front.
 # Usage: bench/convergence.sh [OUT_DIR]   (default out/convergence; about 25 min on 2 cores;
 #        re-running skips finished cases). Draws docs/convergence.png and prints the table.
+# CONTACT_EVALUATION=one-way charts the node spacing (uniform, graded, the reference) under one-way
+# contact evaluation (docs/physics.md) into out/convergence_one_way and docs/convergence_one_way.png.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-out=${1:-"$here/out/convergence"}
+evaluation=${CONTACT_EVALUATION:-two-way}
+suffix=$([ "$evaluation" = two-way ] || echo "_${evaluation//-/_}")
+out=${1:-"$here/out/convergence$suffix"}
 tessera="$here/build/tools/tessera"
 slab="$here/out/default_slab"
 [ -x "$tessera" ] || "$here/scripts/setup.sh"
@@ -17,8 +21,11 @@ slab="$here/out/default_slab"
 mkdir -p "$out"
 
 # The default scene with its bundle made absolute, and the same with grid level sets everywhere.
+solver=$([ "$evaluation" = two-way ] || echo "contact_evaluation = \"$evaluation\"")
 sed "s#^bundle = .*#bundle = \"$slab\"#" "$here/assets/scenes/default.toml" > "$out/base.toml"
-{ cat "$out/base.toml"; printf '\n[solver]\nexact_convex_level_sets = false\nexact_mesh_level_sets = false\n'; } > "$out/grid.toml"
+{ cat "$out/base.toml"; printf '\n[solver]\nexact_convex_level_sets = false\nexact_mesh_level_sets = false\n%s\n' "$solver"; } \
+  > "$out/grid.toml"
+[ -z "$solver" ] || printf '\n[solver]\n%s\n' "$solver" >> "$out/base.toml"
 
 sweep() { "$tessera" sweep "$out/$1.toml" -o "$out/$2" --jobs 2 --threads 1 "${@:3}"; }
 spacings=0.3e-3,0.45e-3,0.6e-3,0.9e-3,1.2e-3
@@ -27,6 +34,10 @@ sweep base graded --set resolution.node_spacing=$spacings --set resolution.edge_
 # The reference: 0.15 mm uniform nodes (14 700 per block), on both cores.
 "$tessera" sweep "$out/base.toml" -o "$out/fine" --jobs 1 --threads 2 --set resolution.node_spacing=0.15e-3 \
   --set resolution.edge_spacing_fraction=1.0
+if [ "$evaluation" != two-way ]; then
+  /usr/bin/python3 "$here/bench/plot_convergence.py" "$out" "$here/docs/convergence$suffix.png"
+  exit 0
+fi
 sweep base speed --set indenter.speed=0.006,0.015,0.06,0.12
 sweep base factor --set solver.time_step_factor=0.25,1.0
 sweep grid voxel --set resolution.voxel=0.125e-3,0.25e-3,0.5e-3
