@@ -67,7 +67,7 @@ MeshSdf buildMeshSdf(const TriangleMesh& mesh, const DenseSdf& grid, double band
   if (mesh.triangles.empty() || grid.values.empty()) return m;
   m.triangles = pseudoNormalTriangles(mesh);
   // The grid's own voxels as cells (half-voxel cells were measured slower: shorter lists, more
-  // cache misses; bench/bench_level_set).
+  // cache misses; bench/bench_level_set.cpp).
   m.origin = grid.origin;
   m.cellSize = grid.voxelSize;
   m.inverseCellSize = 1.0 / grid.voxelSize;

@@ -2,7 +2,7 @@
 
 namespace tessera {
 
-/// Adaptive loading rate (docs/physics.md, "Loading rate"). At a sample where the quasi-static
+/// Adaptive loading rate (docs/physics.md, "Adaptive loading rate"). At a sample where the quasi-static
 /// ratio q = KE / W is measured, the next indenter speed (m/s) from the current one, v. The
 /// kinetic energy of a slab following the indenter goes as v^2 at a given deflection, so
 /// v sqrt(target / q) would give q = target: above the target the speed is cut to 0.8 of that

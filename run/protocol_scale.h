@@ -1,6 +1,6 @@
 #pragma once
 // The protocol's defaults that follow the slab: each is the paper's value as a ratio of the size or
-// time it scales with (docs/scene.md, "Scale"; tests/solver/test_protocol_scale.cpp).
+// time it scales with (docs/scene.md, "Scale"; tests/run/test_protocol_scale.cpp).
 #include "run/scene.h"
 #include "solver/world.h"
 

@@ -52,7 +52,7 @@ struct SolverSettings {
   /// of about 3 and leaves the results within 0.05 % of ten times smaller steps.
   double timeStepFactor = 0.5;
   /// A fixed timeStep above the stability estimate 2 / omega_max (factor 1) is refused unless this
-  /// is set: for measuring critical steps (bench/stability_map), never for results.
+  /// is set: for measuring critical steps (bench/stability_map.cpp), never for results.
   bool allowUnsafeTimeStep = false;
   double localDamping = 0.0;                    ///< alpha in [0, 1): Cundall's local non-viscous damping
   double viscousDamping = 0.0;                  ///< c, 1/s: global viscous damping F -= c m v, tau -= c I omega

@@ -1,4 +1,4 @@
-// Fallen, retired and pushed-through bodies (solver/assembly_state.h): judged from contacts, never
+// Fallen, retired and pushed-through bodies (run/assembly_state.h): judged from contacts, never
 // from a displacement alone.
 #include "geometry/block_generators.h"
 #include "run/assembly_state.h"
