@@ -46,7 +46,7 @@ std::optional<ConvexFit> fitConvexPolyhedron(const TriangleMesh& mesh, const Con
       }
     }
     if (!home) {
-      if (static_cast<int>(faces.size()) == options.maxPlanes) return std::nullopt;
+      if (static_cast<int>(faces.size()) == std::min(options.maxPlanes, kMaxConvexPlanes)) return std::nullopt;
       faces.push_back({{n, n.dot(c)}, {0, 0, 0}, {}});
       home = &faces.back();
     }

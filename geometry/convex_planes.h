@@ -14,6 +14,10 @@ struct FacePlane {
   double offset;
 };
 
+/// The most face planes a convex shape may have: the solver marks the planes it keeps per pair in a
+/// 64-bit mask and holds them in fixed arrays of this size (solver/pair_contacts.cpp).
+constexpr int kMaxConvexPlanes = 64;
+
 /// How near to convex a mesh may be and still be treated as a convex polyhedron.
 struct ConvexFitOptions {
   /// Vertices may lie this far (relative to the bounding-box diagonal) off their face's plane and
@@ -21,7 +25,7 @@ struct ConvexFitOptions {
   /// in metres: 5e-7 m, 1e-5 of a 50 mm block; single-precision STL: 1e-7) and is 250 x finer than
   /// the default voxel (1/40 of the diagonal): no grid could tell the fitted polyhedron from the mesh.
   double relativeTolerance = 1e-4;
-  int maxPlanes = 64;  ///< more faces than this: not worth planes (the grid is as fast)
+  int maxPlanes = kMaxConvexPlanes;  ///< more faces than this: not worth planes (the grid is as fast); at most kMaxConvexPlanes
 };
 
 /// The face planes of a (near-)convex polyhedron.

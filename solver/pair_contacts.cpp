@@ -1,5 +1,6 @@
 #include "solver/pair_contacts.h"
 
+#include "geometry/convex_planes.h"
 #include "solver/contact_law.h"
 #include "solver/node_contact_law.h"
 
@@ -148,7 +149,8 @@ void gridSamples(const DenseSdf& sdf, int n, const double* __restrict x, const d
 // arrays: phi(p) = max_f (n_f . p - d_f), the exact level set of a convex polyhedron (1-Lipschitz),
 // evaluated without transforming p.
 struct PlanesInFrame {
-  static constexpr int kMax = 64;  // ConvexFitOptions::maxPlanes' default
+  static constexpr int kMax = kMaxConvexPlanes;
+  static_assert(kMax <= 64, "the kept planes are bits of a 64-bit mask");
   std::array<double, kMax> nx, ny, nz, offset;  // M's frame
   int count = 0;
 
@@ -156,7 +158,7 @@ struct PlanesInFrame {
   // order.
   PlanesInFrame(const std::vector<FacePlane>& planes, const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                 std::uint64_t kept = ~0ull) {
-    const int all = static_cast<int>(std::min<std::size_t>(planes.size(), kMax));
+    const int all = static_cast<int>(planes.size());  // <= kMax: makeShapeModel refuses more
     for (int f = 0; f < all; ++f) {
       if (!(kept >> f & 1)) continue;
       const Eigen::Vector3d n = R.transpose() * planes[f].normal;

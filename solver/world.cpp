@@ -1,5 +1,6 @@
 #include "solver/world.h"
 
+#include "geometry/convex_planes.h"
 #include "solver/broad_phase.h"
 #include "solver/world_internals.h"
 
@@ -10,6 +11,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace tessera {
 
@@ -18,6 +21,10 @@ ShapeModel makeShapeModel(const Shape& shape, bool exactConvex, bool exactMesh) 
   m.nodes = makeNodeBins(shape.nodes);
   m.sdf = shape.sdf;
   if (exactConvex && shape.convex) m.planes = shape.convex->planes;
+  if (m.planes.size() > static_cast<std::size_t>(kMaxConvexPlanes))
+    throw std::invalid_argument("shape '" + shape.name + "': " + std::to_string(m.planes.size()) +
+                                " convex planes, more than the " + std::to_string(kMaxConvexPlanes) +
+                                " the solver holds; prepare it again (tessera prep) to use its level-set grid");
   if (exactMesh && m.planes.empty()) m.exactMesh = shape.exactMesh;
   m.volume = shape.mass.volume;
   for (const auto* points : {&shape.nodes.positions, &shape.mesh.vertices})

@@ -62,3 +62,30 @@ TEST_CASE("non-convex meshes are refused: an L prism, a wave block, and an octah
   dented.vertices[0] = Eigen::Vector3d(-0.01 * 5e-3, 0, 0);
   REQUIRE_FALSE(fitConvexPolyhedron(dented));
 }
+
+TEST_CASE("a convex polyhedron with more faces than the solver holds stays on the grid, whatever maxPlanes asks") {
+  // A prism over a regular n-gon: n + 2 faces (sides 360 / n degrees apart, each its own plane).
+  const auto prism = [](int n) {
+    TriangleMesh m;
+    for (int z = 0; z < 2; ++z)
+      for (int k = 0; k < n; ++k)
+        m.vertices.push_back({std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n), z - 0.5});
+    m.vertices.push_back({0, 0, -0.5});
+    m.vertices.push_back({0, 0, 0.5});
+    const int bottom = 2 * n, top = 2 * n + 1;
+    for (int k = 0; k < n; ++k) {
+      const int a = k, b = (k + 1) % n;
+      m.triangles.push_back({a, b, n + b});
+      m.triangles.push_back({a, n + b, n + a});
+      m.triangles.push_back({bottom, b, a});
+      m.triangles.push_back({top, n + a, n + b});
+    }
+    return m;
+  };
+  ConvexFitOptions options;
+  options.maxPlanes = 1000;
+  const auto fewest = fitConvexPolyhedron(prism(kMaxConvexPlanes - 2), options);
+  REQUIRE(fewest);
+  REQUIRE(fewest->planes.size() == static_cast<std::size_t>(kMaxConvexPlanes));
+  REQUIRE_FALSE(fitConvexPolyhedron(prism(kMaxConvexPlanes - 1), options));
+}

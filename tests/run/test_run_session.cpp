@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 using namespace tessera;
@@ -196,6 +197,21 @@ TEST_CASE("presets and overrides reach the scene, and the span is resolved once"
     const Scene base = readScene(t.scene);
     REQUIRE(scene.contact.friction == base.contact.friction);  // presets set accuracy, not the material
     REQUIRE(RunSession::start(r, {})->source().preset == preset.name);
+    // Every key the preset sets is the value its Scene field reads (a key read into the wrong
+    // field, or not at all, would leave the field at the base scene's value).
+    const std::map<std::string, double> fields{
+        {"resolution.node_spacing", scene.resolution.nodeSpacing},
+        {"resolution.node_spacing_ratio", scene.resolution.nodeSpacingRatio},
+        {"resolution.edge_spacing_fraction", scene.resolution.edgeSpacingFraction},
+        {"resolution.size_gradient", scene.resolution.sizeGradient},
+        {"indenter.speed", scene.indenter.speed},
+        {"indenter.speed_ratio", scene.indenter.speedRatio},
+        {"solver.time_step_factor", scene.solver.timeStepFactor}};
+    for (const auto& [key, value] : preset.overrides) {
+      INFO("key " << key);
+      REQUIRE(fields.count(key) == 1);
+      REQUIRE(fields.at(key) == Approx(value).epsilon(1e-12));
+    }
   }
   RunRequest r = t.request();
   r.overrides = {{"material.friction", 0.5}, {"indenter.speed", 0.01}};
