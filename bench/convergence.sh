@@ -4,7 +4,7 @@
 # time-step factor and loading rate, each case's P_max, K and W against the finest affordable
 # reference (0.15 mm uniform nodes, 30 mm/s, factor 0.5), drawn as error against wall time (1 thread
 # per case) with the Pareto front.
-# Usage: bench/convergence.sh [OUT_DIR]   (default out/convergence; about 25 min on 2 cores;
+# Usage: bench/convergence.sh [OUT_DIR]   (default out/convergence; about 5 min on 2 cores;
 #        re-running skips finished cases). Draws docs/convergence.png and prints the table.
 # CONTACT_EVALUATION=one-way charts the node spacing (uniform, graded, the reference) under one-way
 # contact evaluation (docs/physics.md) into out/convergence_one_way and docs/convergence_one_way.png.

@@ -28,15 +28,15 @@ std::vector<std::pair<std::string, double>> keys(double spacingMillimetresOnPape
 
 const std::vector<Preset>& presets() {
   static const std::vector<Preset> all = {
-      {"fast", "uniform nodes t/2.65, 20x the paper's speed (1.2 mm, 120 mm/s on its slab): P_max -3 %, K +12 %, W +9 %; 7 s on one thread",
+      {"fast", "uniform nodes t/2.65, 20x the paper's speed (1.2 mm, 120 mm/s on its slab): P_max -1 %, K +9 %, W +8 %; 1 s on two threads",
        keys(1.2, 1.0, 20)},
       {"default", "nodes t/5.3 graded to t/21 at sharp edges, 5x the paper's speed (0.6 mm, 0.15 mm, 30 mm/s on its slab): "
-       "P_max +3 %, K -2 %, W +12 %; 25 s on two threads",
+       "P_max +3 %, K -1 %, W +3 %; 10 s on two threads",
        keys(0.6, 0.25, 5)},
-      {"paper", "the paper's uniform nodes t/5.3 at its speed (0.6 mm, 6 mm/s): P_max +8 %, K +5 %, W +9 %; 47 s on two threads",
+      {"paper", "the paper's uniform nodes t/5.3 at its speed (0.6 mm, 6 mm/s): P_max +9 %, K -5 %, W +7 %; 24 s on two threads",
        keys(0.6, 1.0, 1)},
       {"fine", "nodes t/10.6 graded to t/42 at sharp edges, 5x the paper's speed (0.3 mm, 0.075 mm, 30 mm/s): "
-       "P_max +0.6 %, K +1 %, W +0.3 %; 163 s on one thread",
+       "P_max +0.7 %, K +0.9 %, W -0.7 %; 20 s on two threads",
        keys(0.3, 0.25, 5)},
   };
   return all;
