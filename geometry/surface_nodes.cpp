@@ -214,11 +214,6 @@ struct PatchNodes {
   std::vector<NodeKind> kinds;
 };
 
-// Farthest-point sampling of one patch over its candidate points, seeded with its edge and
-// corner nodes: repeatedly add the candidate farthest from all nodes, distance measured in units
-// of the local spacing, until every candidate is within kCoverageRadius x its local spacing of a
-// node. Priorities are d s / l (s the face spacing, l the candidate's): with uniform spacing the
-// distances themselves.
 // Thrown when the symmetries are finer than the spacing: a pick's images crowd it with no point
 // nearby that they all fix (two mirrors closer than a spacing apart, as on a finely faceted torus).
 // The block is then sampled without symmetries.
@@ -227,9 +222,8 @@ struct CrowdedSymmetry {};
 // A pick whose images would crowd it (an image closer than `reach`: a point near a mirror or an
 // axis) moves onto the set those images fix: the mean of its near images, repeated until every
 // image is either the point itself (to kSamePoint x reach) or at least `reach` from it, within
-// `reach` of the pick (so that the pick is covered). On a flat
-// patch the mean stays on it; on a curved one it sits inside by about the orbit's sagitta, which
-// only places a cell.
+// `reach` of the pick (so that the pick is covered). On a flat patch the mean stays on it; on a
+// curved one it sits inside by about the orbit's sagitta, which only places a cell.
 Eigen::Vector3d ontoNearbyFixedSet(const SymmetryGroup& symmetry, const std::vector<std::size_t>& stabilizer,
                                    const Eigen::Vector3d& pick, double reach) {
   Eigen::Vector3d x = pick;
@@ -253,6 +247,11 @@ Eigen::Vector3d ontoNearbyFixedSet(const SymmetryGroup& symmetry, const std::vec
   throw CrowdedSymmetry{};
 }
 
+// Farthest-point sampling of one patch over its candidate points, seeded with its edge and
+// corner nodes: repeatedly add the candidate farthest from all nodes, distance measured in units
+// of the local spacing, until every candidate is within kCoverageRadius x its local spacing of a
+// node. Priorities are d s / l (s the face spacing, l the candidate's): with uniform spacing the
+// distances themselves.
 // With a symmetry group, `stabilizer` lists the elements that map the patch onto itself, and each
 // pick adds the candidate's images under them too (once each where images coincide: a point on a
 // mirror), so the nodes keep the patch's symmetries when seeds and candidates do.

@@ -3,6 +3,7 @@
 #include "io/file_digest.h"
 #include "io/folder_lock.h"
 #include "io/input_error.h"
+#include "io/text_file.h"
 #include "io/output_directory.h"
 #include "io/safe_write.h"
 #include "levelset/assembly_checks.h"
@@ -30,8 +31,7 @@ namespace {
 
 std::string readText(const std::string& path) {
   if (!fs::is_regular_file(path)) throw InputError(path + ": no such scene file; see assets/scenes/default.toml for an example");
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return readTextFile(path);
 }
 
 // threads: -1 the scene's, 0 all cores, else a count up to kMaxThreads.

@@ -2,6 +2,7 @@
 #include "run/scene.h"
 
 #include "io/input_error.h"
+#include "io/text_file.h"
 #include "levelset/shape.h"
 
 #include <toml++/toml.h>
@@ -107,10 +108,7 @@ private:
 
 Scene readScene(const std::string& path) {
   if (!fs::exists(path)) throw InputError(path + ": no such scene file; see assets/scenes/default.toml for an example");
-  std::ifstream in(path, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in && !in.eof()) throw InputError(path + ": cannot read the scene file");
-  return readSceneText(text, path);
+  return readSceneText(readTextFile(path), path);
 }
 
 Scene readSceneText(const std::string& text, const std::string& path) {

@@ -4,6 +4,7 @@
 #include "io/file_digest.h"
 #include "io/folder_lock.h"
 #include "io/input_error.h"
+#include "io/text_file.h"
 #include "io/safe_write.h"
 #include "run/presets.h"
 #include "run/run_output.h"
@@ -41,11 +42,6 @@ std::string formatValue(double v) {
   return buffer;
 }
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 // A sweep folder is one study: one base scene and preset, one set of keys; each case folder holds
 // one set of values for good (sweep.json lists them). Cases of this sweep already in the folder
 // are found by their values and must hold the same scene; new values are refused unless --extend.
@@ -59,7 +55,7 @@ std::vector<SweepCase> placeCases(const fs::path& dir, const std::vector<std::st
   if (fs::exists(manifestFile)) {
     nlohmann::json old;
     try {
-      old = nlohmann::json::parse(readText(manifestFile));
+      old = nlohmann::json::parse(readTextFile(manifestFile));
       if (old.at("keys").get<std::vector<std::string>>() != keys) {
         std::string oldKeys;
         for (const auto& k : old.at("keys")) oldKeys += (oldKeys.empty() ? "" : ", ") + k.get<std::string>();
@@ -84,7 +80,7 @@ std::vector<SweepCase> placeCases(const fs::path& dir, const std::vector<std::st
     const auto found = held.find(c.values);
     if (found != held.end()) {
       c.dir = found->second.string();
-      if (fs::exists(fs::path(c.dir) / "scene.toml") && readText(fs::path(c.dir) / "scene.toml") != c.scene)
+      if (fs::exists(fs::path(c.dir) / "scene.toml") && readTextFile(fs::path(c.dir) / "scene.toml") != c.scene)
         throw InputError(c.dir + " holds the case " + values + " of another base scene or preset (its scene.toml "
                          "differs); choose another -o, or remove " + dir.string() + " to start again");
       continue;
@@ -218,7 +214,7 @@ std::vector<SweepCase> placeSweepCases(const std::string& folder, const SweepPla
   std::vector<std::string> keys;
   for (const SweepAxis& axis : plan.axes) keys.push_back(axis.key);
   nlohmann::json manifest;
-  cases = placeCases(dir, keys, cases, extend, textDigest(readText(plan.scene) + "\npreset " + plan.preset), manifest);
+  cases = placeCases(dir, keys, cases, extend, textDigest(readTextFile(plan.scene) + "\npreset " + plan.preset), manifest);
   // The manifest first, then the case scenes: a sweep stopped in between is found again by its values.
   manifest["scene"] = fs::absolute(plan.scene).string();
   manifest["preset"] = plan.preset;
@@ -237,10 +233,10 @@ std::vector<SweepCase> readSweepFolder(const std::string& folder) {
     throw InputError(folder + ": not a sweep folder (no sweep.json); give the -o folder of tessera sweep");
   std::vector<SweepCase> cases;
   try {
-    const nlohmann::json manifest = nlohmann::json::parse(readText(manifestFile));
+    const nlohmann::json manifest = nlohmann::json::parse(readTextFile(manifestFile));
     for (const auto& c : manifest.at("cases")) {
       const fs::path caseDir = dir / c.at("directory").get<std::string>();
-      cases.push_back({c.at("values").get<std::vector<double>>(), readText(caseDir / "scene.toml"), caseDir.string()});
+      cases.push_back({c.at("values").get<std::vector<double>>(), readTextFile(caseDir / "scene.toml"), caseDir.string()});
       sweepCaseNumber(cases.back().dir);  // a name of the form case_N
     }
   } catch (const std::exception& e) {
@@ -287,7 +283,7 @@ CaseStatus sweepCaseStatus(const std::string& caseDir) {
   CaseStatus status;
   bool started = false;
   try {
-    const nlohmann::json attempt = nlohmann::json::parse(readText(dir / "attempt.json"));
+    const nlohmann::json attempt = nlohmann::json::parse(readTextFile(dir / "attempt.json"));
     started = attempt.at("state") == "started";
     status.exitStatus = started ? -1 : attempt.at("exit_status").get<int>();
     status.slurmJob = attempt.value("slurm_job", "");
@@ -351,7 +347,7 @@ int writeSweepTables(const std::string& folder) {
     }
     ~TablesLock() { ::close(fd); }
   } lock(dir / ".tables.lock");
-  const nlohmann::json manifest = nlohmann::json::parse(readText(dir / "sweep.json"));
+  const nlohmann::json manifest = nlohmann::json::parse(readTextFile(dir / "sweep.json"));
   const std::vector<std::string> keys = manifest.at("keys");
   std::string csv = "case";
   for (const std::string& key : keys) csv += "," + key;
@@ -363,7 +359,7 @@ int writeSweepTables(const std::string& folder) {
   for (const auto& entry : manifest["cases"]) {
     const fs::path run = dir / entry["directory"].get<std::string>() / "run";
     if (!sweepCaseComplete(run.string())) continue;  // an interrupted or failed case is never tabled or plotted
-    const nlohmann::json j = nlohmann::json::parse(readText(run / "summary.json"));
+    const nlohmann::json j = nlohmann::json::parse(readTextFile(run / "summary.json"));
     const std::vector<double> caseValues = entry["values"];
     const auto& r = j["response"];
     std::ostringstream line;

@@ -40,5 +40,13 @@ for library in $needed; do
     *) echo "layers: the kernel $kernel needs $library (only TBB and the C/C++ runtime are allowed)"; status=1 ;;
   esac
 done
+# Every call the kernel makes into Tessera is into itself: a tessera:: symbol it leaves undefined
+# would be resolved at load time from a library above it, which its NEEDED entries do not show.
+undefined=$(nm -D --undefined-only "$kernel" | c++filt | grep -E ' tessera::' || true)
+if [ -n "$undefined" ]; then
+  echo "layers: the kernel $kernel calls Tessera code it does not contain:"
+  echo "$undefined"
+  status=1
+fi
 [ $status = 0 ] && echo "layers: one way; the kernel needs only: $(echo $needed | tr '\n' ' ')"
 exit $status
