@@ -236,7 +236,10 @@ std::vector<SweepCase> readSweepFolder(const std::string& folder) {
     const nlohmann::json manifest = nlohmann::json::parse(readTextFile(manifestFile));
     for (const auto& c : manifest.at("cases")) {
       const fs::path caseDir = dir / c.at("directory").get<std::string>();
-      cases.push_back({c.at("values").get<std::vector<double>>(), readTextFile(caseDir / "scene.toml"), caseDir.string()});
+      // A case not placed yet (its folder made by a sweep that stopped first) has no scene.
+      const fs::path scene = caseDir / "scene.toml";
+      cases.push_back({c.at("values").get<std::vector<double>>(), fs::exists(scene) ? readTextFile(scene) : std::string(),
+                       caseDir.string()});
       sweepCaseNumber(cases.back().dir);  // a name of the form case_N
     }
   } catch (const std::exception& e) {
