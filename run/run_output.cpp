@@ -75,40 +75,29 @@ void writeSweepTable(const std::string& path, const std::vector<std::string>& ke
   });
 }
 
-void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
-                     const ContactParameters& contact, const IndentationRecord& record,
-                     const ResponseParameters& response, const RunProvenance& provenance) {
-  const fs::path dir(directory);
-  fs::create_directories(dir / "paraview");
+namespace {
 
-  h5::writeFile(dir / "results.h5", [&](hid_t f) { writeResultsH5(f, scene, bundle, contact, record, provenance); });
-
-  {
-    std::string out =
-        "delta_mm,load_N,time_s,kinetic_J,external_work_J,contacts,block_displacement_mm,indenter_penetration_mm,"
-           "sliding_fraction,loaded_sliding_fraction\n";
-    char line[320];
-    for (const CurveSample& s : record.curve) {
-      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g\n", s.delta * 1e3, s.load,
-                    s.time, s.kinetic, s.externalWork, s.contacts, s.blockDisplacement * 1e3, s.indenterPenetration * 1e3,
-                    s.blockContacts > 0 ? s.slidingContacts / s.blockContacts : 0.0,
-                    s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0);
-      out += line;
-    }
-    writeTextFileSafely(dir / "curve.csv", out);
+// curve.csv: one row per curve sample, lengths in mm (docs/outputs.md).
+void writeCurveCsv(const fs::path& dir, const IndentationRecord& record) {
+  std::string out =
+      "delta_mm,load_N,time_s,kinetic_J,external_work_J,contacts,block_displacement_mm,indenter_penetration_mm,"
+         "sliding_fraction,loaded_sliding_fraction\n";
+  char line[320];
+  for (const CurveSample& s : record.curve) {
+    std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g\n", s.delta * 1e3, s.load,
+                  s.time, s.kinetic, s.externalWork, s.contacts, s.blockDisplacement * 1e3, s.indenterPenetration * 1e3,
+                  s.blockContacts > 0 ? s.slidingContacts / s.blockContacts : 0.0,
+                  s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0);
+    out += line;
   }
+  writeTextFileSafely(dir / "curve.csv", out);
+}
 
+// summary.json's "response": the response parameters, the failure and the energy balance at the end.
+nlohmann::json responseJson(const Scene& scene, const IndentationRecord& record, const ResponseParameters& response) {
   nlohmann::json fallen = nlohmann::json::array();
   for (const FallenBody& b : record.fallen)
     fallen.push_back({{"name", b.name}, {"delta_mm", b.delta * 1e3}, {"retired", b.retired}, {"touching", b.touching}});
-  nlohmann::json shapes = nlohmann::json::array();
-  for (const Shape& shape : bundle.shapes)
-    shapes.push_back({{"name", shape.name},
-                      {"level_set", levelSetPath(shape, scene.solver.exactConvexLevelSets, scene.solver.exactMeshLevelSets)},
-                      {"voxel_mm", shape.resolution.voxelSize * 1e3},
-                      {"node_spacing_mm", shape.resolution.nodeSpacing * 1e3},
-                      {"edge_node_spacing_mm", shape.resolution.edgeSpacingFraction * shape.resolution.nodeSpacing * 1e3},
-                      {"nodes", shape.nodes.size()}});
   nlohmann::json drops = nlohmann::json::array();
   for (const LoadDrop& d : response.drops)
     drops.push_back({{"delta_mm", d.delta * 1e3}, {"load_before_N", d.before}, {"load_after_N", d.after}});
@@ -122,49 +111,63 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   };
   const CurveSample& end = response.end;
   const bool failed = response.failureDeflection >= 0;
-  const nlohmann::json summary = {
+  return nlohmann::json{{"peak_load_N", response.peakLoad},
+                        {"delta_at_peak_mm", response.deltaAtPeak * 1e3},
+                        {"stiffness_N_per_mm", response.stiffness * 1e-3},
+                        {"stiffness_fit_window_mm", {response.fitFrom * 1e3, response.fitTo * 1e3}},
+                        {"failure_deflection_mm", failed ? nlohmann::json(response.failureDeflection * 1e3) : nlohmann::json(nullptr)},
+                        {"failure_load_fraction", scene.protocol.failureLoadFraction},
+                        {"block_displacement_at_failure_mm",
+                         failed ? nlohmann::json(response.atFailure.blockDisplacement * 1e3) : nlohmann::json(nullptr)},
+                        {"loading_energy_mJ", response.energy * 1e3},
+                        {"loading_energy_to_end_mJ", response.energyToEnd * 1e3},
+                        {"ultimate_deflection_mm", response.ultimateDeflection * 1e3},
+                        {"failure_mode", response.failureMode},
+                        {"fallen", fallen},
+                        {"load_drops", drops},
+                        {"at_peak", contactState(response.atPeak)},
+                        {"at_failure", failed ? contactState(response.atFailure) : nlohmann::json(nullptr)},
+                        {"end", {{"delta_mm", end.delta * 1e3}, {"load_N", end.load}, {"block_displacement_mm", end.blockDisplacement * 1e3}}},
+                        {"energy",
+                         {{"work_mJ", end.externalWork * 1e3},
+                          {"elastic_mJ", end.elastic * 1e3},
+                          {"kinetic_mJ", end.kinetic * 1e3},
+                          {"friction_mJ", end.friction * 1e3},
+                          {"damping_mJ", end.damping * 1e3},
+                          {"gravity_mJ", end.gravityWork * 1e3},
+                          {"retired_kinetic_mJ", end.retiredKinetic * 1e3},
+                          {"projection_mJ", end.projection * 1e3},
+                          {"residual_mJ", end.residual * 1e3}}},
+                        {"quasi_static_ratio", response.quasiStaticRatio},
+                        {"quasi_static", response.quasiStatic},
+                        {"quasi_static_target", scene.protocol.quasiStaticTarget},
+                        {"loading_speed_to_peak_mm_per_s", response.loadingSpeed * 1e3},
+                        {"peak_load_normalised", response.peakLoadNormalised},
+                        {"delta_at_peak_normalised", response.deltaAtPeakNormalised},
+                        {"thickness_mm", response.thickness * 1e3},
+                        {"delta_max_mm", record.deltaMax * 1e3}};
+}
+
+// summary.json's content (docs/outputs.md).
+nlohmann::json summaryJson(const Scene& scene, const Bundle& bundle, const ContactParameters& contact,
+                           const IndentationRecord& record, const ResponseParameters& response,
+                           const RunProvenance& provenance) {
+  nlohmann::json shapes = nlohmann::json::array();
+  for (const Shape& shape : bundle.shapes)
+    shapes.push_back({{"name", shape.name},
+                      {"level_set", levelSetPath(shape, scene.solver.exactConvexLevelSets, scene.solver.exactMeshLevelSets)},
+                      {"voxel_mm", shape.resolution.voxelSize * 1e3},
+                      {"node_spacing_mm", shape.resolution.nodeSpacing * 1e3},
+                      {"edge_node_spacing_mm", shape.resolution.edgeSpacingFraction * shape.resolution.nodeSpacing * 1e3},
+                      {"nodes", shape.nodes.size()}});
+  return {
       {"generator", generatorVersion()},
       {"scene", scene.path},
       {"bundle", scene.bundle},
       {"target", record.targetName},
       {"stop_reason", record.stopReason.empty() ? std::string("running") : record.stopReason},
       {"state_digest", provenance.stateDigest},
-      {"response",
-       {{"peak_load_N", response.peakLoad},
-        {"delta_at_peak_mm", response.deltaAtPeak * 1e3},
-        {"stiffness_N_per_mm", response.stiffness * 1e-3},
-        {"stiffness_fit_window_mm", {response.fitFrom * 1e3, response.fitTo * 1e3}},
-        {"failure_deflection_mm", failed ? nlohmann::json(response.failureDeflection * 1e3) : nlohmann::json(nullptr)},
-        {"failure_load_fraction", scene.protocol.failureLoadFraction},
-        {"block_displacement_at_failure_mm",
-         failed ? nlohmann::json(response.atFailure.blockDisplacement * 1e3) : nlohmann::json(nullptr)},
-        {"loading_energy_mJ", response.energy * 1e3},
-        {"loading_energy_to_end_mJ", response.energyToEnd * 1e3},
-        {"ultimate_deflection_mm", response.ultimateDeflection * 1e3},
-        {"failure_mode", response.failureMode},
-        {"fallen", fallen},
-        {"load_drops", drops},
-        {"at_peak", contactState(response.atPeak)},
-        {"at_failure", failed ? contactState(response.atFailure) : nlohmann::json(nullptr)},
-        {"end", {{"delta_mm", end.delta * 1e3}, {"load_N", end.load}, {"block_displacement_mm", end.blockDisplacement * 1e3}}},
-        {"energy",
-         {{"work_mJ", end.externalWork * 1e3},
-          {"elastic_mJ", end.elastic * 1e3},
-          {"kinetic_mJ", end.kinetic * 1e3},
-          {"friction_mJ", end.friction * 1e3},
-          {"damping_mJ", end.damping * 1e3},
-          {"gravity_mJ", end.gravityWork * 1e3},
-          {"retired_kinetic_mJ", end.retiredKinetic * 1e3},
-          {"projection_mJ", end.projection * 1e3},
-          {"residual_mJ", end.residual * 1e3}}},
-        {"quasi_static_ratio", response.quasiStaticRatio},
-        {"quasi_static", response.quasiStatic},
-        {"quasi_static_target", scene.protocol.quasiStaticTarget},
-        {"loading_speed_to_peak_mm_per_s", response.loadingSpeed * 1e3},
-        {"peak_load_normalised", response.peakLoadNormalised},
-        {"delta_at_peak_normalised", response.deltaAtPeakNormalised},
-        {"thickness_mm", response.thickness * 1e3},
-        {"delta_max_mm", record.deltaMax * 1e3}}},
+      {"response", responseJson(scene, record, response)},
       {"material",
        {{"youngs_modulus_GPa", contact.youngsModulus * 1e-9},
         {"friction", contact.friction},
@@ -195,8 +198,12 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
         {"snapshots", record.snapshots.size()}}},
   };
 
-  // The ParaView series: per snapshot the blocks (displacement from the bundle's pose, velocity),
-  // the contacts as points at their force centres, and the indenter.
+}
+
+// The ParaView series: per snapshot the blocks (displacement from the bundle's pose, velocity),
+// the contacts as points at their force centres, and the indenter; each part as its own series
+// too, and a ParaView state that opens them ready to look at.
+void writeParaViewSeries(const fs::path& dir, const Bundle& bundle, const IndentationRecord& record) {
   std::vector<Eigen::Vector3d> built;
   for (const Body& b : bundle.bodies) built.push_back(b.position);
   // ParaView's time axis: delta in mm, or the snapshot's number when the indenter went back up.
@@ -262,9 +269,21 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   }
   writeParaViewState((dir / "paraview").string(),
                      {largestForce > 0 ? 3 * record.thickness / largestForce : 0.0, record.thickness, largestDisplacement});
+}
+
+}  // namespace
+
+void writeRunOutputs(const std::string& directory, const Scene& scene, const Bundle& bundle,
+                     const ContactParameters& contact, const IndentationRecord& record,
+                     const ResponseParameters& response, const RunProvenance& provenance) {
+  const fs::path dir(directory);
+  fs::create_directories(dir / "paraview");
+  h5::writeFile(dir / "results.h5", [&](hid_t f) { writeResultsH5(f, scene, bundle, contact, record, provenance); });
+  writeCurveCsv(dir, record);
+  writeParaViewSeries(dir, bundle, record);
   // Last: a summary.json that says how the run stopped means every file above was written then
   // (a resumed run that had finished relies on it, RunSession::finishedAndWritten).
-  writeTextFileSafely(dir / "summary.json", jsonText(summary));
+  writeTextFileSafely(dir / "summary.json", jsonText(summaryJson(scene, bundle, contact, record, response, provenance)));
 }
 
 }  // namespace tessera
