@@ -139,14 +139,14 @@ public:
     if (raised) throw std::move(*raised);
     if (PyErr_Occurred()) throw py::error_already_set();
     const IndentationRecord& record = session_->record();
-    if (!record.settled && record.stopReason != "interrupted") {
+    if (!record.settled && record.stopReason != StopReason::Interrupted) {
       char line[200];
       std::snprintf(line, sizeof line, "the slab had not settled after %.3g s (kinetic energy above %.3g J)", record.settleTime,
                     record.settleKinetic);
       warnings_.push_back(line);
       logLine(std::string("warning: ") + line);
     }
-    return record.stopReason;
+    return std::string(stopReasonName(record.stopReason));
   }
 
   RunSession& session() { return *session_; }
@@ -266,7 +266,7 @@ void bindSimulation(py::module_& m) {
                              "dict of numpy arrays, one per column of results.h5's curve (units: tessera.curve_units)")
       .def_property_readonly("response", [](const Simulation& s) { return responseOf(s.session().response()); },
                              "P_max (N), K (N/m), W (J), failure deflection (m) and mode")
-      .def_property_readonly("stop_reason", [](const Simulation& s) { return s.session().record().stopReason; })
+      .def_property_readonly("stop_reason", [](const Simulation& s) { return std::string(stopReasonName(s.session().record().stopReason)); })
       .def_property_readonly("body_names", [](const Simulation& s) { return s.session().world().bodies().name; })
       .def_property_readonly("fixed", [](const Simulation& s) {
         const auto& f = s.session().world().bodies().fixed;

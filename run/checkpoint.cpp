@@ -271,7 +271,7 @@ void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r)
   h5::writeAttribute(g, "target_name", r.targetName);
   h5::writeAttribute(g, "thickness", r.thickness);
   h5::writeAttribute(g, "delta_max", r.deltaMax);
-  h5::writeAttribute(g, "stop_reason", r.stopReason);
+  h5::writeAttribute(g, "stop_reason", std::string(stopReasonName(r.stopReason)));
   h5::writeAttribute(g, "steps", std::int64_t{r.steps});
   h5::writeAttribute(g, "time_step", r.timeStep);
   h5::writeAttribute(g, "wall_seconds", r.wallSeconds);
@@ -292,10 +292,6 @@ void checkProtocolValues(const IndentationState& s, const IndentationRecord& r) 
     require(std::isfinite(x), "a value that is not finite");
   for (const Eigen::Vector3d& x : s.settledPosition) require(x.allFinite(), "a settled position that is not finite");
   for (double x : s.outAt) require(std::isfinite(x), "a body's fall deflection that is not finite");
-  const std::string& reason = r.stopReason;  // IndentationRecord::stopReason, or "" while running
-  require(reason.empty() || reason == "delta_max" || reason == "failure" || reason == "requested" || reason == "interrupted" ||
-              reason == "instability",
-          "a stop reason the protocol does not give");
   require(s.loadStart >= 0 && s.speedSince >= s.loadStart && s.peak >= 0 && s.nextSample >= 0 && s.nextSnapshot >= 0,
           "a time, load or sampling point out of range");
   require(r.settleTime >= 0 && r.timeStep >= 0 && r.wallSeconds >= 0 && r.steps >= 0 && r.settleSteps >= 0,
@@ -334,7 +330,9 @@ void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t 
   r.targetName = h5::readStringAttribute(g, "target_name");
   r.thickness = h5::readDoubleAttribute(g, "thickness");
   r.deltaMax = h5::readDoubleAttribute(g, "delta_max");
-  r.stopReason = h5::readStringAttribute(g, "stop_reason");
+  const std::optional<StopReason> reason = parseStopReason(h5::readStringAttribute(g, "stop_reason"));
+  if (!reason) throw std::runtime_error("protocol state: a stop reason the protocol does not give");
+  r.stopReason = *reason;
   r.steps = h5::readIntAttribute(g, "steps");
   r.timeStep = h5::readDoubleAttribute(g, "time_step");
   r.wallSeconds = h5::readDoubleAttribute(g, "wall_seconds");

@@ -149,7 +149,7 @@ private:
   }
   bool interrupted() {
     if (!hooks_.interrupted || !hooks_.interrupted()) return false;
-    record_.stopReason = "interrupted";
+    record_.stopReason = StopReason::Interrupted;
     return true;
   }
   void finish() {
@@ -275,7 +275,7 @@ private:
       // between rebuilds: at most a tenth of the margin per step.
       const double fastest = 0.1 * world_.settings().broadPhaseMargin / world_.timeStep();
       if (!std::isfinite(control.indenterSpeed) || std::abs(control.indenterSpeed) > fastest) {
-        record_.stopReason = "interrupted";  // as stopped here: resumable, its checkpoint written
+        record_.stopReason = StopReason::Interrupted;  // as stopped here: resumable, its checkpoint written
         finish();
         throw std::invalid_argument("the sample hook set the indenter speed to " + std::to_string(control.indenterSpeed) +
                                     " m/s; it must be finite and at most " + std::to_string(fastest) +
@@ -380,13 +380,13 @@ private:
       const bool failed = scene_.protocol.stopOnFailure && sampled && state_.quietFrom >= 0 &&
                           along - state_.quietFrom >= scene_.protocol.quietTravel * record_.thickness &&
                           restingBodies(world_, out_, scene_.protocol.restSpeedRatio * speed_);
-      if (reachedMax || failed || requested) return stop(requested ? "requested" : failed ? "failure" : "delta_max", delta, load);
+      if (reachedMax || failed || requested) return stop(requested ? StopReason::Requested : failed ? StopReason::Failure : StopReason::DeltaMax, delta, load);
       checkpointDue();
     }
   }
 
   // The state at the stop closes the curve and the snapshots.
-  void stop(const char* reason, double delta, double load) {
+  void stop(StopReason reason, double delta, double load) {
     record_.stopReason = reason;
     if (state_.contactTravel >= 0 && (record_.curve.empty() || record_.curve.back().time < world_.time() - state_.loadStart))
       sample(delta, load);

@@ -1,5 +1,6 @@
 #pragma once
 #include "levelset/bundle.h"
+#include "run/stop_reason.h"
 #include "run/scene.h"
 #include "solver/world.h"
 
@@ -82,7 +83,7 @@ struct IndentationRecord {
   std::vector<CurveSample> curve;
   std::vector<Snapshot> snapshots;
   std::vector<FallenBody> fallen;  ///< as of the last sample
-  std::string stopReason;  ///< "delta_max", "failure", "interrupted", "requested" (by the sample hook), "instability"
+  StopReason stopReason = StopReason::Running;
   long steps = 0;          ///< all steps (implicit: increments), settling included
   double timeStep = 0;     ///< s (implicit: the last increment's duration)
   bool implicit = false;   ///< the World's method was implicit (solver.method)
@@ -91,7 +92,7 @@ struct IndentationRecord {
 
   /// The run has ended for good: at delta_max, on failure, or as its sample hook asked (not when
   /// interrupted, unstable, or still running).
-  bool finished() const { return stopReason == "delta_max" || stopReason == "failure" || stopReason == "requested"; }
+  bool finished() const { return isComplete(stopReason); }
 };
 
 /// The record's account of the World's stepping: steps (increments), the last time step, the

@@ -137,9 +137,9 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   // With nothing out, the mode says how far the run looked: "no failure" alone read as a verdict
   // on a run a user had stopped at a delta_max of their choosing.
   if (fallen == 0)
-    r.failureMode = record.stopReason == "delta_max"   ? "none up to delta_max"
-                    : record.stopReason == "failure"   ? "load lost, no block out"
-                    : record.stopReason == "requested" ? "none up to the requested stop"
+    r.failureMode = record.stopReason == StopReason::DeltaMax   ? "none up to delta_max"
+                    : record.stopReason == StopReason::Failure   ? "load lost, no block out"
+                    : record.stopReason == StopReason::Requested ? "none up to the requested stop"
                                                        : "none yet (run incomplete)";
   else if (settings.freeBodies > 1 && fallen >= settings.freeBodies) r.failureMode = "collapse";
   else if (fallen == 1 && loadedOut) r.failureMode = "loaded block out";

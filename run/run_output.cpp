@@ -36,7 +36,7 @@ void writeResultsH5(hid_t f, const Scene& scene, const Bundle& bundle, const Con
   h5::writeAttribute(f, "normal_stiffness", contact.normalStiffness());
   h5::writeAttribute(f, "friction", contact.friction);
   h5::writeAttribute(f, "time_step", record.timeStep);
-  h5::writeAttribute(f, "stop_reason", record.stopReason);
+  h5::writeAttribute(f, "stop_reason", std::string(stopReasonName(record.stopReason)));
   h5::writeAttribute(f, "solver_method", std::string(record.implicit ? "implicit" : "explicit"));
   h5::writeAttribute(f, "steps", std::int64_t{record.steps});
   h5::writeAttribute(f, "newton_iterations", std::int64_t{record.implicitCounts.iterations});
@@ -165,7 +165,7 @@ nlohmann::json summaryJson(const Scene& scene, const Bundle& bundle, const Conta
       {"scene", scene.path},
       {"bundle", scene.bundle},
       {"target", record.targetName},
-      {"stop_reason", record.stopReason.empty() ? std::string("running") : record.stopReason},
+      {"stop_reason", stopReasonName(record.stopReason)},
       {"state_digest", provenance.stateDigest},
       {"response", responseJson(scene, record, response)},
       {"material",

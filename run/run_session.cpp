@@ -317,7 +317,7 @@ bool RunSession::finishedAndWritten() const {
   if (!resumed_ || !record_.finished()) return false;
   try {
     std::ifstream file(fs::path(output_) / "summary.json");
-    return nlohmann::json::parse(file).at("stop_reason").get<std::string>() == record_.stopReason;
+    return nlohmann::json::parse(file).at("stop_reason").get<std::string>() == stopReasonName(record_.stopReason);
   } catch (const std::exception&) {
     return false;  // missing or unreadable: written again by the resumed run
   }
@@ -337,7 +337,7 @@ void RunSession::run(RunHooks hooks) {
   try {
     runIndentation(*world_, bundle_, scene_, record_, state_, hooks);
   } catch (const SolverInstability&) {
-    record_.stopReason = "instability";
+    record_.stopReason = StopReason::Instability;
     recordStepping(record_, *world_);
     writeOutputs();  // what was recorded, not the unstable state
     throw;

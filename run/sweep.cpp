@@ -329,8 +329,8 @@ bool sweepCaseComplete(const std::string& runDir) {
   if (!in) return false;
   try {
     const auto j = nlohmann::json::parse(in);
-    const std::string reason = j.value("stop_reason", "");
-    return reason == "delta_max" || reason == "failure";
+    const std::optional<StopReason> reason = parseStopReason(j.value("stop_reason", "running"));
+    return reason && isComplete(*reason);
   } catch (const std::exception&) {
     return false;
   }

@@ -71,14 +71,14 @@ void printSettlingSummary(const RunSession& session, const std::string& out) {
   const World& world = session.world();
   std::printf("stopped: %s while settling, at %.4g s of up to %.4g s simulated (kinetic energy %.3e J; at rest below "
               "%.3e J); nothing loaded yet\n",
-              record.stopReason.c_str(), world.time(), record.settleMaxTime, world.energy().kinetic, record.settleKinetic);
+              stopReasonName(record.stopReason), world.time(), record.settleMaxTime, world.energy().kinetic, record.settleKinetic);
   std::printf("  %ld %s in %.1f s\n", record.steps, record.implicit ? "implicit increments" : "steps", record.wallSeconds);
   std::printf("written to %s (%s); go on with: tessera run --resume %s\n", out.c_str(), writtenFiles(out).c_str(), out.c_str());
 }
 
 void printSummary(const IndentationRecord& record, const ResponseParameters& r, double failureFraction, const std::string& out) {
   std::printf("settled in %.4g s (%ld steps)%s; loaded block '%s'; stopped: %s\n", record.settleTime, record.settleSteps,
-              record.settled ? "" : " (not settled)", record.targetName.c_str(), record.stopReason.c_str());
+              record.settled ? "" : " (not settled)", record.targetName.c_str(), stopReasonName(record.stopReason));
   std::printf("  peak load          P_max = %.4g N at delta = %.4g mm\n", r.peakLoad, r.deltaAtPeak * 1e3);
   std::printf("  initial stiffness  K = %.4g N/mm (fit over delta in [%.3g, %.3g] mm)\n", r.stiffness * 1e-3,
               r.fitFrom * 1e3, r.fitTo * 1e3);
@@ -147,7 +147,7 @@ int runTest(const RunArguments& a) {
   const ContactParameters& contact = session->contact();
   if (session->finishedAndWritten()) {  // its results are in place: left as they are
     std::fprintf(stderr, "run: %s is complete (stopped: %s at delta = %.4g mm); nothing to resume\n", out.c_str(),
-                 session->record().stopReason.c_str(), session->record().curve.empty() ? 0.0 : session->record().curve.back().delta * 1e3);
+                 stopReasonName(session->record().stopReason), session->record().curve.empty() ? 0.0 : session->record().curve.back().delta * 1e3);
     return 0;
   }
   if (session->resumed())
@@ -186,7 +186,7 @@ int runTest(const RunArguments& a) {
     failure = e.what();
   }
   const IndentationRecord& record = session->record();
-  if (!record.settled && record.stopReason != "interrupted" && session->state().phase > 0)
+  if (!record.settled && record.stopReason != StopReason::Interrupted && session->state().phase > 0)
     std::fprintf(stderr,
                  "run: warning: the slab had not settled after %.3g s (kinetic energy above %.3g J) and was loaded as it was; "
                  "damp the settling (damping.local = %.2g here; assets/scenes/default.toml uses 0.3) or give it longer "
@@ -202,7 +202,7 @@ int runTest(const RunArguments& a) {
     std::cerr << "tessera: error: the run became unstable and was stopped: " << failure << "\n";
     return 3;
   }
-  return record.stopReason == "interrupted" ? 130 : 0;
+  return record.stopReason == StopReason::Interrupted ? 130 : 0;
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ IndentationRecord recordOf(int n, const std::function<double(double)>& load) {
   IndentationRecord r;
   r.thickness = kH;
   r.targetName = "centre";
-  r.stopReason = "delta_max";
+  r.stopReason = StopReason::DeltaMax;
   double work = 0;
   for (int i = 0; i <= n; ++i) {
     CurveSample s;
@@ -91,13 +91,13 @@ TEST_CASE("response: the failure mode follows the bodies out, and an unfinished 
   record.fallen.push_back({"r2c2", 2.2e-3, false, true});
   REQUIRE(analyseResponse(record, settings).failureMode == "collapse");
   record.fallen.clear();
-  record.stopReason = "interrupted";
+  record.stopReason = StopReason::Interrupted;
   REQUIRE(analyseResponse(record, settings).failureMode == "none yet (run incomplete)");
-  record.stopReason = "requested";  // the sample hook ended it: a finished run
+  record.stopReason = StopReason::Requested;  // the sample hook ended it: a finished run
   REQUIRE(analyseResponse(record, settings).failureMode == "none up to the requested stop");
-  record.stopReason = "failure";  // the load lost with nothing out
+  record.stopReason = StopReason::Failure;  // the load lost with nothing out
   REQUIRE(analyseResponse(record, settings).failureMode == "load lost, no block out");
-  record.stopReason = "delta_max";
+  record.stopReason = StopReason::DeltaMax;
   REQUIRE(analyseResponse(record, settings).failureMode == "none up to delta_max");
   REQUIRE(analyseResponse(IndentationRecord{}, settings).failureMode == "no contact");
 }

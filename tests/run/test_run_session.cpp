@@ -64,14 +64,14 @@ TEST_CASE("checkpoint round trip: a run stopped mid-loading and resumed in proce
   SmallTest t(3, 0.6e-3, "method = \"" + method + "\"");
   auto whole = RunSession::start(t.request(), {});
   whole->run({});
-  REQUIRE(whole->record().stopReason == "delta_max");
+  REQUIRE(whole->record().stopReason == StopReason::DeltaMax);
   const long steps = whole->record().steps;
 
   auto first = RunSession::start(t.request(t.dir / "run"), {});
   RunHooks stopHalfway;
   stopHalfway.interrupted = [&] { return first->world().stepCount() >= steps / 2; };
   first->run(stopHalfway);
-  REQUIRE(first->record().stopReason == "interrupted");
+  REQUIRE(first->record().stopReason == StopReason::Interrupted);
   REQUIRE(first->state().phase == 1);  // stopped while loading
   REQUIRE_FALSE(first->record().curve.empty());
   first.reset();  // releases the folder
@@ -79,7 +79,7 @@ TEST_CASE("checkpoint round trip: a run stopped mid-loading and resumed in proce
   auto resumed = RunSession::resume(t.dir / "run", "", "", -1, {});
   REQUIRE(resumed->world().stepCount() == steps / 2);
   resumed->run({});
-  REQUIRE(resumed->record().stopReason == "delta_max");
+  REQUIRE(resumed->record().stopReason == StopReason::DeltaMax);
   REQUIRE(resumed->world().stepCount() == steps);
   requireSameCurve(resumed->record().curve, whole->record().curve);
   const RigidBodies &a = resumed->world().bodies(), &b = whole->world().bodies();
@@ -156,7 +156,7 @@ TEST_CASE("sample hook: a run it does not steer is the protocol's run, a hold do
     }
   };
   held->run(hooks);
-  REQUIRE(held->record().stopReason == "delta_max");
+  REQUIRE(held->record().stopReason == StopReason::DeltaMax);
   REQUIRE(during.size() == 10);
   const auto& curve = held->record().curve;
   const CurveSample& start = curve[during.front() - 1];  // the sample at which the hold began
@@ -179,7 +179,7 @@ TEST_CASE("sample hook: stop() ends the run as requested, a finished run") {
   RunHooks hooks;
   hooks.sample = [](const CurveSample& s, IndentationControl& c) { c.stop = s.delta >= 0.1e-3; };
   session->run(hooks);
-  REQUIRE(session->record().stopReason == "requested");
+  REQUIRE(session->record().stopReason == StopReason::Requested);
   REQUIRE(session->record().curve.back().delta >= 0.1e-3);
   REQUIRE(session->record().curve.back().delta < 0.1e-3 + 2 * 10e-6);
   REQUIRE(session->state().phase == 2);
@@ -257,7 +257,7 @@ TEST_CASE("determinism: the 7 x 7 slab ends in the same state, digest in summary
     r.output = dir / ("run" + std::to_string(threads));
     auto session = RunSession::start(r, {});
     session->run({});
-    REQUIRE(session->record().stopReason == "delta_max");
+    REQUIRE(session->record().stopReason == StopReason::DeltaMax);
     std::ifstream in(r.output + "/summary.json");
     const nlohmann::json summary = nlohmann::json::parse(in);
     REQUIRE(summary["state_digest"] == stateDigest(session->world()));

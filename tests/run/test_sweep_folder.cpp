@@ -3,7 +3,9 @@
 // values of --set, read whole or refused.
 #include "io/folder_lock.h"
 #include "io/input_error.h"
+#include "run/indentation.h"
 #include "run/slurm_sweep.h"
+#include "run/stop_reason.h"
 #include "run/sweep.h"
 #include "tests/fixtures/temp_dir.h"
 
@@ -94,6 +96,20 @@ TEST_CASE("a case's state is read from its files: missing, failed, interrupted, 
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Complete);
   writeText(c / "run" / "summary.json", R"({"stop_reason": "delta_max"})");
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Complete);
+  // Complete as a run counts it (IndentationRecord::finished): stopped as its sample hook asked too;
+  // not when unstable or still running, nor under a name no run writes.
+  for (StopReason reason : {StopReason::Running, StopReason::DeltaMax, StopReason::Failure, StopReason::Requested,
+                            StopReason::Interrupted, StopReason::Instability}) {
+    INFO(stopReasonName(reason));
+    REQUIRE(parseStopReason(stopReasonName(reason)) == reason);
+    writeText(c / "run" / "summary.json", std::string(R"({"stop_reason": ")") + stopReasonName(reason) + "\"}");
+    IndentationRecord record;
+    record.stopReason = reason;
+    CHECK(sweepCaseComplete((c / "run").string()) == record.finished());
+  }
+  writeText(c / "run" / "summary.json", R"({"stop_reason": "finished"})");
+  CHECK_FALSE(sweepCaseComplete((c / "run").string()));
+  CHECK_FALSE(parseStopReason("finished"));
 }
 
 TEST_CASE("a sweep folder's cases are read from its manifest, a folder that is not one is refused") {
