@@ -263,6 +263,8 @@ const char* caseStateName(CaseState state) {
     case CaseState::Interrupted: return "interrupted";
     case CaseState::Failed: return "failed";
     case CaseState::Missing: return "missing";
+    case CaseState::Queued: return "queued";
+    case CaseState::Unknown: return "unknown";
   }
   return "?";
 }

@@ -56,15 +56,18 @@ std::vector<SweepCase> readSweepFolder(const std::string& dir);
 /// The number N of a case folder .../case_N (the Slurm array index of that case).
 int sweepCaseNumber(const std::string& caseDir);
 
-/// Where a case stands, from its files alone (whatever ran it: this machine or a cluster).
+/// Where a case stands: from its files alone (whatever ran it: this machine or a cluster), or, for
+/// Queued and Unknown, from Slurm's queue as `tessera sweep --status` reads it.
 enum class CaseState {
-  Complete,     ///< its summary.json says it stopped at delta_max or by failure
+  Complete,     ///< its summary.json says it stopped for good (isComplete, run/stop_reason.h)
   Running,      ///< its runner holds the case's lock on this machine, or started it on another machine
   Interrupted,  ///< stopped by SIGINT or SIGTERM (Ctrl-C, time limit, preemption, cancel), or its runner
                 ///< was killed after a checkpoint: resumes from its checkpoint
   Failed,       ///< its run ended with an error (exit status 2 input, 3 unstable, killed by another
                 ///< signal), or its runner died before a checkpoint
   Missing,      ///< never started
+  Queued,       ///< Slurm holds its task, not started yet
+  Unknown,      ///< submitted to Slurm, which cannot say now whether it still holds it
 };
 const char* caseStateName(CaseState state);
 

@@ -57,11 +57,13 @@ SlurmTaskStates querySlurmTasks() {
   return states;
 }
 
-std::string slurmTaskPhase(const std::string& state) {
+std::optional<CaseState> slurmTaskPhase(const std::string& state) {
   static const std::set<std::string> queued{"PENDING", "REQUEUED", "REQUEUE_FED", "REQUEUE_HOLD", "RESV_DEL_HOLD"};
   static const std::set<std::string> running{"RUNNING", "CONFIGURING", "COMPLETING", "RESIZING", "SUSPENDED",
                                              "STAGE_OUT", "SIGNALING", "STOPPED"};
-  return queued.count(state) ? "queued" : running.count(state) ? "running" : "";
+  if (queued.count(state)) return CaseState::Queued;
+  if (running.count(state)) return CaseState::Running;
+  return std::nullopt;
 }
 
 }  // namespace tessera::tools

@@ -1,5 +1,8 @@
 #pragma once
+#include "run/sweep.h"
+
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,8 +24,8 @@ struct SlurmTaskStates {
 };
 SlurmTaskStates querySlurmTasks();
 
-/// Where Slurm's state leaves a task: "queued" (it will run), "running" (running, suspended,
-/// completing), "" (ended, or unknown to Slurm).
-std::string slurmTaskPhase(const std::string& state);
+/// Where Slurm's state leaves a task: Queued (it will run), Running (running, suspended,
+/// completing), nothing (ended, or unknown to Slurm).
+std::optional<CaseState> slurmTaskPhase(const std::string& state);
 
 }  // namespace tessera::tools

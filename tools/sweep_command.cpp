@@ -57,7 +57,7 @@ struct SweepArguments {
 struct CaseReport {
   const SweepCase* sweepCase;
   CaseStatus files;
-  std::string state;       // complete, queued, running, interrupted, failed, missing; unknown when Slurm cannot say
+  CaseState state = CaseState::Missing;  // from the files, or Queued, Running or Unknown from Slurm
   std::string slurmJob;    // JOB_TASK of its latest submission or attempt, "" if none
   std::string slurmState;  // squeue's state of that task, "" when Slurm no longer knows it
   bool submitted = false;  // slurmJob is a submission recorded in DIR/slurm/jobs.json
@@ -68,7 +68,7 @@ std::vector<CaseReport> reportCases(const std::vector<SweepCase>& cases, const S
   std::vector<CaseReport> reports;
   bool slurmJobs = !record.jobs.empty();
   for (const SweepCase& c : cases) {
-    CaseReport r{&c, sweepCaseStatus(c.dir), "", "", "", false};
+    CaseReport r{&c, sweepCaseStatus(c.dir), CaseState::Missing, "", "", false};
     r.slurmJob = r.files.slurmJob;  // a task submitted by hand records its job when it starts
     const int number = sweepCaseNumber(c.dir);
     for (const SlurmJob& job : record.jobs)  // the latest submission of the case
@@ -85,18 +85,18 @@ std::vector<CaseReport> reportCases(const std::vector<SweepCase>& cases, const S
     if (slurmProblem && !queue.available) *slurmProblem = queue.problem;
   }
   for (CaseReport& r : reports) {
-    r.state = caseStateName(r.files.state);
+    r.state = r.files.state;
     if (r.files.state == CaseState::Complete || r.slurmJob.empty()) continue;
     const std::size_t split = r.slurmJob.find('_');
     const auto found = queue.state.find({r.slurmJob.substr(0, split), std::stoi(r.slurmJob.substr(split + 1))});
     if (found != queue.state.end()) r.slurmState = found->second;
-    const std::string phase = slurmTaskPhase(r.slurmState);
+    const std::optional<CaseState> phase = slurmTaskPhase(r.slurmState);
     if (!queue.available) {
-      if (r.submitted && r.files.state != CaseState::Running) r.state = "unknown";  // Slurm may hold it queued or running
-    } else if (!phase.empty()) {
-      r.state = phase;
+      if (r.submitted && r.files.state != CaseState::Running) r.state = CaseState::Unknown;  // Slurm may hold it queued or running
+    } else if (phase) {
+      r.state = *phase;
     } else if (r.files.startedElsewhere) {
-      r.state = caseStateName(deadAttemptState(r.sweepCase->dir));  // its task is over: its runner was killed
+      r.state = deadAttemptState(r.sweepCase->dir);  // its task is over: its runner was killed
     }
   }
   return reports;
@@ -107,14 +107,15 @@ std::vector<CaseReport> reportCases(const std::vector<SweepCase>& cases, const S
 std::vector<const SweepCase*> casesToRun(const std::vector<CaseReport>& reports, bool skipComplete = true) {
   std::vector<const SweepCase*> pending;
   for (const CaseReport& r : reports)
-    if ((r.state != "complete" || !skipComplete) && r.state != "running" && r.state != "queued" && r.state != "unknown")
+    if ((r.state != CaseState::Complete || !skipComplete) && r.state != CaseState::Running && r.state != CaseState::Queued &&
+        r.state != CaseState::Unknown)
       pending.push_back(r.sweepCase);
   return pending;
 }
 
 // Refuses to start cases while Slurm cannot say which of the folder's cases it still holds.
 void requireKnownStates(const std::vector<CaseReport>& reports, const std::string& problem) {
-  const auto unknown = std::count_if(reports.begin(), reports.end(), [](const CaseReport& r) { return r.state == "unknown"; });
+  const auto unknown = std::count_if(reports.begin(), reports.end(), [](const CaseReport& r) { return r.state == CaseState::Unknown; });
   if (unknown > 0)
     throw InputError("Slurm cannot say whether " + std::to_string(unknown) + " case(s) of this sweep are still queued or "
                      "running (" + problem + "); run this where squeue answers, so that no case runs twice (or, "
@@ -274,7 +275,7 @@ int printStatus(const SweepArguments& a) {
   const std::vector<CaseReport> reports = reportCases(cases, record, &slurmProblem);
   std::map<std::string, int> counts{{"complete", 0}, {"queued", 0},  {"running", 0}, {"interrupted", 0},
                                     {"failed", 0},   {"missing", 0}, {"unknown", 0}};
-  for (const CaseReport& r : reports) ++counts[r.state];
+  for (const CaseReport& r : reports) ++counts[caseStateName(r.state)];
   const std::vector<std::string> keys = sweepKeys(a.target);
   if (a.json) {
     nlohmann::json j = {{"folder", a.target}, {"counts", counts}, {"cases", nlohmann::json::array()},
@@ -283,7 +284,7 @@ int printStatus(const SweepArguments& a) {
     if (!slurmProblem.empty()) j["slurm_problem"] = slurmProblem;
     for (const CaseReport& r : reports)
       j["cases"].push_back({{"case", fs::path(r.sweepCase->dir).filename().string()},
-                            {"state", r.state},
+                            {"state", caseStateName(r.state)},
                             {"values", r.sweepCase->values},
                             {"exit_status", r.files.exitStatus >= 0 ? nlohmann::json(r.files.exitStatus) : nlohmann::json()},
                             {"slurm_job", r.slurmJob},
@@ -299,13 +300,13 @@ int printStatus(const SweepArguments& a) {
   for (const CaseReport& r : reports) {
     std::string detail;
     if (!r.slurmJob.empty()) detail = "slurm " + r.slurmJob + (r.slurmState.empty() ? "" : " " + r.slurmState);
-    if (r.state == "failed")
+    if (r.state == CaseState::Failed)
       detail += std::string(detail.empty() ? "" : ", ") +
                 (r.files.exitStatus > 0 ? "exit " + std::to_string(r.files.exitStatus) +
                                               (r.files.exitStatus == 2 ? " (bad input)" : r.files.exitStatus == 3 ? " (unstable)" : "")
                                         : std::string("no exit recorded")) +
                 ", see " + (fs::path(r.sweepCase->dir).filename() / "log.txt").string();
-    std::printf("  %-10s %-12s %-34s %s\n", fs::path(r.sweepCase->dir).filename().c_str(), r.state.c_str(), detail.c_str(),
+    std::printf("  %-10s %-12s %-34s %s\n", fs::path(r.sweepCase->dir).filename().c_str(), caseStateName(r.state), detail.c_str(),
                 valuesText(keys, r.sweepCase->values).c_str());
   }
   if (counts["interrupted"] + counts["failed"] + counts["missing"] > 0)
