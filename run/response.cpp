@@ -43,6 +43,61 @@ std::vector<LoadDrop> loadDrops(const std::vector<CurveSample>& c, std::size_t p
   return drops;
 }
 
+// K: least squares P = K delta + b over the fit window, on the first loading only (up to where
+// delta first decreases: a steered run's unloading and reloading are not the initial stiffness).
+void fitInitialStiffness(const std::vector<CurveSample>& c, double thickness, const ResponseSettings& settings,
+                         ResponseParameters& r) {
+  std::size_t firstLoading = 1;
+  while (firstLoading < c.size() && c[firstLoading].delta >= c[firstLoading - 1].delta) ++firstLoading;
+  std::size_t firstPeak = 0;  // the peak of the first loading (the run's peak when it only loads)
+  for (std::size_t i = 1; i < firstLoading; ++i)
+    if (c[i].load > c[firstPeak].load) firstPeak = i;
+  r.fitFrom = 0.0;
+  r.fitTo = std::min(settings.stiffnessFitRatio * thickness, 0.5 * c[firstPeak].delta);
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < firstLoading; ++i)
+    if (const CurveSample& s = c[i]; s.delta >= r.fitFrom && s.delta <= r.fitTo) {
+      n += 1;
+      sx += s.delta;
+      sy += s.load;
+      sxx += s.delta * s.delta;
+      sxy += s.delta * s.load;
+    }
+  if (n >= 2 && n * sxx - sx * sx > 0) r.stiffness = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// The loading envelope, where failure is read: the samples where the indenter is as deep as it
+// has ever been. Below that (a steered run backing the indenter off, and reloading up to where
+// it was) the load falls or rises because the indenter moves, not because the slab gives way.
+std::vector<std::size_t> loadingEnvelope(const std::vector<CurveSample>& c) {
+  std::vector<std::size_t> envelope;
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (c[i].delta >= deepest) {
+      deepest = c[i].delta;
+      envelope.push_back(i);
+    }
+  return envelope;
+}
+
+// The failure mode, from the final state.
+std::string failureModeOf(const IndentationRecord& record, const ResponseSettings& settings) {
+  const int fallen = static_cast<int>(record.fallen.size());
+  const bool loadedOut = std::any_of(record.fallen.begin(), record.fallen.end(),
+                                     [&](const FallenBody& f) { return f.name == record.targetName; });
+  // With nothing out, the mode says how far the run looked: "no failure" alone read as a verdict
+  // on a run a user had stopped at a delta_max of their choosing.
+  if (fallen == 0) {
+    if (record.stopReason == StopReason::DeltaMax) return "none up to delta_max";
+    if (record.stopReason == StopReason::Failure) return "load lost, no block out";
+    if (record.stopReason == StopReason::Requested) return "none up to the requested stop";
+    return "none yet (run incomplete)";
+  }
+  if (settings.freeBodies > 1 && fallen >= settings.freeBodies) return "collapse";
+  if (fallen == 1 && loadedOut) return "loaded block out";
+  return std::to_string(fallen) + (fallen == 1 ? " block out" : " blocks out");
+}
+
 }  // namespace
 
 ResponseParameters analyseResponse(const IndentationRecord& record, const ResponseSettings& settings) {
@@ -61,36 +116,9 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   r.deltaAtPeak = c[peak].delta;
   r.atPeak = contactStateAt(c[peak]);
 
-  // K: least squares P = K delta + b over the fit window, on the first loading only (up to where
-  // delta first decreases: a steered run's unloading and reloading are not the initial stiffness).
-  std::size_t firstLoading = 1;
-  while (firstLoading < c.size() && c[firstLoading].delta >= c[firstLoading - 1].delta) ++firstLoading;
-  std::size_t firstPeak = 0;  // the peak of the first loading (the run's peak when it only loads)
-  for (std::size_t i = 1; i < firstLoading; ++i)
-    if (c[i].load > c[firstPeak].load) firstPeak = i;
-  r.fitFrom = 0.0;
-  r.fitTo = std::min(settings.stiffnessFitRatio * record.thickness, 0.5 * c[firstPeak].delta);
-  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < firstLoading; ++i)
-    if (const CurveSample& s = c[i]; s.delta >= r.fitFrom && s.delta <= r.fitTo) {
-      n += 1;
-      sx += s.delta;
-      sy += s.load;
-      sxx += s.delta * s.delta;
-      sxy += s.delta * s.load;
-    }
-  if (n >= 2 && n * sxx - sx * sx > 0) r.stiffness = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  fitInitialStiffness(c, record.thickness, settings, r);
 
-  // Failure is read on the loading envelope only: the samples where the indenter is as deep as it
-  // has ever been. Below that (a steered run backing the indenter off, and reloading up to where
-  // it was) the load falls or rises because the indenter moves, not because the slab gives way.
-  std::vector<std::size_t> envelope;
-  double deepest = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < c.size(); ++i)
-    if (c[i].delta >= deepest) {
-      deepest = c[i].delta;
-      envelope.push_back(i);
-    }
+  const std::vector<std::size_t> envelope = loadingEnvelope(c);
   // From the peak on: the envelope's samples after it (the peak itself when it is one of them).
   const std::size_t peakOnEnvelope = static_cast<std::size_t>(
       std::lower_bound(envelope.begin(), envelope.end(), peak) - envelope.begin());
@@ -130,20 +158,7 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   r.quasiStatic = r.quasiStaticRatio <= settings.quasiStaticLimit;
   if (c[peak].time > c[0].time) r.loadingSpeed = (c[peak].delta - c[0].delta) / (c[peak].time - c[0].time);
 
-  // Failure mode from the final state.
-  const int fallen = static_cast<int>(record.fallen.size());
-  const bool loadedOut = std::any_of(record.fallen.begin(), record.fallen.end(),
-                                     [&](const FallenBody& f) { return f.name == record.targetName; });
-  // With nothing out, the mode says how far the run looked: "no failure" alone read as a verdict
-  // on a run a user had stopped at a delta_max of their choosing.
-  if (fallen == 0)
-    r.failureMode = record.stopReason == StopReason::DeltaMax   ? "none up to delta_max"
-                    : record.stopReason == StopReason::Failure   ? "load lost, no block out"
-                    : record.stopReason == StopReason::Requested ? "none up to the requested stop"
-                                                       : "none yet (run incomplete)";
-  else if (settings.freeBodies > 1 && fallen >= settings.freeBodies) r.failureMode = "collapse";
-  else if (fallen == 1 && loadedOut) r.failureMode = "loaded block out";
-  else r.failureMode = std::to_string(fallen) + (fallen == 1 ? " block out" : " blocks out");
+  r.failureMode = failureModeOf(record, settings);
 
   if (settings.youngsModulus > 0 && settings.spanLength > 0)
     r.peakLoadNormalised = r.peakLoad / (settings.youngsModulus * settings.spanLength * settings.spanLength);

@@ -111,31 +111,10 @@ Scene readScene(const std::string& path) {
   return readSceneText(readTextFile(path), path);
 }
 
-Scene readSceneText(const std::string& text, const std::string& path) {
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream where;
-    where << e.source().begin;
-    throw InputError(path + ": not valid TOML (" + std::string(e.description()) + " at " + where.str() + ")");
-  }
-  Scene scene;
-  scene.path = path;
-  const std::set<std::string> sections{"material", "span", "indenter", "protocol", "damping", "solver", "output",
-                                       "resolution"};
-  for (const auto& [key, node] : root)
-    if (!node.is_table() && std::string(key.str()) != "bundle")
-      throw InputError(path + ": unknown key '" + std::string(key.str()) + "'; top-level keys: bundle and the tables [" +
-                       "material], [span], [indenter], [protocol], [damping], [solver], [output], [resolution]");
-    else if (node.is_table() && !sections.count(std::string(key.str())))
-      throw InputError(path + ": unknown table [" + std::string(key.str()) + "]; see docs/scene.md");
+namespace {
 
-  Table top(path, "", &root);
-  top.text("bundle", scene.bundle);
-  if (scene.bundle.empty()) throw InputError(path + ": bundle = \"...\" is missing: the slab to load (a bundle directory)");
-  if (fs::path(scene.bundle).is_relative()) scene.bundle = (fs::path(path).parent_path() / scene.bundle).string();
-
+// [material]: Young's modulus, density, friction, the tangential stiffness
+void readMaterialTable(const std::string& path, const toml::table& root, Scene& scene) {
   Table material(path, "material", root["material"].as_table());
   material.number("youngs_modulus", scene.contact.youngsModulus, 1e3, 1e13, "Pa");
   material.number("density", scene.solver.density, 1e-3, 1e5, "kg/m^3");
@@ -147,14 +126,20 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   if (scene.contact.tangentialStiffnessAbsolute > 0 && root["material"]["tangential_ratio"])
     throw InputError(path + ": give material.tangential_stiffness (N/m^3) or material.tangential_ratio (k_t / k_n), not both");
   material.finish();
+}
 
+// [span]: k_n's free span and interfaces (the bundle's unless given)
+void readSpanTable(const std::string& path, const toml::table& root, Scene& scene) {
   scene.contact.spanLength = 0;  // from the bundle unless given
   scene.contact.spanInterfaces = 0;
   Table span(path, "span", root["span"].as_table());
   span.number("length", scene.contact.spanLength, 1e-6, 1e3, "m");
   span.integer("interfaces", scene.contact.spanInterfaces, 1, 100000);
   span.finish();
+}
 
+// [indenter]: the sphere, its speed and where it loads
+void readIndenterTable(const std::string& path, const toml::table& root, Scene& scene) {
   Table indenter(path, "indenter", root["indenter"].as_table());
   indenter.number("radius", scene.indenter.radius, 0, 10, "m; 0 = radius_ratio x the loaded block's thickness");
   indenter.number("radius_ratio", scene.indenter.radiusRatio, 1e-3, 100, "of the loaded block's thickness");
@@ -168,7 +153,10 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   indenter.number("clearance", scene.indenter.clearance, 0, 1, "m");
   indenter.number("stiffness_factor", scene.indenter.stiffnessFactor, 1e-3, 10, "x the blocks' k_n and k_t");
   indenter.finish();
+}
 
+// [protocol]: settling, delta_max, failure and the quasi-static checks
+void readProtocolTable(const std::string& path, const toml::table& root, Scene& scene) {
   Table protocol(path, "protocol", root["protocol"].as_table());
   protocol.number("settle_kinetic", scene.protocol.settleKinetic, 0, 1e6, "J; 0 = settle_kinetic_ratio x sum m g h");
   protocol.number("settle_kinetic_ratio", scene.protocol.settleKineticRatio, 1e-15, 1, "of the free bodies' sum m g h");
@@ -189,12 +177,18 @@ Scene readSceneText(const std::string& text, const std::string& path) {
     throw InputError(path + ": protocol.fallen_distance is gone: a body now falls when no block contact holds it "
                             "(docs/physics.md, \"Failure\"); remove the key, or tune protocol.fallen_clearance (a ratio)");
   protocol.finish();
+}
 
+// [damping]
+void readDampingTable(const std::string& path, const toml::table& root, Scene& scene) {
   Table damping(path, "damping", root["damping"].as_table());
   damping.number("local", scene.solver.localDamping, 0, 0.99, "fraction");
   damping.number("viscous", scene.solver.viscousDamping, 0, 1e9, "1/s");
   damping.finish();
+}
 
+// [solver]: time step, threads, gravity, level sets, method and contact evaluation
+void readSolverTable(const std::string& path, const toml::table& root, Scene& scene) {
   Table solver(path, "solver", root["solver"].as_table());
   solver.number("time_step", scene.solver.timeStep, 0, 1, "s; 0 = automatic");
   solver.number("time_step_factor", scene.solver.timeStepFactor, 1e-4, 1, "of the stability limit");
@@ -226,7 +220,10 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   solver.number("implicit_smooth_reaction_change", implicit.smoothReactionChange, 1e-6, 0.2, "of the reaction per increment");
   solver.number("implicit_dynamic_increment_ratio", implicit.dynamicIncrementRatio, 1, 1e6, "x the explicit automatic step");
   solver.finish();
+}
 
+// [resolution]: node spacing and voxel over the bundle's
+void readResolutionTable(const std::string& path, const toml::table& root, Scene& scene) {
   Table resolution(path, "resolution", root["resolution"].as_table());
   resolution.number("node_spacing", scene.resolution.nodeSpacing, 0, 1, "m; 0 = the bundle's");
   resolution.number("voxel", scene.resolution.voxelSize, 0, 1, "m; 0 = the bundle's");
@@ -244,13 +241,53 @@ Scene readSceneText(const std::string& text, const std::string& path) {
     throw InputError(path + ": resolution.size_gradient must be 0 (the bundle's) or between 0.05 and 100, got " +
                      std::to_string(scene.resolution.sizeGradient));
   resolution.finish();
+}
 
+// [output]: sampling, snapshots, progress and checkpoints
+void readOutputTable(const std::string& path, const toml::table& root, Scene& scene) {
   Table output(path, "output", root["output"].as_table());
   output.number("sample_every", scene.output.sampleEvery, 1e-9, 1, "m of travel");
   output.number("snapshot_every", scene.output.snapshotEvery, 1e-9, 1, "m of travel");
   output.number("progress_seconds", scene.output.progressSeconds, 0, 1e6, "s");
   output.number("checkpoint_seconds", scene.output.checkpointSeconds, 0, 1e6, "s");
   output.finish();
+}
+
+}  // namespace
+
+Scene readSceneText(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << e.source().begin;
+    throw InputError(path + ": not valid TOML (" + std::string(e.description()) + " at " + where.str() + ")");
+  }
+  Scene scene;
+  scene.path = path;
+  const std::set<std::string> sections{"material", "span", "indenter", "protocol", "damping", "solver", "output",
+                                       "resolution"};
+  for (const auto& [key, node] : root)
+    if (!node.is_table() && std::string(key.str()) != "bundle")
+      throw InputError(path + ": unknown key '" + std::string(key.str()) + "'; top-level keys: bundle and the tables [" +
+                       "material], [span], [indenter], [protocol], [damping], [solver], [output], [resolution]");
+    else if (node.is_table() && !sections.count(std::string(key.str())))
+      throw InputError(path + ": unknown table [" + std::string(key.str()) + "]; see docs/scene.md");
+
+  Table top(path, "", &root);
+  top.text("bundle", scene.bundle);
+  if (scene.bundle.empty()) throw InputError(path + ": bundle = \"...\" is missing: the slab to load (a bundle directory)");
+  if (fs::path(scene.bundle).is_relative()) scene.bundle = (fs::path(path).parent_path() / scene.bundle).string();
+
+  readMaterialTable(path, root, scene);
+  readSpanTable(path, root, scene);
+  readIndenterTable(path, root, scene);
+  readProtocolTable(path, root, scene);
+  readDampingTable(path, root, scene);
+  readSolverTable(path, root, scene);
+  readResolutionTable(path, root, scene);
+  readOutputTable(path, root, scene);
   return scene;
 }
 
