@@ -205,9 +205,38 @@ py::dict responseOf(const ResponseParameters& r) {
   return d;
 }
 
-}  // namespace
+// The indenter as Python sees it (Simulation.indenter).
+py::dict indenterOf(const Simulation& s) {
+  py::dict d;
+  const int k = s.session().state().sphere;
+  if (k < 0) return d;
+  const SphereObstacle& sphere = s.session().world().sphere(k);
+  d["centre"] = vectors({sphere.center})[py::int_(0)];
+  d["velocity"] = vectors({sphere.velocity})[py::int_(0)];
+  d["radius"] = sphere.radius;
+  d["reaction"] = vectors({s.session().world().sphereReaction(k)})[py::int_(0)];
+  return d;
+}
 
-void bindSimulation(py::module_& m) {
+// The energy budget as Python sees it (Simulation.energy).
+py::dict energyOf(const Simulation& s) {
+  const EnergyBudget e = s.session().world().energy();
+  py::dict d;
+  d["kinetic"] = e.kinetic;
+  d["elastic"] = e.elastic;
+  d["gravity_work"] = e.gravityWork;
+  d["external_work"] = e.obstacleWork;
+  d["friction"] = e.friction;
+  d["damping"] = e.damping;
+  d["retired_kinetic"] = e.retiredKinetic;
+  d["projection"] = e.projection;
+  d["residual"] = e.residual();
+  return d;
+}
+
+// What a run's callbacks receive: Sample (a curve point), Control (what a sample callback may
+// change) and Progress; and the curve's units.
+void bindCallbackTypes(py::module_& m) {
   py::dict units;
   for (const CurveColumn& c : curveColumns()) units[c.name] = c.unit;
   m.attr("curve_units") = units;
@@ -232,6 +261,12 @@ void bindSimulation(py::module_& m) {
       .def_readonly("eta_seconds", &Progress::etaSeconds)
       .def_readonly("settling", &Progress::settling)
       .def_readonly("settle_eta_seconds", &Progress::settleEtaSeconds);
+}
+
+}  // namespace
+
+void bindSimulation(py::module_& m) {
+  bindCallbackTypes(m);
 
   py::class_<Simulation>(m, "Simulation",
                          "One indentation test of a slab: a scene, its bundle, the World, the record.")
@@ -279,34 +314,12 @@ void bindSimulation(py::module_& m) {
                              "(n, 4) unit quaternions (w, x, y, z), body to world")
       .def_property_readonly("velocities", [](const Simulation& s) { return vectors(s.session().world().bodies().velocity); },
                              "(n, 3) m/s")
-      .def_property_readonly("indenter", [](const Simulation& s) {
-        py::dict d;
-        const int k = s.session().state().sphere;
-        if (k < 0) return d;
-        const SphereObstacle& sphere = s.session().world().sphere(k);
-        d["centre"] = vectors({sphere.center})[py::int_(0)];
-        d["velocity"] = vectors({sphere.velocity})[py::int_(0)];
-        d["radius"] = sphere.radius;
-        d["reaction"] = vectors({s.session().world().sphereReaction(k)})[py::int_(0)];
-        return d;
-      }, "the indenter: centre (m), velocity (m/s), radius (m), reaction of the bodies on it (N)")
+      .def_property_readonly("indenter", &indenterOf,
+                             "the indenter: centre (m), velocity (m/s), radius (m), reaction of the bodies on it (N)")
       .def("contacts", [](const Simulation& s) { return contactsOf(s.session().world()); },
            "Pairs in contact now: a, b (b < 0: an obstacle, -1 the indenter), force on a (N), its normal_force "
            "part (N; the rest is friction), point (m), node_contacts, sliding_nodes, area (m^2), elastic (J)")
-      .def_property_readonly("energy", [](const Simulation& s) {
-        const EnergyBudget e = s.session().world().energy();
-        py::dict d;
-        d["kinetic"] = e.kinetic;
-        d["elastic"] = e.elastic;
-        d["gravity_work"] = e.gravityWork;
-        d["external_work"] = e.obstacleWork;
-        d["friction"] = e.friction;
-        d["damping"] = e.damping;
-        d["retired_kinetic"] = e.retiredKinetic;
-        d["projection"] = e.projection;
-        d["residual"] = e.residual();
-        return d;
-      }, "the energy budget since the start, J")
+      .def_property_readonly("energy", &energyOf, "the energy budget since the start, J")
       .def_property_readonly("time", [](const Simulation& s) { return s.session().world().time(); }, "s")
       .def_property_readonly("steps", [](const Simulation& s) { return s.session().world().stepCount(); })
       .def_property_readonly("time_step", [](const Simulation& s) { return s.session().world().timeStep(); }, "s")

@@ -120,7 +120,8 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
   std::printf("written to %s (%s)\n", out.c_str(), writtenFiles(out).c_str());
 }
 
-int runTest(const RunArguments& a) {
+// The session of `tessera run`: a new run from the scene, or a resumed one; the arguments checked first.
+std::unique_ptr<RunSession> openSession(const RunArguments& a) {
   if (a.resume.empty() == a.scene.empty()) throw InputError("give either a SCENE file (with -o OUTDIR) or --resume OUTDIR");
   if (a.resume.empty() && a.output.empty()) throw InputError("-o OUTDIR is required with a scene");
   if (!a.resume.empty() && !a.output.empty() &&
@@ -142,28 +143,31 @@ int runTest(const RunArguments& a) {
   } else {
     session = RunSession::resume(a.resume, a.bundle, a.preset, a.threads, log);
   }
-  const std::string& out = session->output();
-  const World& world = session->world();
-  const ContactParameters& contact = session->contact();
-  if (session->finishedAndWritten()) {  // its results are in place: left as they are
-    std::fprintf(stderr, "run: %s is complete (stopped: %s at delta = %.4g mm); nothing to resume\n", out.c_str(),
-                 stopReasonName(session->record().stopReason), session->record().curve.empty() ? 0.0 : session->record().curve.back().delta * 1e3);
-    return 0;
-  }
-  if (session->resumed())
+  return session;
+}
+
+// What the run is, before it starts: resumed where, the material and step, each shape's level set.
+void printRunHeader(const RunSession& session) {
+  const std::string& out = session.output();
+  const World& world = session.world();
+  const ContactParameters& contact = session.contact();
+  if (session.resumed())
     std::fprintf(stderr, "run: resuming %s at t = %.6g s (step %ld)\n", out.c_str(), world.time(), world.stepCount());
   if (world.settings().method == SolverMethod::Implicit)
     std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, implicit increments of up to %.3g s "
-                 "(the explicit step would be %.3g s)\n", session->bundle().bodies.size(), contact.youngsModulus * 1e-9,
+                 "(the explicit step would be %.3g s)\n", session.bundle().bodies.size(), contact.youngsModulus * 1e-9,
                  contact.friction, contact.normalStiffness(), world.timeStep(), world.automaticTimeStep());
   else
     std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, dt = %.3g s (automatic %.3g s)\n",
-                 session->bundle().bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
+                 session.bundle().bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
                  world.timeStep(), world.automaticTimeStep());
-  for (const Shape& shape : session->bundle().shapes)
+  for (const Shape& shape : session.bundle().shapes)
     std::fprintf(stderr, "run: shape '%s': %s\n", shape.name.c_str(),
-                 levelSetPath(shape, session->scene().solver.exactConvexLevelSets, session->scene().solver.exactMeshLevelSets).c_str());
+                 levelSetPath(shape, session.scene().solver.exactConvexLevelSets, session.scene().solver.exactMeshLevelSets).c_str());
+}
 
+// Progress lines and warnings on the terminal, and the stop that Ctrl-C or SIGTERM requests.
+RunHooks terminalHooks() {
   RunHooks hooks;
   hooks.progress = [](const Progress& p) {
     if (p.settling) {
@@ -177,6 +181,19 @@ int runTest(const RunArguments& a) {
   };
   hooks.interrupted = [] { return stopRequested.load(); };
   hooks.warning = [](const std::string& w) { std::cerr << "run: warning: " << w << "\n"; };
+  return hooks;
+}
+
+int runTest(const RunArguments& a) {
+  const std::unique_ptr<RunSession> session = openSession(a);
+  const std::string& out = session->output();
+  if (session->finishedAndWritten()) {  // its results are in place: left as they are
+    std::fprintf(stderr, "run: %s is complete (stopped: %s at delta = %.4g mm); nothing to resume\n", out.c_str(),
+                 stopReasonName(session->record().stopReason), session->record().curve.empty() ? 0.0 : session->record().curve.back().delta * 1e3);
+    return 0;
+  }
+  printRunHeader(*session);
+  const RunHooks hooks = terminalHooks();
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
   std::string failure;
