@@ -52,10 +52,12 @@ void ImportAndValidate(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(bodyMesh());
 }
 
+// Arg 1: with the block's symmetries (1, the default) or without (0).
 void SurfaceNodesStage(benchmark::State& state) {
   const TriangleMesh mesh = bodyMesh();
   SurfaceNodeOptions options;
   options.spacing = resolution(state).nodeSpacing;
+  options.keepSymmetries = state.range(1) != 0;
   for (auto _ : state) {
     const MeshFeatures features = findFeatures(mesh, options.featureAngle);
     const SurfaceNodes nodes = sampleSurfaceNodes(mesh, features, options);
@@ -77,6 +79,6 @@ void SignedDistanceStage(benchmark::State& state) {
 
 BENCHMARK(PrepWhole)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 BENCHMARK(ImportAndValidate)->Arg(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(SurfaceNodesStage)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(SurfaceNodesStage)->Args({1, 1})->Args({1, 0})->Args({2, 1})->Args({2, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(SignedDistanceStage)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
