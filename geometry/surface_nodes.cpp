@@ -572,4 +572,24 @@ SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& fe
   return out;
 }
 
+std::size_t keptSymmetries(const SurfaceNodes& nodes, const SymmetryGroup& group, double tolerance) {
+  PointGrid grid(std::max(tolerance, 1e-300) * 1e3);
+  for (int i = 0; i < static_cast<int>(nodes.size()); ++i) grid.insert(i, nodes.positions[i]);
+  std::size_t kept = 0;
+  for (std::size_t g = 0; g < group.size(); ++g) {
+    bool keeps = true;
+    for (std::size_t i = 0; i < nodes.size() && keeps; ++i) {
+      const Eigen::Vector3d image = group.apply(g, nodes.positions[i]);
+      bool found = false;
+      grid.forEachNear(image, tolerance, [&](int j) {
+        found = found || (squaredDistance(nodes.positions[j], image) <= tolerance * tolerance &&
+                          std::abs(nodes.areas[j] - nodes.areas[i]) <= 1e-9 * nodes.areas[i]);
+      });
+      keeps = found;
+    }
+    kept += keeps ? 1 : 0;
+  }
+  return kept;
+}
+
 }  // namespace tessera

@@ -1,5 +1,6 @@
 #pragma once
 #include "geometry/mesh_features.h"
+#include "geometry/mesh_symmetry.h"
 #include "geometry/triangle_mesh.h"
 
 #include <cstdint>
@@ -63,5 +64,10 @@ struct SurfaceNodes {
 /// Throws InputError when spacing <= 0 or sizeGradient <= 0.
 SurfaceNodes sampleSurfaceNodes(const TriangleMesh& mesh, const MeshFeatures& features,
                                 const SurfaceNodeOptions& options);
+
+/// How many elements of `group` the node set keeps: those that map every node onto a node of the
+/// same area (relative 1e-9), within `tolerance` (m). A bundle's nodes sampled before nodes kept
+/// symmetries keep the identity alone.
+std::size_t keptSymmetries(const SurfaceNodes& nodes, const SymmetryGroup& group, double tolerance);
 
 }  // namespace tessera

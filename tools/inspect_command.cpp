@@ -2,7 +2,9 @@
 #include "io/input_error.h"
 #include "io/json_text.h"
 #include "geometry/length_unit.h"
+#include "geometry/mesh_features.h"
 #include "geometry/point_spacing.h"
+#include "geometry/surface_nodes.h"
 #include "levelset/bundle.h"
 #include "tools/commands.h"
 
@@ -35,6 +37,10 @@ nlohmann::json toJson(const Eigen::Matrix3d& m) {
 
 nlohmann::json describeShape(const Shape& s) {
   const SpacingStats spacing = spacingStats(s.nodes.positions, s.nodes.patches);
+  // The block's symmetries, and how many of them its nodes keep (bundles prepared before nodes kept
+  // them keep none but the identity; docs/geometry.md, "Surface nodes").
+  const double size = boundingBox(s.mesh.vertices).diagonal().norm();
+  const SymmetryGroup symmetry = findSymmetries(s.mesh, findFeatures(s.mesh, s.resolution.featureAngle), 1e-6 * size);
   const double areaSum = std::accumulate(s.nodes.areas.begin(), s.nodes.areas.end(), 0.0);
   return {
       {"name", s.name},
@@ -53,7 +59,9 @@ nlohmann::json describeShape(const Shape& s) {
         {"requested_spacing_m", s.resolution.nodeSpacing},
         {"edge_spacing_fraction", s.resolution.edgeSpacingFraction},
         {"size_gradient", s.resolution.sizeGradient},
-        {"nearest_spacing_m", {{"min", spacing.min}, {"mean", spacing.mean}, {"max", spacing.max}}}}},
+        {"nearest_spacing_m", {{"min", spacing.min}, {"mean", spacing.mean}, {"max", spacing.max}}},
+        {"symmetries_kept", keptSymmetries(s.nodes, symmetry, 1e-9 * size)}}},
+      {"symmetries", symmetry.size()},
       {"sdf",
        {{"voxel_size_m", s.sdf.voxelSize},
         {"dims", {s.sdf.dims[0], s.sdf.dims[1], s.sdf.dims[2]}},
@@ -101,6 +109,9 @@ void printShapeText(const nlohmann::json& j, double unit, const std::string& uni
               len(n["nearest_spacing_m"]["min"]), len(n["nearest_spacing_m"]["mean"]), len(n["nearest_spacing_m"]["max"]),
               unitName.c_str(), len(n["requested_spacing_m"]),
               len(n["requested_spacing_m"]) * n["edge_spacing_fraction"].get<double>(), n["size_gradient"].get<double>());
+  const std::size_t symmetries = j["symmetries"], kept = n["symmetries_kept"];
+  std::printf("  symmetries          %zu (mirrors and rotations of the block); the nodes keep %zu%s\n", symmetries, kept,
+              kept < symmetries ? ": prepare the shape again (tessera prep, tile) for nodes that keep them all" : "");
   std::printf("  grid                %d x %d x %d, voxel %.4g %s, band %d voxels, file %s\n", g["dims"][0].get<int>(),
               g["dims"][1].get<int>(), g["dims"][2].get<int>(), len(g["voxel_size_m"]), unitName.c_str(),
               g["exterior_band_voxels"].get<int>(), g["vdb_file"].get<std::string>().c_str());

@@ -117,6 +117,7 @@ TEST_CASE("surface nodes keep the block's symmetries to rounding, with exact are
     for (const double edgeSpacing : {0.0, 0.5 * c.spacing}) {
       const SurfaceNodes nodes = nodesOf(b, c.spacing, edgeSpacing);
       REQUIRE(nodes.symmetries == group.size());
+      REQUIRE(keptSymmetries(nodes, group, 1e-12 * b.size) == group.size());
       for (std::size_t g = 0; g < group.size(); ++g)
         REQUIRE(symmetryDefect(nodes, group.centre, group.elements[g], b.size) < 1e-12);
       requirePatchAreaSums(b, nodes);
@@ -126,6 +127,7 @@ TEST_CASE("surface nodes keep the block's symmetries to rounding, with exact are
       for (std::size_t g = 0; g < group.size(); ++g)
         worst = std::max(worst, symmetryDefect(plain, group.centre, group.elements[g], b.size));
       REQUIRE(worst > 1e-6);
+      REQUIRE(keptSymmetries(plain, group, 1e-12 * b.size) < group.size());
     }
   }
   // The planar block's two mirrors, written exactly: x -> -x and y -> -y about the centroid.
