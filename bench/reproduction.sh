@@ -5,8 +5,8 @@
 #   hypotheses:        k_t/k_n in {0.3, 0.1} across mu and an absolute k_t across E (--preset fast),
 #                      post-failure runs at E = 3.3 GPa, mu in {0.19, 0.2, 0.23} (default scene)
 # Usage: bench/reproduction.sh [OUTDIR]   (default out/reproduction; needs out/default_slab from
-# scripts/run.sh). Re-running finishes only what is missing. 37 min on 2 cores (measured 2026-11-22);
-# tables for docs/reproduction.md: /usr/bin/python3 bench/reproduction_tables.py.
+# scripts/run.sh). Re-running finishes only what is missing. 6 min on 2 cores (measured 2026-11-26: runs stop when
+# the loaded block falls clear); tables for docs/reproduction.md: /usr/bin/python3 bench/reproduction_tables.py.
 # CONTACT_EVALUATION=one-way runs the paper's studies (E, mu, post-failure) with one-way contact
 # evaluation (docs/physics.md) instead: bench/reproduction.sh out/reproduction_one_way.
 set -euo pipefail
