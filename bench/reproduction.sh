@@ -2,7 +2,7 @@
 # The paper's two studies and the hypothesis studies of docs/reproduction.md, with the failure
 # protocol of docs/physics.md ("Protocol"): a run stops once the load is gone and every free body
 # is at rest or out (protocol.stop_on_failure), else at delta_max = 2 h.
-#   E and mu studies:  the default scene (paper resolution: 0.25 mm voxels, 0.6 mm nodes; 30 mm/s)
+#   E and mu studies:  the default scene (0.25 mm voxels, 0.6 mm nodes graded to 0.15 mm; 30 mm/s)
 #   hypotheses:        k_t/k_n in {0.3, 0.1} across mu and an absolute k_t across E (--preset fast),
 #                      post-failure runs at E = 3.3 GPa, mu in {0.19, 0.2, 0.23} (default scene)
 # Usage: bench/reproduction.sh [OUTDIR]   (default out/reproduction; needs out/default_slab from
