@@ -52,4 +52,11 @@ SlabPlan layoutSlabPlan(const std::string& layoutFile, long maxBodies) {
   return plan;
 }
 
+Bundle tileSlab(const SlabPlan& plan, const ShapeResolution& resolution, PrepLog& log, const ShapeLimits& limits) {
+  Bundle bundle = tileAssembly(plan.shapes, plan.placements, plan.unit, resolution, log, limits, plan.up);
+  bundle.spanLength = plan.spanLength;
+  bundle.spanInterfaces = plan.spanInterfaces;
+  return bundle;
+}
+
 }  // namespace tessera

@@ -1,6 +1,7 @@
 #pragma once
 #include "geometry/tessellation.h"
 #include "levelset/layout_file.h"
+#include "levelset/tiler.h"
 
 #include <string>
 #include <vector>
@@ -29,5 +30,10 @@ SlabPlan gridSlabPlan(const std::string& block, const std::string& unit, const S
 
 /// The plan of a layout file (docs/tiling.md). InputError if it places more than `maxBodies`.
 SlabPlan layoutSlabPlan(const std::string& layoutFile, long maxBodies);
+
+/// The bundle of a plan: its shapes prepared at `resolution` within `limits` and its bodies placed
+/// (tileAssembly), with the plan's span. What `tessera tile` and Python's tile() both write, after
+/// checkAssemblyBeforeWriting.
+Bundle tileSlab(const SlabPlan& plan, const ShapeResolution& resolution, PrepLog& log, const ShapeLimits& limits = {});
 
 }  // namespace tessera

@@ -41,9 +41,7 @@ ShapeResolution resolution(std::optional<double> voxel, std::optional<double> sp
 py::dict tileAndWrite(const SlabPlan& plan, const std::string& output, const ShapeResolution& r, double gap, bool replace) {
   checkBundleOutput(output, replace);
   PrepLog log;
-  Bundle bundle = tileAssembly(plan.shapes, plan.placements, plan.unit, r, log, {}, plan.up);
-  bundle.spanLength = plan.spanLength;
-  bundle.spanInterfaces = plan.spanInterfaces;
+  const Bundle bundle = tileSlab(plan, r, log);
   const AssemblySummary summary =
       checkAssemblyBeforeWriting(bundle, std::nullopt, gap, "check the pitch or the layout positions, or add a gap",
                                  "check the pitch or positions (in m) and that the blocks' thickness is along z (up='y' for y-up meshes)",

@@ -82,9 +82,7 @@ void runTile(const TileArguments& a) {
 
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "tile: " << m << "\n"; };
-  Bundle bundle = tileAssembly(plan.shapes, plan.placements, unitName, resolution, log, shapeLimits(a.resolution), plan.up);
-  bundle.spanLength = plan.spanLength;
-  bundle.spanInterfaces = plan.spanInterfaces;
+  const Bundle bundle = tileSlab(plan, resolution, log, shapeLimits(a.resolution));
 
   for (const auto& note : log.notes) std::cerr << "tile: note: " << note << "\n";
   for (const auto& warning : log.warnings) std::cerr << "tile: warning: " << warning << "\n";
