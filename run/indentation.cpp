@@ -152,6 +152,8 @@ private:
     record_.stopReason = StopReason::Interrupted;
     return true;
   }
+  // The record brought up to now and handed to the checkpoint hook: at the session's end, and
+  // every checkpointSeconds of wall time (on a step that is a multiple of 100).
   void finish() {
     recordStepping(record_, world_);
     record_.wallSeconds = wallBefore_ + wall();
@@ -160,9 +162,7 @@ private:
   void checkpointDue() {
     if (!hooks_.checkpoint || world_.stepCount() % 100 != 0 || wall() - lastCheckpoint_ < hooks_.checkpointSeconds) return;
     lastCheckpoint_ = wall();
-    recordStepping(record_, world_);
-    record_.wallSeconds = wallBefore_ + wall();
-    hooks_.checkpoint(state_);
+    finish();
   }
 
   // 1. Settle under gravity, until at rest or the settling time limit. False when interrupted.

@@ -3,7 +3,6 @@
 #include "io/file_digest.h"
 #include "io/folder_lock.h"
 #include "io/input_error.h"
-#include "io/text_file.h"
 #include "io/output_directory.h"
 #include "io/safe_write.h"
 #include "levelset/assembly_checks.h"
@@ -28,11 +27,6 @@ namespace tessera {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string readText(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw InputError(path + ": no such scene file; see assets/scenes/default.toml for an example");
-  return readTextFile(path);
-}
 
 // threads: -1 the scene's, 0 all cores, else a count up to kMaxThreads.
 void checkThreadRequest(int threads) {
@@ -173,7 +167,7 @@ std::unique_ptr<RunSession> RunSession::start(const RunRequest& request, const R
   checkThreadRequest(request.threads);
   if (!s.output_.empty() && fs::exists(checkpointFile(s.output_)))
     throw InputError(s.output_ + ": holds a run already; resume it with --resume " + s.output_ + " or choose another -o");
-  const std::string sceneText = readText(request.scene);
+  const std::string sceneText = readSceneFile(request.scene);
   std::vector<std::pair<std::string, double>> overrides;
   if (!request.preset.empty()) overrides = findPreset(request.preset).overrides;
   overrides.insert(overrides.end(), request.overrides.begin(), request.overrides.end());
@@ -244,11 +238,11 @@ std::unique_ptr<RunSession> RunSession::resume(const std::string& folder, const 
   if (!preset.empty() && preset != source.preset)
     throw InputError(folder + ": this run started " + (source.preset.empty() ? "without --preset" : "with --preset " + source.preset) +
                      ", not --preset " + preset + "; " + fix);
-  if (fs::is_regular_file(source.scene) && textDigest(readText(source.scene)) != source.sceneDigest)
+  if (fs::is_regular_file(source.scene) && textDigest(readSceneFile(source.scene)) != source.sceneDigest)
     throw InputError(source.scene + ": changed since the run in " + folder + " started; restore it to resume, or " + newRun);
   const std::string kept = keptScenePath(folder);
   const bool derived = derivedScene(source);
-  if (derived && fs::exists(kept) && readText(kept) != source.sceneText)
+  if (derived && fs::exists(kept) && readSceneFile(kept) != source.sceneText)
     throw InputError(kept + ": changed since the run started; restore it to resume, or " + newRun);
   s.scene_ = readSceneText(source.sceneText, derived ? kept : source.scene);
   const fs::path beside = fs::path(folder) / source.bundleRelative;

@@ -106,10 +106,12 @@ private:
 
 }  // namespace
 
-Scene readScene(const std::string& path) {
-  if (!fs::exists(path)) throw InputError(path + ": no such scene file; see assets/scenes/default.toml for an example");
-  return readSceneText(readTextFile(path), path);
+std::string readSceneFile(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw InputError(path + ": no such scene file; see assets/scenes/default.toml for an example");
+  return readTextFile(path);
 }
+
+Scene readScene(const std::string& path) { return readSceneText(readSceneFile(path), path); }
 
 namespace {
 

@@ -102,6 +102,8 @@ struct Scene {
   ResolutionOverride resolution;
 };
 
+/// The text of a scene file; InputError naming it when it is not a file.
+std::string readSceneFile(const std::string& path);
 /// Reads a TOML scene file; unknown keys, wrong types and out-of-range values are InputErrors
 /// naming the file, the key and the accepted range. See docs/scene.md.
 Scene readScene(const std::string& path);
