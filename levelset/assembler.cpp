@@ -22,24 +22,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Piece {
-  std::string name, label;  // body name; file (and piece) for messages
-  TriangleMesh mesh;        // world, m, z up
-  bool fixed = false;
-};
-
 // Reads one file into its pieces, turned z-up.
-std::vector<Piece> readPieces(const std::string& file, const AssembleOptions& options, bool fixed) {
+std::vector<AssemblyPart> readPieces(const std::string& file, const AssembleOptions& options, bool fixed) {
   MeshImportOptions import;
   import.metresPerUnit = parseLengthUnit(options.unit).metres;
   import.up = options.up;
   ImportedMesh imported = importMesh(file, import);
   std::vector<TriangleMesh> meshes = splitPieces(imported.mesh);
-  std::vector<Piece> pieces;
+  std::vector<AssemblyPart> pieces;
   const std::string stem = shapeNameFromPath(file);
   const int digits = static_cast<int>(std::to_string(meshes.size()).size());
   for (std::size_t k = 0; k < meshes.size(); ++k) {
-    Piece p;
+    AssemblyPart p;
     if (meshes.size() == 1) p.name = stem;
     else {
       char suffix[32];
@@ -172,16 +166,20 @@ void estimateSpan(const Bundle& bundle, double& length, int& interfaces, std::st
 Bundle assembleParts(const std::vector<std::string>& files, const AssembleOptions& options, PrepLog& log,
                      AssembleReport& report) {
   if (options.unit.empty()) throw InputError("state the files' length unit with --unit (mm, cm, m, in): mesh files carry none");
-  std::vector<Piece> pieces;
+  std::vector<AssemblyPart> pieces;
   for (const std::string& frame : options.frameFiles) {
     if (!fs::exists(frame)) throw InputError(frame + ": no such frame file; give the mesh of the fixed frame with --frame");
-    for (Piece& p : readPieces(frame, options, true)) pieces.push_back(std::move(p));
+    for (AssemblyPart& p : readPieces(frame, options, true)) pieces.push_back(std::move(p));
   }
   for (const std::string& file : files)
-    for (Piece& p : readPieces(file, options, false)) pieces.push_back(std::move(p));
+    for (AssemblyPart& p : readPieces(file, options, false)) pieces.push_back(std::move(p));
   report.files = files.size() + options.frameFiles.size();
   report.pieces = pieces.size();
   if (pieces.empty()) throw InputError("no part files given: list the part meshes (or a folder of them)");
+  return assembleParts(std::move(pieces), options, log, report);
+}
+
+Bundle assembleParts(std::vector<AssemblyPart> pieces, const AssembleOptions& options, PrepLog& log, AssembleReport& report) {
 
   // Names and supports first: what can be refused is refused before any shape is built.
   std::vector<Eigen::Vector2d> centres;
@@ -195,7 +193,7 @@ Bundle assembleParts(const std::vector<std::string>& files, const AssembleOption
   }
   for (long id : options.fixIds) {
     bool found = false;
-    for (Piece& piece : pieces)
+    for (AssemblyPart& piece : pieces)
       if (nameNumber(piece.name) == id) piece.fixed = found = true;
     if (!found)
       throw InputError("--fix-ids: no part's name ends in " + std::to_string(id) +
@@ -203,7 +201,7 @@ Bundle assembleParts(const std::vector<std::string>& files, const AssembleOption
   }
   if (options.fixOuterRing)
     for (int i : outerRing(centres)) pieces[i].fixed = true;
-  const auto fixedCount = std::count_if(pieces.begin(), pieces.end(), [](const Piece& p) { return p.fixed; });
+  const auto fixedCount = std::count_if(pieces.begin(), pieces.end(), [](const AssemblyPart& p) { return p.fixed; });
   if (fixedCount == 0)
     throw InputError("no body is fixed: name the supports with --fix PATTERN or --fix-ids LIST, give the frame mesh "
                      "with --frame FILE, or use --fix-outer-ring");
@@ -215,7 +213,7 @@ Bundle assembleParts(const std::vector<std::string>& files, const AssembleOption
   bundle.sourceUp = options.up;
   std::vector<int> firstPiece;  // per shape: the piece whose mesh is its source
   for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const Piece& piece = pieces[i];
+    const AssemblyPart& piece = pieces[i];
     const double size = boundingBox(piece.mesh.vertices).diagonal().norm();
     std::optional<Placement> placement;
     int shape = -1;

@@ -33,12 +33,26 @@ struct AssembleReport {
   std::string spanRule;  ///< how L and M were chosen
 };
 
+/// One part of an assembly: its mesh in place (world, m, z up).
+struct AssemblyPart {
+  std::string name;   ///< body name
+  std::string label;  ///< where it came from, for messages (file, piece)
+  TriangleMesh mesh;
+  bool fixed = false;
+};
+
 /// Reads every file (multi-object and multi-piece OBJ, STL, PLY: each connected piece one body,
 /// named after its file, "<stem>_<k>" when a file holds several), turns the up axis to +z, shares
 /// one shape among identical parts, fixes bodies by the rules of `options` and sets the span.
 /// Throws InputError naming the file for a part it cannot use, for no fixed body, or for no free one.
 Bundle assembleParts(const std::vector<std::string>& files, const AssembleOptions& options, PrepLog& log,
                      AssembleReport& report);
+
+/// The bundle of parts already in place (a generated tiling's blocks): the fixing rules of
+/// `options` applied on top of each part's own `fixed`, one shape shared among parts equal up to a
+/// rigid motion, the span set (report.spanRule). Throws InputError for a repeated name, for no
+/// fixed body, or for no free one.
+Bundle assembleParts(std::vector<AssemblyPart> parts, const AssembleOptions& options, PrepLog& log, AssembleReport& report);
 
 /// The bodies on the assembly's outer ring: those whose centroid lies, in plan (x, y), within half
 /// the distance to its nearest neighbour's centroid of the boundary of the convex hull of all

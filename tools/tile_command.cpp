@@ -2,6 +2,7 @@
 #include "io/input_error.h"
 #include "geometry/length_unit.h"
 #include "levelset/assembly.h"
+#include "levelset/generated_slab.h"
 #include "levelset/slab_plan.h"
 #include "levelset/tiler.h"
 #include "levelset/assembly_checks.h"
@@ -9,6 +10,7 @@
 #include "tools/commands.h"
 #include "tools/resolution_options.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +24,10 @@ namespace {
 struct TileArguments {
   std::string block;
   std::string layout;
+  std::string tiling;
+  std::optional<double> thickness;
+  double angle = 5;
+  unsigned seed = 1;
   std::string unit;
   std::string up = "z";
   std::string grid = "7x7";
@@ -50,11 +56,68 @@ std::pair<int, int> parseGrid(const std::string& text, long maxBodies) {
   return {static_cast<int>(columns), static_cast<int>(rows)};
 }
 
+// The blocks of a tiling (--tiling), each shape prepared once.
+Bundle generatedSlab(const TileArguments& a, PrepLog& log) {
+  if (a.unit.empty()) throw InputError("--tiling: state the length unit of --pitch and --thickness with --unit (mm, cm, m, in)");
+  if (!a.thickness) throw InputError("--tiling needs --thickness: the blocks' thickness, in --unit");
+  const double m = parseLengthUnit(a.unit).metres;
+  GeneratedSlabOptions options;
+  const auto& kinds = tilingKinds();
+  if (std::find(kinds.begin(), kinds.end(), a.tiling) != kinds.end()) {
+    if (!a.pitch) throw InputError("--tiling " + a.tiling + " needs --pitch: the distance between neighbouring tile centres, in --unit");
+    options.tiling.kind = a.tiling;
+    std::tie(options.tiling.columns, options.tiling.rows) = parseGrid(a.grid, a.maxBodies);
+    options.tiling.pitch = *a.pitch * m;
+    options.tiling.seed = a.seed;
+  } else {
+    options.tilingFile = a.tiling;
+    options.metresPerUnit = m;
+  }
+  options.thickness = *a.thickness * m;
+  if (!(a.angle >= 0 && a.angle < 90)) throw InputError("--angle " + std::to_string(a.angle) + ": give the faces' tilt in degrees, in [0, 90)");
+  options.angle = a.angle * M_PI / 180;
+  if (a.fix != "perimeter" && a.fix != "none") throw InputError("--fix '" + a.fix + "': use perimeter or none");
+  options.fixPerimeter = a.fix == "perimeter";
+  std::vector<AssemblyPart> parts = generatedSlabParts(options);
+  if (static_cast<long>(parts.size()) > a.maxBodies)
+    throw InputError(a.tiling + ": " + std::to_string(parts.size()) + " tiles, more than --max-bodies " + std::to_string(a.maxBodies) +
+                     "; raise --max-bodies if you mean it");
+  AssembleOptions assemble;
+  assemble.unit = a.unit;
+  assemble.resolution = shapeResolution(a.resolution, m, a.tiling);
+  assemble.limits = shapeLimits(a.resolution);
+  AssembleReport report;
+  Bundle bundle = assembleParts(std::move(parts), assemble, log, report);
+  std::cerr << "tile: span " << report.spanRule << "\n";
+  return bundle;
+}
+
+// Checks the assembly, then writes it and prints the summary (nothing is written if a check fails).
+void writeCheckedSlab(const TileArguments& a, const Bundle& bundle, const PrepLog& log, double metresPerUnit,
+                      const std::string& isolatedHint, std::chrono::steady_clock::time_point start) {
+  for (const auto& note : log.notes) std::cerr << "tile: note: " << note << "\n";
+  for (const auto& warning : log.warnings) std::cerr << "tile: warning: " << warning << "\n";
+  const AssemblySummary summary =
+      checkAssemblyBeforeWriting(bundle, a.overlapTolerance ? std::optional<double>(*a.overlapTolerance * metresPerUnit) : std::nullopt,
+                                 a.gap * metresPerUnit, "check --pitch or the layout positions, or add --gap", isolatedHint, true);
+  writeBundle(a.output, bundle);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  printAssemblySummary(bundle, summary, "tile");
+  std::printf("written to %s in %.2f s\n", a.output.c_str(), seconds);
+}
+
 void runTile(const TileArguments& a) {
   const auto start = std::chrono::steady_clock::now();
-  if (a.block.empty() == a.layout.empty())
-    throw InputError("give either --block MESH (with --grid and --pitch) or --layout FILE");
+  if (a.block.empty() + a.layout.empty() + a.tiling.empty() != 2)
+    throw InputError("give one of --block MESH (with --grid and --pitch), --layout FILE or --tiling NAME|FILE");
   checkBundleOutput(a.output, a.replace);
+  if (!a.tiling.empty()) {
+    PrepLog log;
+    log.now = [](const std::string& m) { std::cerr << "tile: " << m << "\n"; };
+    const Bundle bundle = generatedSlab(a, log);
+    writeCheckedSlab(a, bundle, log, parseLengthUnit(a.unit).metres, "check --pitch, --thickness and --angle", start);
+    return;
+  }
 
   SlabPlan plan;
   if (!a.block.empty()) {
@@ -83,23 +146,10 @@ void runTile(const TileArguments& a) {
   PrepLog log;
   log.now = [](const std::string& m) { std::cerr << "tile: " << m << "\n"; };
   const Bundle bundle = tileSlab(plan, resolution, log, shapeLimits(a.resolution));
-
-  for (const auto& note : log.notes) std::cerr << "tile: note: " << note << "\n";
-  for (const auto& warning : log.warnings) std::cerr << "tile: warning: " << warning << "\n";
-
-  // Check the assembly before anything is written.
-  const AssemblySummary summary =
-      checkAssemblyBeforeWriting(bundle, a.overlapTolerance ? std::optional<double>(*a.overlapTolerance * unit.metres) : std::nullopt,
-                                 a.gap * unit.metres, "check --pitch or the layout positions, or add --gap",
-                                 (a.block.empty() ? std::string("check the layout's positions and unit") : std::string("check that --pitch is in the block's unit (--unit)")) +
-                                     " and that the blocks' thickness is along z (--up y for y-up meshes)",
-                                 true);
-
-  writeBundle(a.output, bundle);
-
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  printAssemblySummary(bundle, summary, "tile");
-  std::printf("written to %s in %.2f s\n", a.output.c_str(), seconds);
+  writeCheckedSlab(a, bundle, log, unit.metres,
+                   (a.block.empty() ? std::string("check the layout's positions and unit") : std::string("check that --pitch is in the block's unit (--unit)")) +
+                       " and that the blocks' thickness is along z (--up y for y-up meshes)",
+                   start);
 }
 
 }  // namespace
@@ -109,13 +159,18 @@ void addTileCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("tile", "Lay blocks out in a tessellation and write the slab's bundle (shapes + bodies).");
   cmd->add_option("--block", args->block, "Block mesh (STL/OBJ) for the built-in square tessellation");
   cmd->add_option("--layout", args->layout, "Layout file (JSON, docs/tiling.md) of arbitrary placements, instead of --block");
+  cmd->add_option("--tiling", args->tiling,
+                  "Generate the blocks from a tiling: square, hex, triangle, rhombille, voronoi, or a polygon mesh file (OBJ) of the tiles; instead of --block");
+  cmd->add_option("--thickness", args->thickness, "With --tiling: the blocks' thickness, in --unit");
+  cmd->add_option("--angle", args->angle, "With --tiling: the tilt of the blocks' side faces, degrees")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "With --tiling voronoi: the seed of the random sites")->capture_default_str();
   cmd->add_option("--unit", args->unit, "Length unit of the mesh and of every length given: m, cm, mm, um, in, ft");
   cmd->add_option("--up", args->up, "The meshes' up axis (x, y or z), turned into +z (the slab's thickness)")
       ->check(CLI::IsMember({"x", "y", "z"}))
       ->capture_default_str();
   cmd->add_option("--grid", args->grid, "Square tessellation: columns x rows")->capture_default_str();
-  cmd->add_option("--pitch", args->pitch, "Centre-to-centre distance of neighbouring blocks, in --unit");
-  cmd->add_option("--fix", args->fix, "Fixed blocks of the square tessellation: perimeter (outer ring) or none")
+  cmd->add_option("--pitch", args->pitch, "Centre-to-centre distance of neighbouring blocks (tiles sharing an edge), in --unit");
+  cmd->add_option("--fix", args->fix, "Fixed blocks: perimeter (the outer ring; with --tiling, the tiles with an edge on the boundary) or none")
       ->capture_default_str();
   cmd->add_flag("--no-alternate", args->noAlternate, "Do not turn every other block by 90 degrees (checkerboard)");
   cmd->add_option("--gap", args->gap, "Clearance added between neighbouring blocks, in --unit")->capture_default_str();
@@ -125,7 +180,8 @@ void addTileCommand(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Bundle directory to write (bundle.h5 + one .vdb per shape)")->required();
   cmd->add_flag("--replace", args->replace, "Replace a bundle already in the output directory");
   cmd->add_option("--max-bodies", args->maxBodies, "Refuse a slab of more blocks than this")->capture_default_str();
-  cmd->footer("Example (the paper's slab): tessera tile --block planar.obj --unit mm --grid 7x7 --pitch 10 --fix perimeter -o slab");
+  cmd->footer("Example (the paper's slab): tessera tile --block planar.obj --unit mm --grid 7x7 --pitch 10 --fix perimeter -o slab\n"
+              "Generated: tessera tile --tiling hex --grid 7x7 --pitch 10 --thickness 3.18 --angle 5 --unit mm -o hex_slab");
   cmd->callback([args] { runTile(*args); });
 }
 

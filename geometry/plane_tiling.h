@@ -1,0 +1,58 @@
+#pragma once
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+/// A tiling of (part of) the plane z = 0 by convex polygons meeting edge to edge. Tile t's corners
+/// run counter-clockwise (m); its edge k goes from corner k to corner k + 1.
+struct PlaneTiling {
+  std::vector<std::string> names;                       ///< one body name per tile
+  std::vector<std::vector<Eigen::Vector2d>> tiles;      ///< corners, m
+};
+
+/// The built-in tilings (docs/tiling.md, "Generated tilings"), centred at the origin. `pitch` is the
+/// distance between the centres of two tiles that share an edge.
+///  - square:    columns x rows squares of side p;
+///  - hex:       columns x rows hexagons of inradius p/2 (faces normal at 0, 60, ... degrees), odd
+///               rows shifted by p/2;
+///  - triangle:  rows of `columns` equilateral triangles of side p sqrt 3, alternately pointing up
+///               and down;
+///  - rhombille: columns x rows hexagons of side 2p/sqrt 3 laid out as `hex`, each cut into three
+///               60-degree rhombi that meet at its centre (3 x columns x rows tiles);
+///  - voronoi:   the Voronoi cells of columns x rows seeds, one per square of side p jittered by up
+///               to 0.35 p (std::mt19937 seeded with `seed`) and moved to their cells' centroids
+///               twice (Lloyd), clipped to the columns p x rows p rectangle.
+struct TilingOptions {
+  std::string kind = "square";  ///< square, hex, triangle, rhombille, voronoi
+  double pitch = 10e-3;         ///< m
+  int columns = 7, rows = 7;
+  unsigned seed = 1;            ///< voronoi only
+};
+PlaneTiling makeTiling(const TilingOptions& options);
+
+/// The names of the built-in tilings.
+const std::vector<std::string>& tilingKinds();
+
+/// The tile across each edge: across[t][k] = {u, l} when edge k of tile t is edge l of tile u
+/// (corners within `tolerance`, m, of each other, in opposite order), {-1, -1} on the boundary.
+struct EdgeNeighbour {
+  int tile = -1, edge = -1;
+};
+std::vector<std::vector<EdgeNeighbour>> edgeNeighbours(const PlaneTiling& tiling, double tolerance);
+
+/// The tiles of a polygon mesh (OBJ, PLY, ... through assimp, polygons kept): each face one tile,
+/// its corners' (x, y) in `metresPerUnit` (the mesh lies in a plane z = constant), turned
+/// counter-clockwise. Named "t<face>". Throws InputError naming the face for a non-convex or
+/// degenerate polygon, and for a mesh that does not lie flat.
+PlaneTiling readTilingFile(const std::string& path, double metresPerUnit);
+
+/// The part of a convex polygon where n . x <= d (one pass of Sutherland & Hodgman, CACM 17, 1974).
+std::vector<Eigen::Vector2d> clipPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& n, double d);
+
+/// The area of a polygon (positive when counter-clockwise) and its centroid.
+double polygonArea(const std::vector<Eigen::Vector2d>& polygon);
+Eigen::Vector2d polygonCentroid(const std::vector<Eigen::Vector2d>& polygon);
+
+}  // namespace tessera

@@ -1,0 +1,202 @@
+#include "geometry/tilted_blocks.h"
+
+#include "geometry/convex_polyhedron.h"
+#include "io/input_error.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <queue>
+
+namespace tessera {
+
+namespace {
+
+int pattern(int k) { return k % 2 == 0 ? 1 : -1; }
+
+bool hasBothSigns(const std::vector<int>& signs, const std::vector<EdgeNeighbour>& across) {
+  bool out = false, in = false;
+  for (std::size_t k = 0; k < signs.size(); ++k)
+    if (across[k].tile >= 0) (signs[k] > 0 ? out : in) = true;
+  return out && in;
+}
+
+// The edge that starts the smallest cyclic sequence of (sign, length, turn), each rounded to 1e-6.
+int canonicalStart(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts) {
+  const int n = static_cast<int>(tile.size());
+  double size = 0;
+  for (const Eigen::Vector2d& x : tile) size = std::max(size, x.norm());
+  std::vector<std::array<long long, 3>> key(n);
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector2d e = tile[(k + 1) % n] - tile[k], f = tile[(k + 2) % n] - tile[(k + 1) % n];
+    key[k] = {tilts[k], std::llround(1e6 * e.norm() / size), std::llround(1e6 * std::atan2(e.x() * f.y() - e.y() * f.x(), e.dot(f)))};
+  }
+  int best = 0;
+  for (int start = 1; start < n; ++start)
+    for (int i = 0; i < n; ++i) {
+      const auto& a = key[(start + i) % n];
+      const auto& b = key[(best + i) % n];
+      if (a != b) {
+        if (a < b) best = start;
+        break;
+      }
+    }
+  return best;
+}
+
+}  // namespace
+
+std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across) {
+  const int count = static_cast<int>(tiling.tiles.size());
+  std::vector<int> c(count, 0);
+  // c_t spread breadth first: c_u (-1)^l = -c_t (-1)^k across edge k of t = edge l of u.
+  for (int root = 0; root < count; ++root) {
+    if (c[root] != 0) continue;
+    c[root] = 1;
+    std::queue<int> queue;
+    queue.push(root);
+    while (!queue.empty()) {
+      const int t = queue.front();
+      queue.pop();
+      for (int k = 0; k < static_cast<int>(across[t].size()); ++k) {
+        const EdgeNeighbour& u = across[t][k];
+        if (u.tile < 0 || c[u.tile] != 0) continue;
+        c[u.tile] = -c[t] * pattern(k) * pattern(u.edge);
+        queue.push(u.tile);
+      }
+    }
+  }
+  std::vector<std::vector<int>> tilts(count);
+  for (int t = 0; t < count; ++t)
+    for (int k = 0; k < static_cast<int>(tiling.tiles[t].size()); ++k) tilts[t].push_back(c[t] * pattern(k));
+  // Edges whose two tiles disagree: the sign that leaves both tiles with both kinds of face.
+  for (int t = 0; t < count; ++t)
+    for (int k = 0; k < static_cast<int>(across[t].size()); ++k) {
+      const EdgeNeighbour& u = across[t][k];
+      if (u.tile <= t || tilts[t][k] == -tilts[u.tile][u.edge]) continue;  // each shared edge once; agreeing
+      tilts[u.tile][u.edge] = -tilts[t][k];
+      if (!hasBothSigns(tilts[u.tile], across[u.tile])) {
+        tilts[t][k] = -tilts[t][k];
+        tilts[u.tile][u.edge] = -tilts[t][k];
+      }
+    }
+  // A tile with one kind of face borrows an edge from a neighbour that keeps both kinds.
+  for (int t = 0; t < count; ++t) {
+    if (hasBothSigns(tilts[t], across[t])) continue;
+    for (int k = 0; k < static_cast<int>(across[t].size()); ++k) {
+      const EdgeNeighbour& u = across[t][k];
+      if (u.tile < 0) continue;
+      std::vector<int> flipped = tilts[u.tile];
+      flipped[u.edge] = -flipped[u.edge];
+      if (!hasBothSigns(flipped, across[u.tile])) continue;
+      tilts[u.tile] = flipped;
+      tilts[t][k] = -tilts[t][k];
+      break;
+    }
+  }
+  return tilts;
+}
+
+std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
+                                                 const std::vector<std::vector<int>>& tilts, double thickness, double angle) {
+  const int count = static_cast<int>(tiling.tiles.size());
+  double size = 0;
+  for (const auto& tile : tiling.tiles)
+    for (const Eigen::Vector2d& x : tile) size = std::max(size, x.norm());
+  const double tolerance = 1e-7 * size;
+  // Tile t's section at height z: each edge's line moved out by s z tan(theta).
+  const auto section = [&](int t, double z) {
+    const auto& p = tiling.tiles[t];
+    const Eigen::Vector2d centre = polygonCentroid(p);
+    double reach = 0;
+    for (const Eigen::Vector2d& x : p) reach = std::max(reach, (x - centre).norm());
+    reach = 2 * (reach + thickness);
+    std::vector<Eigen::Vector2d> s{centre + Eigen::Vector2d(-reach, -reach), centre + Eigen::Vector2d(reach, -reach),
+                                   centre + Eigen::Vector2d(reach, reach), centre + Eigen::Vector2d(-reach, reach)};
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const Eigen::Vector2d e = (p[(k + 1) % p.size()] - p[k]).normalized(), m(e.y(), -e.x());
+      s = clipPolygon(s, m, m.dot(p[k]) + tilts[t][k] * z * std::tan(angle));
+    }
+    return s;
+  };
+  // The area of the overlap of two tiles' sections at height z.
+  const auto overlapArea = [&](int a, int b, double z) {
+    std::vector<Eigen::Vector2d> s = section(a, z);
+    const auto& p = tiling.tiles[b];
+    for (std::size_t k = 0; k < p.size() && s.size() >= 3; ++k) {
+      const Eigen::Vector2d e = (p[(k + 1) % p.size()] - p[k]).normalized(), m(e.y(), -e.x());
+      s = clipPolygon(s, m, m.dot(p[k]) + tilts[b][k] * z * std::tan(angle));
+    }
+    return s.size() < 3 ? 0.0 : polygonArea(s);
+  };
+  // Corners, sorted by x, to find the tiles that share one.
+  struct Corner {
+    Eigen::Vector2d x;
+    int tile;
+  };
+  std::vector<Corner> corners;
+  for (int t = 0; t < count; ++t)
+    for (const Eigen::Vector2d& x : tiling.tiles[t]) corners.push_back({x, t});
+  std::sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) { return a.x.x() < b.x.x(); });
+  std::vector<std::vector<VerticalCut>> cuts(count);
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    for (std::size_t j = i + 1; j < corners.size() && corners[j].x.x() - corners[i].x.x() <= tolerance; ++j) {
+      const int a = std::min(corners[i].tile, corners[j].tile), b = std::max(corners[i].tile, corners[j].tile);
+      if (a == b || (corners[i].x - corners[j].x).norm() > tolerance ||
+          std::any_of(across[a].begin(), across[a].end(), [&](const EdgeNeighbour& e) { return e.tile == b; }))
+        continue;
+      if (std::max(overlapArea(a, b, thickness / 2), overlapArea(a, b, -thickness / 2)) <= 1e-12 * size * size) continue;
+      // The plane through V that bisects the directions from V to the two tiles' centroids.
+      const Eigen::Vector2d& v = corners[i].x;
+      const Eigen::Vector2d normal = ((polygonCentroid(tiling.tiles[b]) - v).normalized() - (polygonCentroid(tiling.tiles[a]) - v).normalized()).normalized();
+      for (const int t : {a, b})
+        for (const Eigen::Vector2d& x : tiling.tiles[t])
+          if ((t == a ? 1 : -1) * normal.dot(x - v) > tolerance)
+            throw InputError("tiles " + tiling.names[a] + " and " + tiling.names[b] + " would overlap at their shared corner, and no vertical plane "
+                             "through it separates them; use a smaller --angle or a tiling whose tiles have an even number of edges");
+      cuts[a].push_back({v, normal});
+      cuts[b].push_back({v, -normal});
+    }
+  return cuts;
+}
+
+TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<VerticalCut>& cuts,
+                         double thickness, double angle) {
+  if (!(thickness > 0) || !std::isfinite(thickness)) throw InputError("tilted block: the thickness must be positive");
+  if (!(angle >= 0 && angle < M_PI / 2)) throw InputError("tilted block: the angle must lie in [0, 90) degrees");
+  const int n = static_cast<int>(tile.size());
+  const Eigen::Vector2d centroid = polygonCentroid(tile);
+  const int start = canonicalStart(tile, tilts);
+  // The tile's own frame: origin at the centroid, x along the outward normal of edge `start`.
+  const Eigen::Vector2d e0 = (tile[(start + 1) % n] - tile[start]).normalized();
+  const Eigen::Vector2d m0(e0.y(), -e0.x());
+  const double phi = std::atan2(m0.y(), m0.x());
+  const Eigen::Rotation2Dd toWorld(phi);
+  const Eigen::Rotation2Dd toLocal = toWorld.inverse();
+  std::vector<Eigen::Vector2d> local;
+  double size = thickness;
+  for (int i = 0; i < n; ++i) {
+    local.push_back(toLocal * (tile[(start + i) % n] - centroid));
+    size = std::max(size, local.back().norm());
+  }
+  std::vector<FacePlane> planes{{Eigen::Vector3d::UnitZ(), thickness / 2}, {-Eigen::Vector3d::UnitZ(), thickness / 2}};
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d e = (local[(i + 1) % n] - local[i]).normalized();
+    const Eigen::Vector2d m(e.y(), -e.x());  // outward for a counter-clockwise tile
+    const double s = tilts[(start + i) % n];
+    const Eigen::Vector3d normal(m.x() * std::cos(angle), m.y() * std::cos(angle), -s * std::sin(angle));
+    planes.push_back({normal, m.dot(local[i]) * std::cos(angle)});
+  }
+  for (const VerticalCut& cut : cuts) {
+    const Eigen::Vector2d normal = toLocal * cut.normal, point = toLocal * (cut.point - centroid);
+    planes.push_back({Eigen::Vector3d(normal.x(), normal.y(), 0), normal.dot(point)});
+  }
+  TriangleMesh mesh = convexPolyhedronFromPlanes(planes, size + thickness);
+  for (Eigen::Vector3d& x : mesh.vertices) {
+    const Eigen::Vector2d xy = toWorld * x.head<2>() + centroid;
+    x.head<2>() = xy;
+  }
+  return mesh;
+}
+
+}  // namespace tessera

@@ -1,0 +1,46 @@
+#pragma once
+#include "geometry/plane_tiling.h"
+#include "geometry/triangle_mesh.h"
+
+#include <vector>
+
+namespace tessera {
+
+/// Which way each tile's faces lean (docs/tiling.md, "The sign rule"): tilts[t][k] = +1 when the
+/// face of tile t over edge k leans out (the block widens upwards there and rests on the
+/// neighbour), -1 when it leans in (it holds the neighbour up). Across a shared edge the two signs
+/// are opposite, so the two faces are one plane. Around each tile the signs alternate,
+/// tilts[t][k] = c_t (-1)^k, with c_t spread from tile 0 over the tiles (breadth first) so that
+/// neighbours agree; where the tiling does not allow that (odd polygons, or parities that do not
+/// close around a vertex), an edge whose two tiles disagree takes the sign that keeps both kinds
+/// of face on both tiles, and a tile left with one kind borrows an edge from a neighbour with both.
+/// Every tile with a neighbour then has a face of each kind, if the tiling allows.
+std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across);
+
+/// A vertical plane that bounds a block besides its faces: m . (x - point) <= 0 (plan, m).
+struct VerticalCut {
+  Eigen::Vector2d point, normal;
+};
+
+/// Tiles that share a corner V but no edge can overlap near V: where a tile's two edges at V lean
+/// the same way (an odd polygon cannot alternate), its two neighbours across them both grow into
+/// its corner (by h/2 tan theta, at the top or at the bottom); where V lies on the tiling's
+/// boundary, two tiles can grow towards each other into the empty wedge. The overlap is a cone at
+/// V, so it shows in the sections z = +-h/2. Each such pair gets a vertical cut through V along
+/// the direction from V to the centroid of their overlap, so they meet on that plane instead.
+/// cuts[t]: tile t's cuts. Lengths m, angle radians.
+std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
+                                                 const std::vector<std::vector<int>>& tilts, double thickness, double angle);
+
+/// The block of a tile: the solid |z| <= h/2 bounded, over each edge k (outward normal m_k, corner
+/// c_k), by the plane through the edge at z = 0 leaning by theta,
+///   m_k . (x - c_k) cos theta - s_k z sin theta <= 0   (s_k = tilts[k]),
+/// so the face leans out (s = +1) or in (s = -1) by theta from the vertical. A face whose plane
+/// misses the slab |z| <= h/2 is dropped; `cuts` bound it further. The mesh is built in a frame fixed by the tile's own
+/// shape (centroid; the edge that starts the smallest cyclic sequence of sign, length and turn),
+/// so tiles equal up to a rotation get the same vertices and triangles in the same order, and
+/// share one shape when assembled. Lengths m, angle radians.
+TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<VerticalCut>& cuts,
+                         double thickness, double angle);
+
+}  // namespace tessera

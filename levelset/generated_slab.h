@@ -1,0 +1,25 @@
+#pragma once
+#include "geometry/plane_tiling.h"
+#include "levelset/assembler.h"
+
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+/// A slab generated from a tiling (docs/tiling.md, "Generated tilings"): each tile becomes a
+/// convex block of thickness h whose faces lean by theta, with the signs of interlockingTilts.
+struct GeneratedSlabOptions {
+  TilingOptions tiling;        ///< a built-in tiling, unless tilingFile is given
+  std::string tilingFile;      ///< a polygon mesh of the tiles (in `unit`)
+  double metresPerUnit = 1;    ///< of tilingFile
+  double thickness = 0;        ///< m, h
+  double angle = 0;            ///< radians, theta
+  bool fixPerimeter = true;    ///< fix the tiles with an edge on the tiling's boundary
+};
+
+/// The blocks in place, as parts to assemble (assembleParts). Throws InputError for parameters
+/// that give no block, and when `fixPerimeter` fixes every tile (too small a grid).
+std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options);
+
+}  // namespace tessera

@@ -1,0 +1,167 @@
+// Generated tilings: tiles meet edge to edge; their tilted blocks are valid solids that share
+// each edge's face plane and do not overlap; the square tiling gives the paper's planar block.
+#include "geometry/block_generators.h"
+#include "geometry/convex_planes.h"
+#include "geometry/convex_polyhedron.h"
+#include "geometry/mass_properties.h"
+#include "geometry/mesh_validation.h"
+#include "geometry/tilted_blocks.h"
+#include "io/input_error.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace tessera;
+
+namespace {
+
+struct GeneratedBlocks {
+  PlaneTiling tiling;
+  std::vector<std::vector<EdgeNeighbour>> across;
+  std::vector<std::vector<int>> tilts;
+  std::vector<TriangleMesh> meshes;
+};
+
+GeneratedBlocks generate(const std::string& kind, double pitch, double thickness, double angle) {
+  GeneratedBlocks g;
+  TilingOptions options;
+  options.kind = kind;
+  options.pitch = pitch;
+  options.columns = options.rows = 5;
+  g.tiling = makeTiling(options);
+  g.across = edgeNeighbours(g.tiling, 1e-9 * pitch);
+  g.tilts = interlockingTilts(g.tiling, g.across);
+  const auto cuts = cornerCuts(g.tiling, g.across, g.tilts, thickness, angle);
+  for (std::size_t t = 0; t < g.tiling.tiles.size(); ++t)
+    g.meshes.push_back(tiltedBlock(g.tiling.tiles[t], g.tilts[t], cuts[t], thickness, angle));
+  return g;
+}
+
+// The volume two convex blocks share (0 when they do not overlap).
+double sharedVolume(const TriangleMesh& a, const TriangleMesh& b, double size) {
+  std::vector<FacePlane> planes = fitConvexPolyhedron(a)->planes;
+  const std::vector<FacePlane> other = fitConvexPolyhedron(b)->planes;
+  planes.insert(planes.end(), other.begin(), other.end());
+  try {
+    return signedVolume(convexPolyhedronFromPlanes(planes, size));
+  } catch (const InputError&) {
+    return 0;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("convex polyhedron from planes: a box and a tetrahedron, closed and outward") {
+  const std::vector<FacePlane> box{{{1, 0, 0}, 1}, {{-1, 0, 0}, 1}, {{0, 1, 0}, 2}, {{0, -1, 0}, 2}, {{0, 0, 1}, 3}, {{0, 0, -1}, 3}, {{1, 0, 0}, 1}};
+  TriangleMesh mesh = convexPolyhedronFromPlanes(box, 10);
+  REQUIRE_FALSE(validateSolidMesh(mesh, "box").reoriented);
+  REQUIRE(signedVolume(mesh) == Approx(2 * 4 * 6).epsilon(1e-12));
+  REQUIRE(mesh.vertices.size() == 8);
+  const std::vector<FacePlane> tetrahedron{{{0, 0, -1}, 0}, {{-1, 0, 0}, 0}, {{0, -1, 0}, 0}, {Eigen::Vector3d(1, 1, 1).normalized(), 1 / std::sqrt(3.0)}};
+  REQUIRE(signedVolume(convexPolyhedronFromPlanes(tetrahedron, 2)) == Approx(1.0 / 6).epsilon(1e-12));
+  REQUIRE_THROWS_AS(convexPolyhedronFromPlanes({{{0, 0, 1}, 0}, {{0, 0, -1}, -1}}, 1), InputError);
+}
+
+TEST_CASE("tilings: edge to edge, tiles of the stated pitch, centred") {
+  for (const std::string& kind : tilingKinds()) {
+    TilingOptions options;
+    options.kind = kind;
+    options.pitch = 0.01;
+    options.columns = options.rows = 5;
+    const PlaneTiling tiling = makeTiling(options);
+    const auto across = edgeNeighbours(tiling, 1e-9);
+    Eigen::Vector2d mean(0, 0);
+    int shared = 0;
+    for (std::size_t t = 0; t < tiling.tiles.size(); ++t) {
+      REQUIRE(polygonArea(tiling.tiles[t]) > 0);
+      mean += polygonCentroid(tiling.tiles[t]);
+      for (const EdgeNeighbour& e : across[t]) {
+        if (e.tile < 0) continue;
+        ++shared;
+        REQUIRE(across[e.tile][e.edge].tile == static_cast<int>(t));
+        if (kind != "voronoi")  // neighbouring centres one pitch apart
+          REQUIRE((polygonCentroid(tiling.tiles[e.tile]) - polygonCentroid(tiling.tiles[t])).norm() == Approx(0.01).epsilon(1e-9));
+      }
+    }
+    INFO(kind);
+    REQUIRE(mean.norm() < 1e-12);
+    REQUIRE(shared > static_cast<int>(tiling.tiles.size()));
+  }
+}
+
+TEST_CASE("tilted blocks of every tiling: valid, faces shared across edges, no overlap") {
+  const double pitch = 0.01, h = 0.00318;
+  for (const std::string& kind : tilingKinds())
+    for (double degrees : {0.0, 5.0, 20.0}) {
+      INFO(kind << " at " << degrees << " degrees");
+      const GeneratedBlocks g = generate(kind, pitch, h, degrees * M_PI / 180);
+      const int count = static_cast<int>(g.meshes.size());
+      for (int t = 0; t < count; ++t) {
+        TriangleMesh copy = g.meshes[t];
+        REQUIRE_FALSE(validateSolidMesh(copy, g.tiling.names[t]).reoriented);
+        // Across a shared edge the signs are opposite: the two faces are one plane.
+        for (std::size_t k = 0; k < g.across[t].size(); ++k) {
+          const EdgeNeighbour& e = g.across[t][k];
+          if (e.tile >= 0) REQUIRE(g.tilts[t][k] == -g.tilts[e.tile][e.edge]);
+        }
+        for (int u = t + 1; u < count; ++u) {
+          const Eigen::Vector2d ct = polygonCentroid(g.tiling.tiles[t]), cu = polygonCentroid(g.tiling.tiles[u]);
+          if ((ct - cu).norm() > 3 * pitch) continue;
+          INFO(g.tiling.names[t] << " and " << g.tiling.names[u]);
+          REQUIRE(sharedVolume(g.meshes[t], g.meshes[u], 10 * pitch) <= 1e-9 * pitch * pitch * h);
+        }
+      }
+      // Each shared edge's plane carries a face of both blocks.
+      if (degrees == 0) continue;
+      for (int t = 0; t < count; ++t)
+        for (std::size_t k = 0; k < g.across[t].size(); ++k) {
+          const EdgeNeighbour& e = g.across[t][k];
+          if (e.tile < 0) continue;
+          const auto& p = g.tiling.tiles[t];
+          const Eigen::Vector2d d = (p[(k + 1) % p.size()] - p[k]).normalized(), m(d.y(), -d.x());
+          const double theta = degrees * M_PI / 180;
+          const Eigen::Vector3d n(m.x() * std::cos(theta), m.y() * std::cos(theta), -g.tilts[t][k] * std::sin(theta));
+          const double offset = m.dot(p[k]) * std::cos(theta);
+          const auto cornersOnPlane = [&](const TriangleMesh& mesh) {
+            return std::count_if(mesh.vertices.begin(), mesh.vertices.end(),
+                                 [&](const Eigen::Vector3d& x) { return std::abs(n.dot(x) - offset) <= 1e-9 * pitch; });
+          };
+          REQUIRE(cornersOnPlane(g.meshes[t]) >= 3);
+          REQUIRE(cornersOnPlane(g.meshes[e.tile]) >= 3);
+        }
+    }
+}
+
+TEST_CASE("the square tiling's tilted block is the paper's planar block, turned in a checkerboard") {
+  const double pitch = 0.01, h = 0.00318, theta = 5 * M_PI / 180;
+  const GeneratedBlocks g = generate("square", pitch, h, theta);
+  const double expected = signedVolume(makePlanarBlock(pitch, h, theta));
+  for (std::size_t t = 0; t < g.meshes.size(); ++t) {
+    REQUIRE(signedVolume(g.meshes[t]) == Approx(expected).epsilon(1e-12));
+    // Neighbours are turned: one's top face is longer in x, the other's in y.
+    const auto topLongerInX = [&](std::size_t b) {
+      Eigen::AlignedBox3d top;
+      for (const Eigen::Vector3d& x : g.meshes[b].vertices)
+        if (x.z() > 0) top.extend(x);
+      return top.sizes().x() > top.sizes().y();
+    };
+    for (const EdgeNeighbour& e : g.across[t])
+      if (e.tile >= 0) REQUIRE(topLongerInX(e.tile) != topLongerInX(t));
+  }
+}
+
+TEST_CASE("tilted blocks: every tile of a tiling that allows it has faces leaning both ways") {
+  for (const std::string& kind : tilingKinds()) {
+    const GeneratedBlocks g = generate(kind, 0.01, 0.00318, 5 * M_PI / 180);
+    for (std::size_t t = 0; t < g.tilts.size(); ++t) {
+      bool out = false, in = false, interior = true;
+      for (std::size_t k = 0; k < g.tilts[t].size(); ++k) {
+        if (g.across[t][k].tile < 0) interior = false;
+        else (g.tilts[t][k] > 0 ? out : in) = true;
+      }
+      INFO(kind << " tile " << g.tiling.names[t]);
+      if (interior) REQUIRE((out && in));
+    }
+  }
+}
