@@ -51,6 +51,9 @@ PlaneTiling readTilingFile(const std::string& path, double metresPerUnit);
 /// The part of a convex polygon where n . x <= d (one pass of Sutherland & Hodgman, CACM 17, 1974).
 std::vector<Eigen::Vector2d> clipPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& n, double d);
 
+/// The convex hull of points in the plane, counter-clockwise (Andrew's monotone chain, 1979).
+std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> points);
+
 /// The area of a polygon (positive when counter-clockwise) and its centroid.
 double polygonArea(const std::vector<Eigen::Vector2d>& polygon);
 Eigen::Vector2d polygonCentroid(const std::vector<Eigen::Vector2d>& polygon);

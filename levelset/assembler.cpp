@@ -1,5 +1,7 @@
 #include "levelset/assembler.h"
 
+#include "geometry/plane_tiling.h"
+
 #include "io/input_error.h"
 #include "geometry/length_unit.h"
 #include "geometry/mass_properties.h"
@@ -71,27 +73,6 @@ std::optional<Placement> rigidMatch(const TriangleMesh& a, const TriangleMesh& b
   p.rotation = Eigen::Quaterniond(r).normalized();
   p.translation = cb - r * ca;
   return p;
-}
-
-// Andrew's monotone chain: the convex hull of points in the plane, counter-clockwise.
-std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> p) {
-  std::sort(p.begin(), p.end(), [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
-  if (p.size() < 3) return p;
-  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  };
-  std::vector<Eigen::Vector2d> hull(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
-    hull[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
-    hull[k++] = p[i];
-  }
-  hull.resize(k - 1);
-  return hull;
 }
 
 double distanceToSegment(const Eigen::Vector2d& x, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {

@@ -76,6 +76,25 @@ double AssemblyLevelSets::phi(int s, const Eigen::Vector3d& x) const {
   return shape.sdf.sample(x).phi;
 }
 
+double AssemblyLevelSets::phi(int s, const Eigen::Vector3d& x, Eigen::Vector3d& gradient) const {
+  const Shape& shape = shapes_[s];
+  if (shape.convex) {
+    double phi = -std::numeric_limits<double>::infinity();
+    for (const FacePlane& f : shape.convex->planes)
+      if (f.normal.dot(x) - f.offset > phi) {
+        phi = f.normal.dot(x) - f.offset;
+        gradient = f.normal;
+      }
+    return phi;
+  }
+  const MeshSdf& exact = shape.exactMesh.empty() ? derived_[s] : shape.exactMesh;
+  double phi;
+  if (!exact.empty() && exact.evaluate(x, phi, gradient)) return phi;
+  const SdfSample sample = shape.sdf.sample(x);
+  gradient = sample.gradient.normalized();
+  return sample.phi;
+}
+
 std::vector<std::pair<int, int>> nearbyPairs(const Bundle& bundle, double reach) {
   // All pairs by bounding spheres: O(n^2), fine for slabs of thousands of blocks at set-up.
   std::vector<double> radius;

@@ -35,6 +35,8 @@ public:
   explicit AssemblyLevelSets(const Bundle& bundle);
   /// Shape s's level set at a body-frame point, m.
   double phi(int s, const Eigen::Vector3d& x) const;
+  /// The same with its gradient (body frame; the nearest face's normal on exact planes).
+  double phi(int s, const Eigen::Vector3d& x, Eigen::Vector3d& gradient) const;
 
 private:
   const std::vector<Shape>& shapes_;

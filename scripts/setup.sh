@@ -28,6 +28,7 @@ packages=(
   libhdf5-dev                                   # asset bundle
   libcli11-dev nlohmann-json3-dev               # command line, JSON output
   libtomlplusplus-dev                           # scene files (TOML)
+  libglpk-dev                                   # linear programs (tessera check)
   catch2                                        # tests
   python3-matplotlib python3-numpy              # PNG rendering
   python3-dev pybind11-dev                      # the Python module

@@ -26,4 +26,37 @@ void printAssemblySummary(const Bundle& bundle, const AssemblySummary& summary, 
                 formatMillimetres(bundle.spanLength).c_str(), bundle.spanInterfaces);
 }
 
+void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
+  std::printf("  faces         %zu pairs with a free body touch face to face, over %zu polygons (%zu corners)\n", s.pairs, s.polygons, s.corners);
+  const auto printMotion = [&](const std::vector<BodyMotion>& motion) {
+    for (std::size_t i = 0; i < motion.size() && i < 5; ++i)
+      std::printf("                %s: translation (%.2f, %.2f, %.2f), rotation (%.2f, %.2f, %.2f)\n", bundle.bodies[motion[i].body].name.c_str(),
+                  motion[i].translation.x(), motion[i].translation.y(), motion[i].translation.z(), motion[i].rotation.x(),
+                  motion[i].rotation.y(), motion[i].rotation.z());
+    if (motion.size() > 5) std::printf("                ... and %zu more\n", motion.size() - 5);
+  };
+  if (s.interlocking.interlocked) {
+    std::printf("  interlocked   yes: no motion of the free bodies opens a contact without closing another (frictionless)\n");
+  } else {
+    std::printf("  interlocked   no: %zu free bod%s can move away, opening contacts and closing none:\n", s.interlocking.motion.size(),
+                s.interlocking.motion.size() == 1 ? "y" : "ies");
+    printMotion(s.interlocking.motion);
+  }
+  if (s.interlocking.slidingModes > 0) {
+    std::printf("  sliding       %d independent motion(s) slide along every contact, opening none; friction holds them%s\n",
+                s.interlocking.slidingModes, s.interlocking.sliding.empty() ? "" : ", e.g.");
+    printMotion(s.interlocking.sliding);
+  }
+  const auto& st = s.stability;
+  char least[96] = "no friction up to 10 suffices (it needs tension)";
+  if (st.leastFriction && *st.leastFriction == 0) std::snprintf(least, sizeof least, "it stands without friction");
+  else if (st.leastFriction && *st.leastFriction <= 1e-3) std::snprintf(least, sizeof least, "least friction below 0.001: the blocks wedge");
+  else if (st.leastFriction) std::snprintf(least, sizeof least, "least friction %.3f", *st.leastFriction);
+  std::printf("  stable        %s at friction %.3g: %s (%s)\n", st.stable ? "yes" : "no", s.friction,
+              st.stable ? "compressive forces within the friction cones carry every free body's weight"
+                        : "no compressive forces within the friction cones carry every free body's weight",
+              least);
+  std::printf("  checked in %.2f s\n", s.seconds);
+}
+
 }  // namespace tessera::tools

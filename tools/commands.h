@@ -10,6 +10,7 @@ void addInspectCommand(CLI::App& app);
 void addBlockCommand(CLI::App& app);
 void addTileCommand(CLI::App& app);
 void addAssembleCommand(CLI::App& app);
+void addCheckCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);  // also adds report

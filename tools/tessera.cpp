@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   tessera::tools::addBlockCommand(app);
   tessera::tools::addTileCommand(app);
   tessera::tools::addAssembleCommand(app);
+  tessera::tools::addCheckCommand(app);
   tessera::tools::addExportCommand(app);
   tessera::tools::addRunCommand(app);
   tessera::tools::addSweepCommand(app);

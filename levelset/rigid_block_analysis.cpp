@@ -1,0 +1,302 @@
+#include "levelset/rigid_block_analysis.h"
+
+#include "levelset/assembly_checks.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <glpk.h>
+
+#include <algorithm>
+#include <chrono>
+#include <set>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+namespace tessera {
+
+namespace {
+
+// The free bodies' degrees of freedom: body k's (v, L w) at columns 6 f(k) .. 6 f(k) + 5, with L
+// the bodies' median size so that every column has the unit of a velocity.
+struct Freedoms {
+  std::vector<int> index;  // per body: its rank among the free bodies, or -1
+  int count = 0;           // free bodies
+  double length = 1;       // m, L
+
+  explicit Freedoms(const Bundle& bundle) {
+    std::vector<double> sizes;
+    for (const Body& b : bundle.bodies) {
+      index.push_back(b.fixed ? -1 : count);
+      count += !b.fixed;
+      sizes.push_back(boundingBox(bundle.shapes[b.shape].mesh.vertices).diagonal().norm());
+    }
+    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+    if (!sizes.empty()) length = sizes[sizes.size() / 2];
+  }
+};
+
+struct Entry {
+  int column;
+  double value;
+};
+
+// The wrench a unit force `direction` at `point` on the corner's bodies exerts on their freedoms:
+// + on `second`, - on `first` (column, value), forces then moments / L. The same numbers are
+// row c of A for the corner's normal: the relative normal velocity n . (u_2(p) - u_1(p)).
+std::vector<Entry> wrench(const Bundle& bundle, const Freedoms& freedoms, const ContactCorner& c, const Eigen::Vector3d& direction) {
+  std::vector<Entry> entries;
+  for (const auto& [body, sign] : {std::pair<int, double>{c.second, 1.0}, std::pair<int, double>{c.first, -1.0}}) {
+    const int k = freedoms.index[body];
+    if (k < 0) continue;
+    const Eigen::Vector3d moment = (c.point - bundle.bodies[body].position).cross(direction) / freedoms.length;
+    for (int i = 0; i < 3; ++i) {  // rounding noise (1e-17 of a unit normal) left out: it only stalls the simplex
+      if (std::abs(direction[i]) > 1e-12) entries.push_back({6 * k + i, sign * direction[i]});
+      if (std::abs(moment[i]) > 1e-12) entries.push_back({6 * k + 3 + i, sign * moment[i]});
+    }
+  }
+  return entries;
+}
+
+// A GLPK problem, deleted with it.
+struct LinearProgram {
+  std::unique_ptr<glp_prob, void (*)(glp_prob*)> lp{glp_create_prob(), glp_delete_prob};
+  glp_prob* get() const { return lp.get(); }
+
+  // Loads the (row, column, value) triplets, 0-based.
+  void load(const std::vector<int>& rows, const std::vector<int>& columns, const std::vector<double>& values) {
+    std::vector<int> ia{0}, ja{0};
+    std::vector<double> ar{0};
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      ia.push_back(rows[i] + 1);
+      ja.push_back(columns[i] + 1);
+      ar.push_back(values[i]);
+    }
+    glp_load_matrix(get(), static_cast<int>(rows.size()), ia.data(), ja.data(), ar.data());
+  }
+
+  // True when the simplex method finds an optimum; false when the problem has no feasible point.
+  // The first solve presolves; later ones start from the last basis (a program changed a little).
+  bool solve() {
+    glp_term_out(GLP_OFF);
+    glp_smcp parameters;
+    glp_init_smcp(&parameters);
+    parameters.msg_lev = GLP_MSG_OFF;
+    parameters.meth = GLP_DUALP;  // the dual simplex, falling back to the primal: steadier on these degenerate programs
+    parameters.presolve = GLP_ON;
+    int code = glp_simplex(get(), &parameters);
+    if (code == GLP_EBADB || code == GLP_ESING || code == GLP_ECOND) {  // the old basis no longer serves
+      glp_adv_basis(get(), 0);
+      code = glp_simplex(get(), &parameters);
+    }
+    if (code == GLP_ENOPFS || code == GLP_ENODFS) return false;
+    if (code != 0) throw std::runtime_error("the linear program could not be solved (GLPK code " + std::to_string(code) + ")");
+    solved = glp_get_status(get()) == GLP_OPT;
+    return solved;
+  }
+  bool solved = false;  // an optimal basis is loaded
+};
+
+std::vector<BodyMotion> motionOf(const Freedoms& freedoms, const Eigen::VectorXd& x) {
+  std::vector<BodyMotion> motion;
+  const double largest = x.cwiseAbs().maxCoeff();
+  if (!(largest > 0)) return motion;
+  for (int body = 0; body < static_cast<int>(freedoms.index.size()); ++body) {
+    const int k = freedoms.index[body];
+    if (k < 0) continue;
+    const Eigen::Matrix<double, 6, 1> u = x.segment<6>(6 * k) / largest;
+    if (u.cwiseAbs().maxCoeff() < 1e-3) continue;
+    motion.push_back({body, u.head<3>(), u.tail<3>()});
+  }
+  return motion;
+}
+
+// The motions with A x = 0 (sliding along every contact): their number, from the eigenvalues of
+// A^T A below 1e-12 of the largest (singular values below 1e-6), and one of them.
+struct SlidingModes {
+  int count = 0;
+  Eigen::VectorXd example;
+};
+SlidingModes slidingModes(const Eigen::SparseMatrix<double>& a) {
+  SlidingModes modes;
+  const Eigen::SparseMatrix<double> normal = a.transpose() * a;
+  if (normal.rows() <= 3600) {  // 600 free bodies: dense
+    const Eigen::MatrixXd dense(normal);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(dense);
+    const double largest = std::max(eigen.eigenvalues().maxCoeff(), 1e-300);
+    while (modes.count < eigen.eigenvalues().size() && eigen.eigenvalues()(modes.count) <= 1e-12 * largest) ++modes.count;
+    if (modes.count > 0) modes.example = eigen.eigenvectors().col(0);
+    return modes;
+  }
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(normal);  // pivots of a singular matrix vanish
+  const Eigen::VectorXd d = ldlt.vectorD().cwiseAbs();
+  for (int i = 0; i < d.size(); ++i) modes.count += d[i] <= 1e-12 * d.maxCoeff();
+  return modes;
+}
+
+}  // namespace
+
+InterlockingVerdict checkInterlocking(const Bundle& bundle, const std::vector<ContactCorner>& corners) {
+  const Freedoms freedoms(bundle);
+  const int columns = 6 * freedoms.count, rows = static_cast<int>(corners.size());
+  InterlockingVerdict verdict;
+  if (freedoms.count == 0) {
+    verdict.interlocked = true;
+    return verdict;
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int c = 0; c < rows; ++c)
+    for (const Entry& e : wrench(bundle, freedoms, corners[c], corners[c].normal)) triplets.emplace_back(c, e.column, e.value);
+  Eigen::SparseMatrix<double> a(rows, columns);
+  a.setFromTriplets(triplets.begin(), triplets.end());
+
+  // The motion that opens the contacts most and closes none: max sum_c s_c, s = A x, 0 <= s <= 1,
+  // |x| <= 1. Always feasible (x = 0) and bounded; an optimum above 0 is a way out.
+  LinearProgram open;
+  glp_set_obj_dir(open.get(), GLP_MAX);
+  if (rows > 0) glp_add_rows(open.get(), rows);
+  for (int c = 1; c <= rows; ++c) glp_set_row_bnds(open.get(), c, GLP_DB, 0, 1);
+  glp_add_cols(open.get(), columns);
+  for (int d = 1; d <= columns; ++d) glp_set_col_bnds(open.get(), d, GLP_DB, -1, 1);
+  Eigen::VectorXd objective = Eigen::VectorXd::Zero(columns);
+  std::vector<int> ri, ci;
+  std::vector<double> vi;
+  for (const auto& t : triplets) {
+    ri.push_back(t.row());
+    ci.push_back(t.col());
+    vi.push_back(t.value());
+    objective[t.col()] += t.value();
+  }
+  for (int d = 0; d < columns; ++d) glp_set_obj_coef(open.get(), d + 1, objective[d]);
+  open.load(ri, ci, vi);
+  if (!open.solve()) throw std::runtime_error("the interlocking program has no solution, yet x = 0 solves it");
+  if (glp_get_obj_val(open.get()) > 1e-6) {
+    Eigen::VectorXd x(columns);
+    for (int d = 0; d < columns; ++d) x[d] = glp_get_col_prim(open.get(), d + 1);
+    verdict.motion = motionOf(freedoms, x);
+  }
+  // A free body that touches nothing moves freely (lifted off, say).
+  std::vector<char> touches(bundle.bodies.size(), 0);
+  for (const ContactCorner& c : corners) touches[c.first] = touches[c.second] = 1;
+  for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body)
+    if (!bundle.bodies[body].fixed && !touches[body] &&
+        std::none_of(verdict.motion.begin(), verdict.motion.end(), [&](const BodyMotion& m) { return m.body == body; }))
+      verdict.motion.push_back({body, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()});
+  verdict.interlocked = verdict.motion.empty();
+  const SlidingModes sliding = slidingModes(a);
+  verdict.slidingModes = sliding.count;
+  if (sliding.example.size() > 0) verdict.sliding = motionOf(freedoms, sliding.example);
+  return verdict;
+}
+
+StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction) {
+  constexpr int kSides = 8;  // of the friction pyramid
+  const Freedoms freedoms(bundle);
+  StabilityVerdict verdict;
+  if (freedoms.count == 0) {
+    verdict.stable = true;
+    verdict.leastFriction = 0;
+    return verdict;
+  }
+  const int equations = 6 * freedoms.count, count = static_cast<int>(corners.size());
+  // Columns per corner: the normal force f_n, then f_k >= 0 along the pyramid's edges t_k.
+  LinearProgram lp;
+  glp_add_rows(lp.get(), equations + std::max(count, 0));
+  // Equilibrium: the contact forces balance the weight (volume / L^3, density and g factored out).
+  for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body) {
+    const int k = freedoms.index[body];
+    if (k < 0) continue;
+    const double weight = bundle.shapes[bundle.bodies[body].shape].mass.volume / std::pow(freedoms.length, 3);
+    for (int i = 0; i < 6; ++i) {
+      const double rhs = i == 2 ? weight : 0.0;  // the contacts push up by the weight
+      glp_set_row_bnds(lp.get(), 6 * k + i + 1, GLP_FX, rhs, rhs);
+    }
+  }
+  for (int c = 0; c < count; ++c) glp_set_row_bnds(lp.get(), equations + c + 1, GLP_UP, 0, 0);
+  if (count > 0) glp_add_cols(lp.get(), count * (kSides + 1));
+  std::vector<int> ri, ci;
+  std::vector<double> vi;
+  for (int c = 0; c < count; ++c) {
+    const ContactCorner& corner = corners[c];
+    const Eigen::Vector3d u = corner.normal.unitOrthogonal(), v = corner.normal.cross(u);
+    for (int j = 0; j <= kSides; ++j) {
+      const int column = c * (kSides + 1) + j;
+      glp_set_col_bnds(lp.get(), column + 1, GLP_LO, 0, 0);
+      const double angle = 2 * M_PI * (j - 1) / kSides;
+      const Eigen::Vector3d direction = j == 0 ? corner.normal : Eigen::Vector3d(std::cos(angle) * u + std::sin(angle) * v);
+      for (const Entry& e : wrench(bundle, freedoms, corner, direction)) {
+        ri.push_back(e.column);
+        ci.push_back(column);
+        vi.push_back(e.value);
+      }
+      if (j > 0) {  // friction row: sum_k f_k - mu f_n <= 0 (mu set below)
+        ri.push_back(equations + c);
+        ci.push_back(column);
+        vi.push_back(1.0);
+      }
+    }
+  }
+  lp.load(ri, ci, vi);
+  // Feasible at friction mu? At 0 the friction columns are held at 0 (the presolver drops them).
+  const auto feasibleAt = [&](double mu) {
+    std::vector<int> index(kSides + 2);
+    std::vector<double> value(kSides + 2);
+    for (int c = 0; c < count; ++c) {
+      for (int j = 0; j <= kSides; ++j) {
+        index[j + 1] = c * (kSides + 1) + j + 1;
+        value[j + 1] = j == 0 ? -mu : 1.0;
+        if (j > 0) glp_set_col_bnds(lp.get(), index[j + 1], mu > 0 ? GLP_LO : GLP_FX, 0, 0);
+      }
+      glp_set_mat_row(lp.get(), equations + c + 1, kSides + 1, index.data(), value.data());
+    }
+    return count > 0 && lp.solve();
+  };
+  // The friction a feasible solution uses: max over corners of sum_k f_k / f_n (<= mu).
+  const auto frictionUsed = [&]() {
+    double used = 0;
+    for (int c = 0; c < count; ++c) {
+      const double normal = glp_get_col_prim(lp.get(), c * (kSides + 1) + 1);
+      double tangential = 0;
+      for (int j = 1; j <= kSides; ++j) tangential += glp_get_col_prim(lp.get(), c * (kSides + 1) + j + 1);
+      if (tangential > 1e-12 * std::max(normal, 1e-300)) used = std::max(used, tangential / std::max(normal, 1e-300));
+    }
+    return used;
+  };
+  if (feasibleAt(0)) {
+    verdict.stable = true;
+    verdict.leastFriction = 0;
+    return verdict;
+  }
+  verdict.stable = friction > 0 && feasibleAt(friction);
+  double low = verdict.stable ? 0 : friction, high = verdict.stable ? friction : 10;
+  if (!verdict.stable && !feasibleAt(high)) return verdict;
+  high = std::min(high, frictionUsed());
+  while (high - low > std::max(1e-3, 0.01 * high)) {  // to 1 % (the pyramid is within 8 % of the cone)
+    const double mid = 0.5 * (low + high);
+    if (feasibleAt(mid)) high = std::min(mid, frictionUsed());
+    else low = mid;
+  }
+  verdict.leastFriction = high;
+  return verdict;
+}
+
+AssemblyStatics analyseAssembly(const Bundle& bundle, const AssemblyLevelSets& levelSets, double friction) {
+  const auto start = std::chrono::steady_clock::now();
+  AssemblyStatics statics;
+  const std::vector<ContactCorner> corners = contactPolygons(bundle, levelSets, 0.5 * finestVoxel(bundle));
+  std::set<std::pair<int, int>> pairs;
+  for (const ContactCorner& c : corners) {
+    pairs.insert({c.first, c.second});
+    statics.polygons = std::max<std::size_t>(statics.polygons, c.polygon + 1);
+  }
+  statics.pairs = pairs.size();
+  statics.corners = corners.size();
+  statics.friction = friction;
+  statics.interlocking = checkInterlocking(bundle, corners);
+  statics.stability = checkStability(bundle, corners, friction);
+  statics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return statics;
+}
+
+}  // namespace tessera

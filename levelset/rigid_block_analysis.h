@@ -1,0 +1,58 @@
+#pragma once
+#include "levelset/contact_polygons.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+/// A rigid motion of one body: velocity of its centroid and angular velocity (directions; the
+/// whole motion is scaled so that its largest component is 1, rotations times the bodies' median
+/// size).
+struct BodyMotion {
+  int body = -1;
+  Eigen::Vector3d translation{0, 0, 0};
+  Eigen::Vector3d rotation{0, 0, 0};
+};
+
+/// Kinematic interlocking (docs/check.md), frictionless and infinitesimal, as in Wang et al.,
+/// "Design and structural optimization of topological interlocking assemblies" (ACM TOG 38, 2019):
+/// with x the free bodies' velocities (the fixed ones held) and A the contact corners' rows of
+/// relative normal velocity, (A x)_c = n . (u_second(p) - u_first(p)), the assembly is interlocked
+/// when no x with A x >= 0 opens a contact: max sum_c (A x)_c over A x in [0, 1], |x| <= 1, is 0.
+/// Motions with A x = 0 slide along every contact and open none (the null space of A, from the
+/// eigenvalues of A^T A below 1e-12 of the largest); such sliding modes are counted: only friction
+/// holds them (and for translations along plane faces, they are finite motions).
+struct InterlockingVerdict {
+  bool interlocked = false;         ///< no motion opens a contact
+  std::vector<BodyMotion> motion;   ///< when not interlocked: a motion that opens contacts and closes none
+  int slidingModes = 0;             ///< independent motions that slide along every contact
+  std::vector<BodyMotion> sliding;  ///< one of them (empty above 600 free bodies: counted, not shown)
+};
+/// Static stability under gravity (-z), rigid-block equilibrium: whether contact forces at the
+/// corners, compressive and within Coulomb's cone (an inscribed pyramid of 8 faces, which needs up
+/// to 1 / cos(22.5 deg) = 1.082 times the cone's friction), balance the weight of every free body;
+/// and the smallest friction coefficient for which they do (bisection to 1 % or 1e-3, up to 10). As
+/// compas_rbe (Whiting, Ochsendorf & Durand, "Procedural modeling of structurally-sound masonry
+/// buildings", ACM TOG 28, 2009) poses it.
+struct StabilityVerdict {
+  bool stable = false;                  ///< at the given friction
+  /// The least friction, to 1 % or 1e-3 (0: none needed; rigid wedged blocks can need arbitrarily little,
+  /// with normal forces growing without bound); none: no friction up to 10 suffices (it needs tension).
+  std::optional<double> leastFriction;
+};
+StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction);
+
+/// Both checks of an assembly, as `tessera check`, tile and assemble report them: contacts within
+/// half the finest voxel (as tile's contact check), at the given friction coefficient.
+struct AssemblyStatics {
+  std::size_t pairs = 0, polygons = 0, corners = 0;  ///< touching pairs, contact polygons, their corners
+  InterlockingVerdict interlocking;
+  StabilityVerdict stability;
+  double friction = 0;
+  double seconds = 0;  ///< wall-clock time of the contacts and the linear programs
+};
+AssemblyStatics analyseAssembly(const Bundle& bundle, const AssemblyLevelSets& levelSets, double friction);
+
+}  // namespace tessera

@@ -1,0 +1,91 @@
+// tessera check's rigid-block analyses on closed-form cases: a wedged block is interlocked and
+// stands without friction; a box among boxes slides upwards; a block on a ramp of slope alpha
+// stands from mu = tan(alpha) on (within the friction pyramid's 1 / cos(22.5 deg)), whichever body
+// is listed first.
+#include "geometry/block_generators.h"
+#include "levelset/assembly_checks.h"
+#include "levelset/generated_slab.h"
+#include "levelset/rigid_block_analysis.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace tessera;
+
+namespace {
+
+Bundle assembled(std::vector<AssemblyPart> parts) {
+  AssembleOptions options;
+  options.unit = "m";
+  PrepLog log;
+  AssembleReport report;
+  return assembleParts(std::move(parts), options, log, report);
+}
+
+Bundle squareSlab(double degrees) {
+  GeneratedSlabOptions options;
+  options.tiling.kind = "square";
+  options.tiling.pitch = 0.1;
+  options.tiling.columns = options.tiling.rows = 3;
+  options.thickness = 0.0318;
+  options.angle = degrees * M_PI / 180;
+  return assembled(generatedSlabParts(options));
+}
+
+AssemblyStatics analysed(const Bundle& bundle, double friction) { return analyseAssembly(bundle, AssemblyLevelSets(bundle), friction); }
+
+// A box of side a on a fixed ramp of slope alpha (about y); `blockFirst` lists the block first.
+Bundle blockOnRamp(double alpha, bool blockFirst) {
+  const Eigen::Matrix3d tilt = Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  AssemblyPart ramp{"ramp", "ramp", makeBox(1.0, 1.0, 0.2), true};
+  AssemblyPart block{"block", "block", makeBox(0.2, 0.2, 0.2), false};
+  for (Eigen::Vector3d& x : ramp.mesh.vertices) x = tilt * x;
+  for (Eigen::Vector3d& x : block.mesh.vertices) x = tilt * (x + Eigen::Vector3d(0, 0, 0.2));
+  return blockFirst ? assembled({block, ramp}) : assembled({ramp, block});
+}
+
+}  // namespace
+
+TEST_CASE("rigid blocks: a planar block wedged among fixed ones is interlocked and stands without friction") {
+  const AssemblyStatics s = analysed(squareSlab(10), 0.23);
+  REQUIRE(s.pairs == 4);  // the centre block's faces (the corner neighbours meet it along a line only)
+  REQUIRE(s.interlocking.interlocked);
+  REQUIRE(s.interlocking.slidingModes == 0);
+  REQUIRE(s.stability.stable);
+  REQUIRE(s.stability.leastFriction == Approx(0.0));
+}
+
+TEST_CASE("rigid blocks: a box among boxes opens no contact but slides upwards, held by friction alone") {
+  const Bundle bundle = squareSlab(0);
+  const AssemblyStatics s = analysed(bundle, 0.23);
+  REQUIRE(s.interlocking.interlocked);
+  REQUIRE(s.interlocking.slidingModes == 1);
+  REQUIRE(s.interlocking.sliding.size() == 1);
+  const BodyMotion& m = s.interlocking.sliding.front();
+  REQUIRE(bundle.bodies[m.body].name == "r1c1");
+  REQUIRE(std::abs(m.translation.z()) == Approx(1.0));
+  REQUIRE(m.translation.head<2>().norm() < 1e-6);
+  REQUIRE(m.rotation.norm() < 1e-6);
+  // Rigid and wedged, any friction holds it (the normal forces may grow without bound); none does not.
+  REQUIRE(s.stability.stable);
+  REQUIRE(*s.stability.leastFriction <= 1e-3);
+  REQUIRE_FALSE(analysed(bundle, 0).stability.stable);
+}
+
+TEST_CASE("rigid blocks: a block on a ramp stands from mu = tan(alpha), lifts off, either order") {
+  const double alpha = 20 * M_PI / 180, pyramid = 1 / std::cos(M_PI / 8);
+  for (bool blockFirst : {true, false}) {
+    const Bundle bundle = blockOnRamp(alpha, blockFirst);
+    const AssemblyStatics s = analysed(bundle, 0.5);
+    INFO("block listed " << (blockFirst ? "first" : "second"));
+    REQUIRE(s.pairs == 1);
+    REQUIRE_FALSE(s.interlocking.interlocked);  // it can be lifted off
+    REQUIRE(s.interlocking.motion.size() == 1);
+    REQUIRE(s.stability.stable);
+    REQUIRE(*s.stability.leastFriction >= std::tan(alpha) * 0.99);
+    REQUIRE(*s.stability.leastFriction <= std::tan(alpha) * pyramid * 1.01);
+    REQUIRE_FALSE(analysed(bundle, 0.9 * std::tan(alpha)).stability.stable);
+    REQUIRE(analysed(bundle, 1.01 * pyramid * std::tan(alpha)).stability.stable);
+  }
+}
