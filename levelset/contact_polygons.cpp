@@ -13,19 +13,22 @@ const double kSameNormal = std::cos(10 * M_PI / 180);  // normals within 10 degr
 constexpr std::size_t kMostCorners = 8;                // per contact polygon
 
 // Drops the corner that spans the smallest triangle with its neighbours (Visvalingam & Whyatt,
-// Cartographic J. 30, 1993) until `most` remain: a convex polygon only shrinks, so the contact
-// is not made larger than it is.
+// Cartographic J. 30, 1993) while more than `most` remain or that triangle is below 0.5 % of the
+// polygon's area (a corner of the hull that only rounds a straight side): a convex polygon only
+// shrinks, so the contact is not made larger than it is.
 std::vector<Eigen::Vector2d> simplified(std::vector<Eigen::Vector2d> polygon, std::size_t most) {
-  while (polygon.size() > most) {
+  const double area = polygonArea(polygon);
+  while (polygon.size() > 3) {
     std::size_t smallest = 0;
     double least = 1e300;
     for (std::size_t i = 0; i < polygon.size(); ++i) {
       const Eigen::Vector2d& p = polygon[(i + polygon.size() - 1) % polygon.size()];
       const Eigen::Vector2d& n = polygon[(i + 1) % polygon.size()];
       const Eigen::Vector2d a = polygon[i] - p, b = n - p;
-      const double area = std::abs(a.x() * b.y() - a.y() * b.x());
-      if (area < least) least = area, smallest = i;
+      const double triangle = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+      if (triangle < least) least = triangle, smallest = i;
     }
+    if (polygon.size() <= most && least >= 0.005 * area) break;
     polygon.erase(polygon.begin() + static_cast<long>(smallest));
   }
   return polygon;

@@ -9,8 +9,8 @@ namespace tessera {
 /// surface nodes of each that lie within the touch distance of the other's surface, with their own
 /// normal opposite to the other's surface normal there (within 10 degrees: face against face),
 /// are grouped by that normal (within 10 degrees: one group per contact plane); each group's
-/// points, projected on its mean plane, give a convex polygon (reduced to its 8 most significant
-/// corners, which only shrinks it) whose corners carry the contact in a rigid-block analysis (a
+/// points, projected on its mean plane, give a convex polygon (reduced to at most 8 corners, and
+/// without the corners that add less than 0.5 % of its area; which only shrinks it) whose corners carry the contact in a rigid-block analysis (a
 /// pressure over a plane polygon is equivalent to forces at its corners).
 /// Groups whose points are collinear (blocks meeting along an edge line) or fewer than three are
 /// no contact.

@@ -1,6 +1,5 @@
 #include "levelset/rigid_block_analysis.h"
 
-#include "levelset/assembly_checks.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Sparse>
@@ -190,7 +189,8 @@ InterlockingVerdict checkInterlocking(const Bundle& bundle, const std::vector<Co
   return verdict;
 }
 
-StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction) {
+StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction,
+                                bool findLeastFriction) {
   constexpr int kSides = 8;  // of the friction pyramid
   const Freedoms freedoms(bundle);
   StabilityVerdict verdict;
@@ -269,8 +269,15 @@ StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactC
     return verdict;
   }
   verdict.stable = friction > 0 && feasibleAt(friction);
+  if (!findLeastFriction) return verdict;
+  verdict.searched = true;
   double low = verdict.stable ? 0 : friction, high = verdict.stable ? friction : 10;
   if (!verdict.stable && !feasibleAt(high)) return verdict;
+  if (verdict.stable && feasibleAt(1e-3)) {  // wedged rigid blocks: any friction will do
+    verdict.leastFriction = 1e-3;
+    return verdict;
+  }
+  if (verdict.stable) low = 1e-3;
   high = std::min(high, frictionUsed());
   while (high - low > std::max(1e-3, 0.01 * high)) {  // to 1 % (the pyramid is within 8 % of the cone)
     const double mid = 0.5 * (low + high);
@@ -281,10 +288,10 @@ StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactC
   return verdict;
 }
 
-AssemblyStatics analyseAssembly(const Bundle& bundle, const AssemblyLevelSets& levelSets, double friction) {
+AssemblyStatics analyseAssembly(const Bundle& bundle, const AssemblyLevelSets& levelSets, double friction, bool findLeastFriction) {
   const auto start = std::chrono::steady_clock::now();
   AssemblyStatics statics;
-  const std::vector<ContactCorner> corners = contactPolygons(bundle, levelSets, 0.5 * finestVoxel(bundle));
+  const std::vector<ContactCorner> corners = contactPolygons(bundle, levelSets, kTouchFraction * Freedoms(bundle).length);
   std::set<std::pair<int, int>> pairs;
   for (const ContactCorner& c : corners) {
     pairs.insert({c.first, c.second});
@@ -294,7 +301,7 @@ AssemblyStatics analyseAssembly(const Bundle& bundle, const AssemblyLevelSets& l
   statics.corners = corners.size();
   statics.friction = friction;
   statics.interlocking = checkInterlocking(bundle, corners);
-  statics.stability = checkStability(bundle, corners, friction);
+  statics.stability = checkStability(bundle, corners, friction, findLeastFriction);
   statics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return statics;
 }

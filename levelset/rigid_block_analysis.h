@@ -41,11 +41,19 @@ struct StabilityVerdict {
   /// The least friction, to 1 % or 1e-3 (0: none needed; rigid wedged blocks can need arbitrarily little,
   /// with normal forces growing without bound); none: no friction up to 10 suffices (it needs tension).
   std::optional<double> leastFriction;
+  bool searched = false;  ///< the least friction was looked for (else only 0 is found)
 };
-StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction);
+/// `findLeastFriction` false: the verdict at `friction` alone (and whether it stands without).
+StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction,
+                                bool findLeastFriction = true);
+
+/// Surfaces within this fraction of the bodies' median size touch, for the checks below: the
+/// rounding of exported coordinates (6 decimals in metres on 0.1 m parts: 1e-5) passes, a gap of
+/// 0.05 mm between 10 mm blocks (4e-3) does not. As ConvexFitOptions::relativeTolerance.
+constexpr double kTouchFraction = 1e-4;
 
 /// Both checks of an assembly, as `tessera check`, tile and assemble report them: contacts within
-/// half the finest voxel (as tile's contact check), at the given friction coefficient.
+/// kTouchFraction of the bodies' median size, at the given friction coefficient.
 struct AssemblyStatics {
   std::size_t pairs = 0, polygons = 0, corners = 0;  ///< touching pairs, contact polygons, their corners
   InterlockingVerdict interlocking;
@@ -53,6 +61,6 @@ struct AssemblyStatics {
   double friction = 0;
   double seconds = 0;  ///< wall-clock time of the contacts and the linear programs
 };
-AssemblyStatics analyseAssembly(const Bundle& bundle, const AssemblyLevelSets& levelSets, double friction);
+AssemblyStatics analyseAssembly(const Bundle& bundle, const AssemblyLevelSets& levelSets, double friction, bool findLeastFriction = true);
 
 }  // namespace tessera

@@ -6,6 +6,7 @@
 #include "levelset/assembly_checks.h"
 #include "levelset/generated_slab.h"
 #include "levelset/rigid_block_analysis.h"
+#include "geometry/tilted_blocks.h"
 
 #include <catch2/catch.hpp>
 
@@ -52,6 +53,29 @@ TEST_CASE("rigid blocks: a planar block wedged among fixed ones is interlocked a
   REQUIRE(s.pairs == 4);  // the centre block's faces (the corner neighbours meet it along a line only)
   REQUIRE(s.interlocking.interlocked);
   REQUIRE(s.interlocking.slidingModes == 0);
+  REQUIRE(s.stability.stable);
+  REQUIRE(s.stability.leastFriction == Approx(0.0));
+}
+
+TEST_CASE("rigid blocks: a block whose faces all lean out rests on its neighbours: not interlocked, lifts off, stands") {
+  TilingOptions options;
+  options.pitch = 0.1;
+  options.columns = options.rows = 3;
+  const PlaneTiling tiling = makeTiling(options);
+  const auto across = edgeNeighbours(tiling, 1e-9);
+  auto tilts = interlockingTilts(tiling, across);
+  for (std::size_t k = 0; k < 4; ++k) {  // the centre tile (4): every face leans out, its neighbours' in
+    tilts[4][k] = 1;
+    tilts[across[4][k].tile][across[4][k].edge] = -1;
+  }
+  std::vector<AssemblyPart> parts;
+  for (std::size_t t = 0; t < tiling.tiles.size(); ++t)
+    parts.push_back({tiling.names[t], tiling.names[t], tiltedBlock(tiling.tiles[t], tilts[t], {}, 0.0318, 10 * M_PI / 180), t != 4});
+  const Bundle bundle = assembled(parts);
+  const AssemblyStatics s = analysed(bundle, 0.23);
+  REQUIRE_FALSE(s.interlocking.interlocked);
+  REQUIRE(s.interlocking.motion.size() == 1);
+  REQUIRE(s.interlocking.motion.front().translation.z() > 0.5);  // upwards
   REQUIRE(s.stability.stable);
   REQUIRE(s.stability.leastFriction == Approx(0.0));
 }
