@@ -21,15 +21,16 @@ bool hasBothSigns(const std::vector<int>& signs, const std::vector<EdgeNeighbour
   return out && in;
 }
 
-// The edge that starts the smallest cyclic sequence of (sign, length, turn), each rounded to 1e-6.
-int canonicalStart(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts) {
+// The edge that starts the smallest cyclic sequence of (sign, length, turn), each rounded to 1e-6:
+// lengths of the corners lifted onto the surface, turns in plan.
+int canonicalStart(const std::vector<Eigen::Vector2d>& tile, const std::vector<Eigen::Vector3d>& corners, const std::vector<int>& tilts) {
   const int n = static_cast<int>(tile.size());
   double size = 0;
   for (const Eigen::Vector2d& x : tile) size = std::max(size, x.norm());
   std::vector<std::array<long long, 3>> key(n);
   for (int k = 0; k < n; ++k) {
     const Eigen::Vector2d e = tile[(k + 1) % n] - tile[k], f = tile[(k + 2) % n] - tile[(k + 1) % n];
-    key[k] = {tilts[k], std::llround(1e6 * e.norm() / size), std::llround(1e6 * std::atan2(e.x() * f.y() - e.y() * f.x(), e.dot(f)))};
+    key[k] = {tilts[k], std::llround(1e6 * (corners[(k + 1) % n] - corners[k]).norm() / size), std::llround(1e6 * std::atan2(e.x() * f.y() - e.y() * f.x(), e.dot(f)))};
   }
   int best = 0;
   for (int start = 1; start < n; ++start)
@@ -161,41 +162,46 @@ std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, cons
 }
 
 TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<VerticalCut>& cuts,
-                         double thickness, double angle) {
+                         double thickness, double angle, const BaseSurface& surface) {
   if (!(thickness > 0) || !std::isfinite(thickness)) throw InputError("tilted block: the thickness must be positive");
   if (!(angle >= 0 && angle < M_PI / 2)) throw InputError("tilted block: the angle must lie in [0, 90) degrees");
   const int n = static_cast<int>(tile.size());
-  const Eigen::Vector2d centroid = polygonCentroid(tile);
-  const int start = canonicalStart(tile, tilts);
-  // The tile's own frame: origin at the centroid, x along the outward normal of edge `start`.
-  const Eigen::Vector2d e0 = (tile[(start + 1) % n] - tile[start]).normalized();
-  const Eigen::Vector2d m0(e0.y(), -e0.x());
-  const double phi = std::atan2(m0.y(), m0.x());
-  const Eigen::Rotation2Dd toWorld(phi);
-  const Eigen::Rotation2Dd toLocal = toWorld.inverse();
-  std::vector<Eigen::Vector2d> local;
-  double size = thickness;
+  std::vector<Eigen::Vector3d> corners;
+  for (const Eigen::Vector2d& x : tile) corners.push_back(surface.point(x));
+  // The tile's own frame: origin on the surface over its centroid, z along the surface normal
+  // there, x along the outward normal of edge `start` (made perpendicular to z).
+  const Eigen::Vector3d origin = surface.point(polygonCentroid(tile));
+  const Eigen::Vector3d up = surface.normal(origin);
+  const int start = canonicalStart(tile, corners, tilts);
+  const Eigen::Vector3d d0 = corners[(start + 1) % n] - corners[start];
+  const Eigen::Vector3d x0 = (d0.cross(up) - d0.cross(up).dot(up) * up).normalized();
+  Eigen::Matrix3d frame;  // columns: the frame's axes in the world
+  frame << x0, up.cross(x0), up;
+  // A world plane n . x <= d in the frame.
+  std::vector<FacePlane> planes;
+  const auto add = [&](const Eigen::Vector3d& normal, const Eigen::Vector3d& through) {
+    planes.push_back({frame.transpose() * normal, normal.dot(through - origin)});
+  };
+  add(up, origin + 0.5 * thickness * up);
+  add(-up, origin - 0.5 * thickness * up);
   for (int i = 0; i < n; ++i) {
-    local.push_back(toLocal * (tile[(start + i) % n] - centroid));
-    size = std::max(size, local.back().norm());
-  }
-  std::vector<FacePlane> planes{{Eigen::Vector3d::UnitZ(), thickness / 2}, {-Eigen::Vector3d::UnitZ(), thickness / 2}};
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector2d e = (local[(i + 1) % n] - local[i]).normalized();
-    const Eigen::Vector2d m(e.y(), -e.x());  // outward for a counter-clockwise tile
-    const double s = tilts[(start + i) % n];
-    const Eigen::Vector3d normal(m.x() * std::cos(angle), m.y() * std::cos(angle), -s * std::sin(angle));
-    planes.push_back({normal, m.dot(local[i]) * std::cos(angle)});
+    // The face over edge k contains the edge's chord; untilted it contains the surface normal at
+    // the chord's midpoint (perpendicular to the chord), tilted it leans by theta about the chord.
+    const int k = (start + i) % n;
+    const Eigen::Vector3d &a = corners[k], &b = corners[(k + 1) % n];
+    const Eigen::Vector3d middle = 0.5 * (a + b), normal = surface.normal(middle);
+    const Eigen::Vector3d outward = (b - a).cross(normal).normalized();  // outward for a counter-clockwise tile
+    add(outward * std::cos(angle) - tilts[k] * std::sin(angle) * normal, middle);
   }
   for (const VerticalCut& cut : cuts) {
-    const Eigen::Vector2d normal = toLocal * cut.normal, point = toLocal * (cut.point - centroid);
-    planes.push_back({Eigen::Vector3d(normal.x(), normal.y(), 0), normal.dot(point)});
+    const Eigen::Vector3d point = surface.point(cut.point), normal = surface.normal(point);
+    const Eigen::Vector3d lifted(cut.normal.x(), cut.normal.y(), 0);
+    add((lifted - lifted.dot(normal) * normal).normalized(), point);
   }
+  double size = thickness;
+  for (const Eigen::Vector3d& x : corners) size = std::max(size, (x - origin).norm());
   TriangleMesh mesh = convexPolyhedronFromPlanes(planes, size + thickness);
-  for (Eigen::Vector3d& x : mesh.vertices) {
-    const Eigen::Vector2d xy = toWorld * x.head<2>() + centroid;
-    x.head<2>() = xy;
-  }
+  for (Eigen::Vector3d& x : mesh.vertices) x = frame * x + origin;
   return mesh;
 }
 

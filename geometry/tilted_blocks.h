@@ -1,4 +1,5 @@
 #pragma once
+#include "geometry/base_surface.h"
 #include "geometry/plane_tiling.h"
 #include "geometry/triangle_mesh.h"
 
@@ -32,15 +33,20 @@ struct VerticalCut {
 std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
                                                  const std::vector<std::vector<int>>& tilts, double thickness, double angle);
 
-/// The block of a tile: the solid |z| <= h/2 bounded, over each edge k (outward normal m_k, corner
-/// c_k), by the plane through the edge at z = 0 leaning by theta,
-///   m_k . (x - c_k) cos theta - s_k z sin theta <= 0   (s_k = tilts[k]),
-/// so the face leans out (s = +1) or in (s = -1) by theta from the vertical. A face whose plane
-/// misses the slab |z| <= h/2 is dropped; `cuts` bound it further. The mesh is built in a frame fixed by the tile's own
-/// shape (centroid; the edge that starts the smallest cyclic sequence of sign, length and turn),
-/// so tiles equal up to a rotation get the same vertices and triangles in the same order, and
-/// share one shape when assembled. Lengths m, angle radians.
+/// The block of a tile on a base surface: between the planes tangent to the surface at the point
+/// over the tile's centroid, offset by +-h/2 along its normal, and, over each edge k, the plane
+/// through the edge's chord (its corners lifted onto the surface) that contains the surface normal
+/// n_e at the chord's midpoint, tilted about the chord by theta:
+///   (o_k cos theta - s_k n_e sin theta) . (x - midpoint) <= 0,  o_k = chord x n_e (outward), s_k = tilts[k],
+/// so the face leans out (s = +1: the block widens away from the surface) or in (s = -1). On the
+/// plane z = 0 this is m_k . (x - c_k) cos theta - s_k z sin theta <= 0, m_k the edge's outward
+/// normal. A face whose plane misses the block is dropped; `cuts` (vertical on the plane; along the
+/// surface normal at their corner elsewhere) bound it further. The mesh is built in a frame fixed
+/// by the tile's own shape (origin on the surface over the centroid, z along the normal there, x
+/// towards the edge that starts the smallest cyclic sequence of sign, length and turn), so tiles
+/// equal up to a rigid motion get the same vertices and triangles in the same order, and share one
+/// shape when assembled. Lengths m, angle radians.
 TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<VerticalCut>& cuts,
-                         double thickness, double angle);
+                         double thickness, double angle, const BaseSurface& surface = {});
 
 }  // namespace tessera

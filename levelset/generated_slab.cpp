@@ -24,7 +24,7 @@ std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options
     AssemblyPart part;
     part.name = tiling.names[t];
     part.label = label + ", tile " + part.name;
-    part.mesh = tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], options.thickness, options.angle);
+    part.mesh = tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], options.thickness, options.angle, options.surface);
     part.fixed = options.fixPerimeter &&
                  std::any_of(across[t].begin(), across[t].end(), [](const EdgeNeighbour& e) { return e.tile < 0; });
     fixed += part.fixed;

@@ -1,4 +1,5 @@
 #pragma once
+#include "geometry/base_surface.h"
 #include "geometry/plane_tiling.h"
 #include "levelset/assembler.h"
 
@@ -8,13 +9,15 @@
 namespace tessera {
 
 /// A slab generated from a tiling (docs/tiling.md, "Generated tilings"): each tile becomes a
-/// convex block of thickness h whose faces lean by theta, with the signs of interlockingTilts.
+/// convex block of thickness h whose faces lean by theta, with the signs of interlockingTilts, on
+/// the base surface.
 struct GeneratedSlabOptions {
   TilingOptions tiling;        ///< a built-in tiling, unless tilingFile is given
   std::string tilingFile;      ///< a polygon mesh of the tiles (in `unit`)
   double metresPerUnit = 1;    ///< of tilingFile
   double thickness = 0;        ///< m, h
   double angle = 0;            ///< radians, theta
+  BaseSurface surface;         ///< the tiles lifted onto it (a dome, a barrel vault)
   bool fixPerimeter = true;    ///< fix the tiles with an edge on the tiling's boundary
 };
 

@@ -28,6 +28,8 @@ struct TileArguments {
   std::optional<double> thickness;
   double angle = 5;
   unsigned seed = 1;
+  std::string surface = "plane";
+  double radius = 0;
   std::string unit;
   std::string up = "z";
   std::string grid = "7x7";
@@ -76,6 +78,7 @@ Bundle generatedSlab(const TileArguments& a, PrepLog& log) {
   options.thickness = *a.thickness * m;
   if (!(a.angle >= 0 && a.angle < 90)) throw InputError("--angle " + std::to_string(a.angle) + ": give the faces' tilt in degrees, in [0, 90)");
   options.angle = a.angle * M_PI / 180;
+  options.surface = baseSurface(a.surface, a.radius * m);
   if (a.fix != "perimeter" && a.fix != "none") throw InputError("--fix '" + a.fix + "': use perimeter or none");
   options.fixPerimeter = a.fix == "perimeter";
   std::vector<AssemblyPart> parts = generatedSlabParts(options);
@@ -86,6 +89,9 @@ Bundle generatedSlab(const TileArguments& a, PrepLog& log) {
   assemble.unit = a.unit;
   assemble.resolution = shapeResolution(a.resolution, m, a.tiling);
   assemble.limits = shapeLimits(a.resolution);
+  // Generated blocks equal up to a rigid motion are built alike to rounding: share nothing looser
+  // (on a surface, neighbouring tiles differ by less than an export's rounding).
+  assemble.sameShapeTolerance = 1e-9;
   AssembleReport report;
   Bundle bundle = assembleParts(std::move(parts), assemble, log, report);
   std::cerr << "tile: span " << report.spanRule << "\n";
@@ -165,6 +171,9 @@ void addTileCommand(CLI::App& app) {
   cmd->add_option("--thickness", args->thickness, "With --tiling: the blocks' thickness, in --unit");
   cmd->add_option("--angle", args->angle, "With --tiling: the tilt of the blocks' side faces, degrees")->capture_default_str();
   cmd->add_option("--seed", args->seed, "With --tiling voronoi: the seed of the random sites")->capture_default_str();
+  cmd->add_option("--surface", args->surface, "With --tiling: lay the tiles on a plane, a sphere (a dome) or a cylinder along x (a barrel vault)")
+      ->capture_default_str();
+  cmd->add_option("--radius", args->radius, "With --surface sphere or cylinder: its radius, in --unit");
   cmd->add_option("--unit", args->unit, "Length unit of the mesh and of every length given: m, cm, mm, um, in, ft");
   cmd->add_option("--up", args->up, "The meshes' up axis (x, y or z), turned into +z (the slab's thickness)")
       ->check(CLI::IsMember({"x", "y", "z"}))
@@ -182,7 +191,8 @@ void addTileCommand(CLI::App& app) {
   cmd->add_flag("--replace", args->replace, "Replace a bundle already in the output directory");
   cmd->add_option("--max-bodies", args->maxBodies, "Refuse a slab of more blocks than this")->capture_default_str();
   cmd->footer("Example (the paper's slab): tessera tile --block planar.obj --unit mm --grid 7x7 --pitch 10 --fix perimeter -o slab\n"
-              "Generated: tessera tile --tiling hex --grid 7x7 --pitch 10 --thickness 3.18 --angle 5 --unit mm -o hex_slab");
+              "Generated: tessera tile --tiling hex --grid 7x7 --pitch 10 --thickness 3.18 --angle 5 --unit mm -o hex_slab\n"
+              "A dome:    tessera tile --tiling hex --grid 9x9 --pitch 10 --thickness 3.18 --angle 5 --surface sphere --radius 500 --unit mm -o dome");
   cmd->callback([args] { runTile(*args); });
 }
 

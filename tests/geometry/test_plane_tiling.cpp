@@ -23,7 +23,7 @@ struct GeneratedBlocks {
   std::vector<TriangleMesh> meshes;
 };
 
-GeneratedBlocks generate(const std::string& kind, double pitch, double thickness, double angle) {
+GeneratedBlocks generate(const std::string& kind, double pitch, double thickness, double angle, const BaseSurface& surface = {}) {
   GeneratedBlocks g;
   TilingOptions options;
   options.kind = kind;
@@ -34,7 +34,7 @@ GeneratedBlocks generate(const std::string& kind, double pitch, double thickness
   g.tilts = interlockingTilts(g.tiling, g.across);
   const auto cuts = cornerCuts(g.tiling, g.across, g.tilts, thickness, angle);
   for (std::size_t t = 0; t < g.tiling.tiles.size(); ++t)
-    g.meshes.push_back(tiltedBlock(g.tiling.tiles[t], g.tilts[t], cuts[t], thickness, angle));
+    g.meshes.push_back(tiltedBlock(g.tiling.tiles[t], g.tilts[t], cuts[t], thickness, angle, surface));
   return g;
 }
 
@@ -164,4 +164,32 @@ TEST_CASE("tilted blocks: every tile of a tiling that allows it has faces leanin
       if (interior) REQUIRE((out && in));
     }
   }
+}
+
+TEST_CASE("tilted blocks on a sphere and a cylinder: a dome and a vault without overlap, flat as the radius grows") {
+  const double pitch = 0.01, h = 0.00318, theta = 5 * M_PI / 180;
+  // A chord's midpoint normal is perpendicular to the chord (so the face contains the chord).
+  for (const BaseSurface& surface : {baseSurface("sphere", 0.1), baseSurface("cylinder", 0.1)}) {
+    const Eigen::Vector3d a = surface.point({0.01, -0.02}), b = surface.point({-0.015, 0.03});
+    REQUIRE(std::abs(surface.normal(0.5 * (a + b)).dot(b - a)) < 1e-15);
+  }
+  REQUIRE_THROWS_AS(baseSurface("sphere", 0), InputError);
+  REQUIRE_THROWS_AS(baseSurface("torus", 1), InputError);
+  REQUIRE_THROWS_AS(baseSurface("sphere", 0.01).point({0.02, 0}), InputError);
+  // A sphere a thousand times the slab is the plane to 1e-5 of a block's volume.
+  const GeneratedBlocks flat = generate("hex", pitch, h, theta), far = generate("hex", pitch, h, theta, baseSurface("sphere", 50));
+  for (std::size_t t = 0; t < flat.meshes.size(); ++t)
+    REQUIRE(signedVolume(far.meshes[t]) == Approx(signedVolume(flat.meshes[t])).epsilon(1e-5));
+  for (const BaseSurface& surface : {baseSurface("sphere", 0.6), baseSurface("cylinder", 0.6)})
+    for (const std::string& kind : {"hex", "square"}) {
+      INFO(kind);
+      const GeneratedBlocks g = generate(kind, pitch, h, theta, surface);
+      for (std::size_t t = 0; t < g.meshes.size(); ++t) {
+        TriangleMesh copy = g.meshes[t];
+        REQUIRE_FALSE(validateSolidMesh(copy, g.tiling.names[t]).reoriented);
+        for (std::size_t u = t + 1; u < g.meshes.size(); ++u)
+          if ((polygonCentroid(g.tiling.tiles[t]) - polygonCentroid(g.tiling.tiles[u])).norm() < 2 * pitch)
+            REQUIRE(sharedVolume(g.meshes[t], g.meshes[u], 10 * pitch) <= 1e-6 * pitch * pitch * h);
+      }
+    }
 }
