@@ -35,4 +35,16 @@ std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options
   return parts;
 }
 
+Bundle generatedSlab(const GeneratedSlabOptions& options, const std::string& unit, const ShapeResolution& resolution,
+                     const ShapeLimits& limits, PrepLog& log, AssembleReport& report) {
+  AssembleOptions assemble;
+  assemble.unit = unit;
+  assemble.resolution = resolution;
+  assemble.limits = limits;
+  // Generated blocks equal up to a rigid motion are built alike to rounding: share nothing looser
+  // (on a surface, neighbouring tiles differ by less than an export's rounding).
+  assemble.sameShapeTolerance = 1e-9;
+  return assembleParts(generatedSlabParts(options), assemble, log, report);
+}
+
 }  // namespace tessera

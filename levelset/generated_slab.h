@@ -25,4 +25,11 @@ struct GeneratedSlabOptions {
 /// that give no block, and when `fixPerimeter` fixes every tile (too small a grid).
 std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options);
 
+/// The bundle of a generated slab: its parts assembled (assembleParts, `unit` recorded as the
+/// shapes' source unit), blocks equal up to a rigid motion to rounding (1e-9 of their size) sharing
+/// a shape, the span estimated (report.spanRule). What `tessera tile --tiling` and Python's
+/// tile_tiling() write, after checkAssemblyBeforeWriting.
+Bundle generatedSlab(const GeneratedSlabOptions& options, const std::string& unit, const ShapeResolution& resolution,
+                     const ShapeLimits& limits, PrepLog& log, AssembleReport& report);
+
 }  // namespace tessera

@@ -1,4 +1,4 @@
-// tessera.prep, tessera.tile, tessera.tile_layout, tessera.read_bundle: shapes and slabs from Python
+// tessera.prep, tile, tile_layout, tile_tiling, check, read_bundle: shapes and slabs from Python
 // (lengths in m).
 #include "python/bindings.h"
 
@@ -7,13 +7,17 @@
 #include "levelset/assembly_checks.h"
 #include "levelset/bundle.h"
 #include "levelset/bundle_edit.h"
+#include "levelset/generated_slab.h"
+#include "levelset/rigid_block_analysis.h"
 #include "levelset/shape.h"
 #include "levelset/slab_plan.h"
 #include "levelset/tiler.h"
+#include "solver/contact_parameters.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -37,17 +41,15 @@ ShapeResolution resolution(std::optional<double> voxel, std::optional<double> sp
   return r;
 }
 
-// The plan tiled, checked like tile's (overlaps refused) and written to `output`.
-py::dict tileAndWrite(const SlabPlan& plan, const std::string& output, const ShapeResolution& r, double gap, bool replace) {
-  checkBundleOutput(output, replace);
-  PrepLog log;
-  const Bundle bundle = tileSlab(plan, r, log);
+// The bundle checked like tile's (overlaps refused) and written to `output`.
+py::dict checkAndWrite(const Bundle& bundle, const std::vector<std::string>& planNotes, const PrepLog& log, const std::string& output,
+                       double gap) {
   const AssemblySummary summary =
       checkAssemblyBeforeWriting(bundle, std::nullopt, gap, "check the pitch or the layout positions, or add a gap",
                                  "check the pitch or positions (in m) and that the blocks' thickness is along z (up='y' for y-up meshes)",
                                  true);
   writeBundle(output, bundle);
-  std::vector<std::string> notes = plan.notes, warnings = log.warnings;
+  std::vector<std::string> notes = planNotes, warnings = log.warnings;
   notes.insert(notes.end(), log.notes.begin(), log.notes.end());
   notes.insert(notes.end(), summary.notes.begin(), summary.notes.end());
   warnings.insert(warnings.end(), summary.warnings.begin(), summary.warnings.end());
@@ -62,6 +64,25 @@ py::dict tileAndWrite(const SlabPlan& plan, const std::string& output, const Sha
   d["notes"] = notes;
   d["warnings"] = warnings;
   return d;
+}
+
+// The plan tiled, checked and written.
+py::dict tileAndWrite(const SlabPlan& plan, const std::string& output, const ShapeResolution& r, double gap, bool replace) {
+  checkBundleOutput(output, replace);
+  PrepLog log;
+  return checkAndWrite(tileSlab(plan, r, log), plan.notes, log, output, gap);
+}
+
+py::list motionList(const Bundle& bundle, const std::vector<BodyMotion>& motion) {
+  py::list list;
+  for (const BodyMotion& m : motion) {
+    py::dict d;
+    d["body"] = bundle.bodies[m.body].name;
+    d["translation"] = std::vector<double>{m.translation.x(), m.translation.y(), m.translation.z()};
+    d["rotation"] = std::vector<double>{m.rotation.x(), m.rotation.y(), m.rotation.z()};
+    list.append(d);
+  }
+  return list;
 }
 
 py::dict bundleOf(const std::string& path) {
@@ -160,6 +181,62 @@ void bindSlabs(py::module_& m) {
       },
       py::arg("layout"), py::arg("output"), py::arg("voxel") = py::none(), py::arg("spacing") = py::none(),
       py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false, py::arg("up") = "z", "A slab bundle from a layout file (docs/tiling.md), as `tessera tile --layout`.");
+  m.def(
+      "tile_tiling",
+      [](const std::string& tiling, const std::string& output, double thickness, double angle, std::pair<int, int> grid,
+         std::optional<double> pitch, const std::string& surface, double radius, unsigned seed, bool fixPerimeter,
+         std::optional<double> voxel, std::optional<double> spacing, double edgeSpacing, bool replace) {
+        GeneratedSlabOptions options;
+        const auto& kinds = tilingKinds();
+        if (std::find(kinds.begin(), kinds.end(), tiling) != kinds.end()) {
+          if (!pitch) throw InputError("tiling '" + tiling + "' needs pitch, the distance between neighbouring tile centres in m");
+          if (grid.first < 1 || grid.second < 1 || static_cast<long>(grid.first) * grid.second > 10000)
+            throw InputError("grid must be (columns, rows), each at least 1 and at most 10000 tiles in all");
+          options.tiling = {tiling, *pitch, grid.first, grid.second, seed};
+        } else {
+          options.tilingFile = tiling;  // a polygon mesh, in m
+        }
+        options.thickness = thickness;
+        if (!(angle >= 0 && angle < 90)) throw InputError("angle must be the faces' tilt in degrees, in [0, 90)");
+        options.angle = angle * M_PI / 180;
+        options.surface = baseSurface(surface, radius);
+        options.fixPerimeter = fixPerimeter;
+        checkBundleOutput(output, replace);
+        PrepLog log;
+        AssembleReport report;
+        const Bundle bundle = generatedSlab(options, "m", resolution(voxel, spacing, edgeSpacing), ShapeLimits{}, log, report);
+        return checkAndWrite(bundle, {"span " + report.spanRule}, log, output, 0.0);
+      },
+      py::arg("tiling"), py::arg("output"), py::arg("thickness"), py::arg("angle") = 5.0, py::arg("grid") = std::pair<int, int>{7, 7},
+      py::arg("pitch") = py::none(), py::arg("surface") = "plane", py::arg("radius") = 0.0, py::arg("seed") = 1u,
+      py::arg("fix_perimeter") = true, py::arg("voxel") = py::none(), py::arg("spacing") = py::none(),
+      py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false,
+      "A slab bundle generated from a tiling (as `tessera tile --tiling`, docs/tiling.md): 'square', 'hex', 'triangle', "
+      "'rhombille', 'voronoi' or a polygon mesh file (in m); pitch, thickness and radius in m, angle in degrees; "
+      "surface 'plane', 'sphere' or 'cylinder'. Returns a summary.");
+  m.def(
+      "check",
+      [](const std::string& path, double friction) {
+        const Bundle bundle = readBundle(path);
+        if (!(friction >= 0)) throw InputError("friction must be a Coulomb coefficient >= 0");
+        const AssemblyStatics s = analyseAssembly(bundle, AssemblyLevelSets(bundle), friction);
+        py::dict d;
+        d["interlocked"] = s.interlocking.interlocked;
+        d["stable"] = s.stability.stable;
+        d["friction"] = friction;
+        d["least_friction"] = s.stability.leastFriction ? py::object(py::float_(*s.stability.leastFriction)) : py::object(py::none());
+        d["free_motion"] = motionList(bundle, s.interlocking.motion);
+        d["sliding_modes"] = s.interlocking.slidingModes;
+        d["sliding_motion"] = motionList(bundle, s.interlocking.sliding);
+        d["contact_pairs"] = s.pairs;
+        d["contact_polygons"] = s.polygons;
+        d["contact_corners"] = s.corners;
+        d["seconds"] = s.seconds;
+        return d;
+      },
+      py::arg("bundle"), py::arg("friction") = ContactParameters{}.friction,
+      "Is the assembly interlocked, and does it stand under its own weight (as `tessera check`, docs/check.md)? "
+      "The same keys as `tessera check --json`.");
   m.def("read_bundle", &bundleOf, py::arg("path"),
         "A bundle's bodies: names, shape, position (n, 3) m, orientation (n, 4) (w, x, y, z), fixed; its span.");
 }

@@ -59,7 +59,7 @@ std::pair<int, int> parseGrid(const std::string& text, long maxBodies) {
 }
 
 // The blocks of a tiling (--tiling), each shape prepared once.
-Bundle generatedSlab(const TileArguments& a, PrepLog& log) {
+Bundle slabFromTiling(const TileArguments& a, PrepLog& log) {
   if (a.unit.empty()) throw InputError("--tiling: state the length unit of --pitch and --thickness with --unit (mm, cm, m, in)");
   if (!a.thickness) throw InputError("--tiling needs --thickness: the blocks' thickness, in --unit");
   const double m = parseLengthUnit(a.unit).metres;
@@ -81,19 +81,10 @@ Bundle generatedSlab(const TileArguments& a, PrepLog& log) {
   options.surface = baseSurface(a.surface, a.radius * m);
   if (a.fix != "perimeter" && a.fix != "none") throw InputError("--fix '" + a.fix + "': use perimeter or none");
   options.fixPerimeter = a.fix == "perimeter";
-  std::vector<AssemblyPart> parts = generatedSlabParts(options);
-  if (static_cast<long>(parts.size()) > a.maxBodies)
-    throw InputError(a.tiling + ": " + std::to_string(parts.size()) + " tiles, more than --max-bodies " + std::to_string(a.maxBodies) +
-                     "; raise --max-bodies if you mean it");
-  AssembleOptions assemble;
-  assemble.unit = a.unit;
-  assemble.resolution = shapeResolution(a.resolution, m, a.tiling);
-  assemble.limits = shapeLimits(a.resolution);
-  // Generated blocks equal up to a rigid motion are built alike to rounding: share nothing looser
-  // (on a surface, neighbouring tiles differ by less than an export's rounding).
-  assemble.sameShapeTolerance = 1e-9;
+  if (options.tilingFile.empty() && static_cast<long>(options.tiling.columns) * options.tiling.rows * (a.tiling == "rhombille" ? 3 : 1) > a.maxBodies)
+    throw InputError("--grid " + a.grid + ": more than --max-bodies " + std::to_string(a.maxBodies) + " tiles; raise --max-bodies if you mean it");
   AssembleReport report;
-  Bundle bundle = assembleParts(std::move(parts), assemble, log, report);
+  Bundle bundle = generatedSlab(options, a.unit, shapeResolution(a.resolution, m, a.tiling), shapeLimits(a.resolution), log, report);
   std::cerr << "tile: span " << report.spanRule << "\n";
   return bundle;
 }
@@ -121,7 +112,7 @@ void runTile(const TileArguments& a) {
   if (!a.tiling.empty()) {
     PrepLog log;
     log.now = [](const std::string& m) { std::cerr << "tile: " << m << "\n"; };
-    const Bundle bundle = generatedSlab(a, log);
+    const Bundle bundle = slabFromTiling(a, log);
     writeCheckedSlab(a, bundle, log, parseLengthUnit(a.unit).metres, "check --pitch, --thickness and --angle", start);
     return;
   }

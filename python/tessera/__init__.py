@@ -18,10 +18,12 @@ from ._tessera import (  # noqa: F401  (the C++ core)
     SolverInstability,
     WriteError,
     __version__,
+    check,
     curve_units,
     prep,
     read_bundle,
     tile,
     tile_layout,
+    tile_tiling,
 )
 from .run_folder import RunFolder, open_run  # noqa: F401

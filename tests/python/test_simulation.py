@@ -1,9 +1,11 @@
 """The Python module against the command line and against the physics it stands for."""
+import subprocess
+
 import numpy as np
 import pytest
 
 import tessera
-from conftest import BLOCK, SCENE
+from conftest import BLOCK, SCENE, TESSERA
 
 
 def load_unload(slab, turn_at, scene=SCENE, **options):
@@ -223,3 +225,17 @@ def test_a_control_is_valid_only_inside_its_callback_and_speeds_are_bounded(slab
     with pytest.raises(ValueError, match="no run folder"):
         fast.write_outputs()
 
+
+
+def test_a_generated_tiling_is_checked_as_the_command_line_checks_it(tmp_path):
+    import json
+    slab = str(tmp_path / "hex")
+    summary = tessera.tile_tiling("hex", slab, thickness=3.18e-3, angle=5, grid=(5, 5), pitch=10e-3)
+    assert summary["bodies"] == 25 and summary["free"] == 9
+    verdict = tessera.check(slab)
+    assert verdict["interlocked"] and verdict["stable"] and verdict["least_friction"] == 0
+    cli = json.loads(subprocess.run([TESSERA, "check", slab, "--json"], check=True, capture_output=True, text=True).stdout)
+    for key in ("interlocked", "stable", "least_friction", "sliding_modes", "contact_pairs", "contact_corners"):
+        assert verdict[key] == cli[key], key
+    with pytest.raises(ValueError, match="needs pitch"):
+        tessera.tile_tiling("hex", str(tmp_path / "nopitch"), thickness=3.18e-3)
