@@ -134,6 +134,42 @@ SlidingModes slidingModes(const Eigen::SparseMatrix<double>& a) {
   return modes;
 }
 
+// A: row c the corner's relative normal velocity (A x)_c, as triplets.
+std::vector<Eigen::Triplet<double>> contactMatrix(const Bundle& bundle, const Freedoms& freedoms, const std::vector<ContactCorner>& corners) {
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int c = 0; c < static_cast<int>(corners.size()); ++c)
+    for (const Entry& e : wrench(bundle, freedoms, corners[c], corners[c].normal)) triplets.emplace_back(c, e.column, e.value);
+  return triplets;
+}
+
+// The motion that opens the contacts most and closes none: max objective . x subject to A x >= 0
+// (rows bounded by `rowUpper` above: 0 none), |x| <= 1. Always feasible (x = 0) and bounded.
+// Returns x and the optimum.
+std::pair<Eigen::VectorXd, double> bestMotion(const std::vector<Eigen::Triplet<double>>& triplets, int rows, int columns,
+                                              const Eigen::VectorXd& objective, double rowUpper) {
+  LinearProgram lp;
+  glp_set_obj_dir(lp.get(), GLP_MAX);
+  if (rows > 0) glp_add_rows(lp.get(), rows);
+  for (int c = 1; c <= rows; ++c) glp_set_row_bnds(lp.get(), c, rowUpper > 0 ? GLP_DB : GLP_LO, 0, rowUpper);
+  glp_add_cols(lp.get(), columns);
+  for (int d = 1; d <= columns; ++d) {
+    glp_set_col_bnds(lp.get(), d, GLP_DB, -1, 1);
+    glp_set_obj_coef(lp.get(), d, objective[d - 1]);
+  }
+  std::vector<int> ri, ci;
+  std::vector<double> vi;
+  for (const auto& t : triplets) {
+    ri.push_back(t.row());
+    ci.push_back(t.col());
+    vi.push_back(t.value());
+  }
+  lp.load(ri, ci, vi);
+  if (!lp.solve()) throw std::runtime_error("a motion program has no solution, yet x = 0 solves it");
+  Eigen::VectorXd x(columns);
+  for (int d = 0; d < columns; ++d) x[d] = glp_get_col_prim(lp.get(), d + 1);
+  return {x, glp_get_obj_val(lp.get())};
+}
+
 }  // namespace
 
 InterlockingVerdict checkInterlocking(const Bundle& bundle, const std::vector<ContactCorner>& corners) {
@@ -144,37 +180,16 @@ InterlockingVerdict checkInterlocking(const Bundle& bundle, const std::vector<Co
     verdict.interlocked = true;
     return verdict;
   }
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (int c = 0; c < rows; ++c)
-    for (const Entry& e : wrench(bundle, freedoms, corners[c], corners[c].normal)) triplets.emplace_back(c, e.column, e.value);
+  const std::vector<Eigen::Triplet<double>> triplets = contactMatrix(bundle, freedoms, corners);
   Eigen::SparseMatrix<double> a(rows, columns);
   a.setFromTriplets(triplets.begin(), triplets.end());
 
-  // The motion that opens the contacts most and closes none: max sum_c s_c, s = A x, 0 <= s <= 1,
-  // |x| <= 1. Always feasible (x = 0) and bounded; an optimum above 0 is a way out.
-  LinearProgram open;
-  glp_set_obj_dir(open.get(), GLP_MAX);
-  if (rows > 0) glp_add_rows(open.get(), rows);
-  for (int c = 1; c <= rows; ++c) glp_set_row_bnds(open.get(), c, GLP_DB, 0, 1);
-  glp_add_cols(open.get(), columns);
-  for (int d = 1; d <= columns; ++d) glp_set_col_bnds(open.get(), d, GLP_DB, -1, 1);
+  // The motion that opens the contacts most: max sum_c s_c, s = A x, 0 <= s <= 1, |x| <= 1; an
+  // optimum above 0 is a way out.
   Eigen::VectorXd objective = Eigen::VectorXd::Zero(columns);
-  std::vector<int> ri, ci;
-  std::vector<double> vi;
-  for (const auto& t : triplets) {
-    ri.push_back(t.row());
-    ci.push_back(t.col());
-    vi.push_back(t.value());
-    objective[t.col()] += t.value();
-  }
-  for (int d = 0; d < columns; ++d) glp_set_obj_coef(open.get(), d + 1, objective[d]);
-  open.load(ri, ci, vi);
-  if (!open.solve()) throw std::runtime_error("the interlocking program has no solution, yet x = 0 solves it");
-  if (glp_get_obj_val(open.get()) > 1e-6) {
-    Eigen::VectorXd x(columns);
-    for (int d = 0; d < columns; ++d) x[d] = glp_get_col_prim(open.get(), d + 1);
-    verdict.motion = motionOf(freedoms, x);
-  }
+  for (const auto& t : triplets) objective[t.col()] += t.value();
+  const auto [x, opening] = bestMotion(triplets, rows, columns, objective, 1.0);
+  if (opening > 1e-6) verdict.motion = motionOf(freedoms, x);
   // A free body that touches nothing moves freely (lifted off, say).
   std::vector<char> touches(bundle.bodies.size(), 0);
   for (const ContactCorner& c : corners) touches[c.first] = touches[c.second] = 1;
@@ -238,7 +253,9 @@ StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactC
     }
   }
   lp.load(ri, ci, vi);
-  // Feasible at friction mu? At 0 the friction columns are held at 0 (the presolver drops them).
+  // Feasible at friction mu, with the corners marked `open` carrying nothing? At 0 the friction
+  // columns are held at 0 (the presolver drops them).
+  std::vector<char> open(count, 0);
   const auto feasibleAt = [&](double mu) {
     std::vector<int> index(kSides + 2);
     std::vector<double> value(kSides + 2);
@@ -246,7 +263,8 @@ StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactC
       for (int j = 0; j <= kSides; ++j) {
         index[j + 1] = c * (kSides + 1) + j + 1;
         value[j + 1] = j == 0 ? -mu : 1.0;
-        if (j > 0) glp_set_col_bnds(lp.get(), index[j + 1], mu > 0 ? GLP_LO : GLP_FX, 0, 0);
+        const bool held = open[c] || (j > 0 && mu == 0);
+        glp_set_col_bnds(lp.get(), index[j + 1], held ? GLP_FX : GLP_LO, 0, 0);
       }
       glp_set_mat_row(lp.get(), equations + c + 1, kSides + 1, index.data(), value.data());
     }
@@ -263,11 +281,25 @@ StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactC
     }
     return used;
   };
-  if (feasibleAt(0)) {
+  if (feasibleAt(0)) {  // frictionless equilibrium: no admissible motion lowers the weight (Farkas)
     verdict.stable = true;
     verdict.leastFriction = 0;
     return verdict;
   }
+  // Some admissible motion (A x >= 0) lowers the weight. The one that lowers it most opens some
+  // contacts: those carry nothing along it, so only the others may hold the bodies by friction.
+  // (Equilibrium with every contact would also accept forces the blocks could only get from a
+  // prestress they do not have: a triangle slab that so "stands" falls in a run.)
+  const int columns = equations;
+  const std::vector<Eigen::Triplet<double>> triplets = contactMatrix(bundle, freedoms, corners);
+  Eigen::VectorXd lowering = Eigen::VectorXd::Zero(columns);
+  for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body)
+    if (freedoms.index[body] >= 0) lowering[6 * freedoms.index[body] + 2] = -bundle.shapes[bundle.bodies[body].shape].mass.volume;
+  const auto [fall, work] = bestMotion(triplets, count, columns, lowering, 0.0);
+  Eigen::VectorXd opening = Eigen::VectorXd::Zero(count);
+  for (const auto& t : triplets) opening[t.row()] += t.value() * fall[t.col()];
+  for (int c = 0; c < count; ++c) open[c] = opening[c] > 1e-6;  // of a motion whose largest velocity is 1
+  verdict.falling = motionOf(freedoms, fall);
   verdict.stable = friction > 0 && feasibleAt(friction);
   if (!findLeastFriction) return verdict;
   verdict.searched = true;

@@ -30,18 +30,23 @@ struct InterlockingVerdict {
   int slidingModes = 0;             ///< independent motions that slide along every contact
   std::vector<BodyMotion> sliding;  ///< one of them (empty above 600 free bodies: counted, not shown)
 };
-/// Static stability under gravity (-z), rigid-block equilibrium: whether contact forces at the
-/// corners, compressive and within Coulomb's cone (an inscribed pyramid of 8 faces, which needs up
-/// to 1 / cos(22.5 deg) = 1.082 times the cone's friction), balance the weight of every free body;
-/// and the smallest friction coefficient for which they do (bisection to 1 % or 1e-3, up to 10). As
-/// compas_rbe (Whiting, Ochsendorf & Durand, "Procedural modeling of structurally-sound masonry
-/// buildings", ACM TOG 28, 2009) poses it.
+/// Static stability under gravity (-z), rigid-block equilibrium (docs/check.md): whether contact
+/// forces at the corners, compressive and within Coulomb's cone (an inscribed pyramid of 8 faces,
+/// which needs up to 1 / cos(22.5 deg) = 1.082 times the cone's friction), balance the weight of
+/// every free body, as compas_rbe (Whiting, Ochsendorf & Durand, "Procedural modeling of
+/// structurally-sound masonry buildings", ACM TOG 28, 2009) poses it; and the smallest friction
+/// coefficient for which they do (bisection to 1 % or 1e-3, up to 10). Without friction that is
+/// exact (Farkas: no admissible motion lowers the weight). With friction, equilibrium alone would
+/// accept forces the blocks could only get from a prestress; so the admissible motion that lowers
+/// the weight most (max weight . x down over A x >= 0, |x| <= 1) is found, and the contacts it
+/// opens carry nothing.
 struct StabilityVerdict {
   bool stable = false;                  ///< at the given friction
   /// The least friction, to 1 % or 1e-3 (0: none needed; rigid wedged blocks can need arbitrarily little,
   /// with normal forces growing without bound); none: no friction up to 10 suffices (it needs tension).
   std::optional<double> leastFriction;
   bool searched = false;  ///< the least friction was looked for (else only 0 is found)
+  std::vector<BodyMotion> falling;  ///< when it needs friction: the motion that lowers the weight most
 };
 /// `findLeastFriction` false: the verdict at `friction` alone (and whether it stands without).
 StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction,

@@ -226,6 +226,7 @@ void bindSlabs(py::module_& m) {
         d["friction"] = friction;
         d["least_friction"] = s.stability.leastFriction ? py::object(py::float_(*s.stability.leastFriction)) : py::object(py::none());
         d["free_motion"] = motionList(bundle, s.interlocking.motion);
+        d["falling_motion"] = motionList(bundle, s.stability.falling);
         d["sliding_modes"] = s.interlocking.slidingModes;
         d["sliding_motion"] = motionList(bundle, s.interlocking.sliding);
         d["contact_pairs"] = s.pairs;

@@ -57,6 +57,10 @@ void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
               st.stable ? "compressive forces within the friction cones carry every free body's weight"
                         : "no compressive forces within the friction cones carry every free body's weight",
               least);
+  if (!st.stable && !st.falling.empty()) {
+    std::printf("                it would go this way, opening the contacts it leaves:\n");
+    printMotion(st.falling);
+  }
   std::printf("  checked in %.2f s\n", s.seconds);
 }
 

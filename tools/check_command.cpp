@@ -44,6 +44,7 @@ void runCheck(const CheckArguments& a) {
                      {"friction", statics.friction},
                      {"least_friction", statics.stability.leastFriction ? nlohmann::json(*statics.stability.leastFriction) : nlohmann::json(nullptr)},
                      {"free_motion", motionJson(bundle, statics.interlocking.motion)},
+                     {"falling_motion", motionJson(bundle, statics.stability.falling)},
                      {"sliding_modes", statics.interlocking.slidingModes},
                      {"sliding_motion", motionJson(bundle, statics.interlocking.sliding)},
                      {"contact_pairs", statics.pairs},
