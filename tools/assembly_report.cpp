@@ -51,7 +51,7 @@ void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
   char least[96] = "no friction up to 10 suffices (it needs tension)";
   if (!st.leastFriction && !st.searched) std::snprintf(least, sizeof least, "tessera check finds the least friction");
   if (st.leastFriction && *st.leastFriction == 0) std::snprintf(least, sizeof least, "it stands without friction");
-  else if (st.leastFriction && *st.leastFriction <= 1e-3) std::snprintf(least, sizeof least, "least friction below 0.001: the blocks wedge");
+  else if (st.leastFriction && *st.leastFriction <= 1e-3) std::snprintf(least, sizeof least, "least friction below 0.001: the blocks wedge, standing if squeezed");
   else if (st.leastFriction) std::snprintf(least, sizeof least, "least friction %.3f", *st.leastFriction);
   std::printf("  stable        %s at friction %.3g: %s (%s)\n", st.stable ? "yes" : "no", s.friction,
               st.stable ? "compressive forces within the friction cones carry every free body's weight"

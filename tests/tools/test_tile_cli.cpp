@@ -232,3 +232,57 @@ TEST_CASE("a body that touches nothing is reported, not refused") {
   REQUIRE_THAT(r.err, Contains("body 'solo' touches no other body") && Contains("not held up or down"));
   REQUIRE_THAT(r.out, Contains("0 of 1 free bodies held"));
 }
+
+TEST_CASE("tile --tiling: generated hex slab, its verdict and check --json; a tiling file; mistakes exit 2 naming the fix") {
+  test::TempDir dir;
+  const test::CliResult hex =
+      test::runTessera("tile --tiling hex --grid 4x4 --pitch 10 --thickness 3.18 --angle 5 --unit mm -o " + quoted(dir / "hex"));
+  INFO(hex.err);
+  REQUIRE(hex.status == 0);
+  REQUIRE_THAT(hex.out, Contains("16 bodies (12 fixed, 4 free), 1 distinct shape(s)"));
+  REQUIRE_THAT(hex.out, Contains("interlocked   yes"));
+  const test::CliResult check = test::runTessera("check " + quoted(dir / "hex") + " --json");
+  REQUIRE(check.status == 0);
+  const nlohmann::json verdict = nlohmann::json::parse(check.out);
+  REQUIRE(verdict["interlocked"] == true);
+  REQUIRE(verdict["stable"] == true);
+  REQUIRE(verdict["least_friction"] == 0.0);
+  // The same four free hexagons drawn in a file (mm): a 4 x 4 grid of hexagons as polygons.
+  {
+    std::ofstream obj(dir / "tiles.obj");
+    int base = 1;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) {
+        const double x = 10 * (c + 0.5 * (r % 2)), y = 10 * std::sqrt(3.0) / 2 * r;
+        for (int k = 0; k < 6; ++k) {
+          const double a = M_PI / 6 + k * M_PI / 3;
+          obj << "v " << x + 10 / std::sqrt(3.0) * std::cos(a) << " " << y + 10 / std::sqrt(3.0) * std::sin(a) << " 0\n";
+        }
+        obj << "f";
+        for (int k = 0; k < 6; ++k) obj << " " << base + k;
+        obj << "\n";
+        base += 6;
+      }
+  }
+  const test::CliResult file =
+      test::runTessera("tile --tiling " + quoted(dir / "tiles.obj") + " --thickness 3.18 --angle 5 --unit mm -o " + quoted(dir / "file"));
+  INFO(file.err);
+  REQUIRE(file.status == 0);
+  REQUIRE_THAT(file.out, Contains("16 bodies (12 fixed, 4 free)"));
+  REQUIRE_THAT(file.out, Contains("interlocked   yes"));
+
+  const auto refused = [&](const std::string& args, const std::string& says) {
+    const test::CliResult r = test::runTessera("tile " + args + " -o " + quoted(dir / "bad"));
+    INFO(args << ": " << r.err);
+    REQUIRE(r.status == 2);
+    REQUIRE_THAT(r.err, Contains(says));
+    REQUIRE_FALSE(fs::exists(dir / "bad/bundle.h5"));
+  };
+  refused("--tiling hex --grid 4x4 --pitch 10 --unit mm", "needs --thickness");
+  refused("--tiling hex --grid 4x4 --thickness 3 --unit mm", "needs --pitch");
+  refused("--tiling pentagon --grid 4x4 --pitch 10 --thickness 3 --unit mm", "no such tiling file");
+  refused("--tiling hex --grid 4x4 --pitch 10 --thickness 3 --angle 95 --unit mm", "[0, 90)");
+  refused("--tiling hex --grid 2x2 --pitch 10 --thickness 3 --unit mm", "every tile lies on the perimeter");
+  refused("--tiling hex --grid 9x9 --pitch 10 --thickness 3 --surface sphere --radius 20 --unit mm", "beyond the sphere's radius");
+  refused("--tiling hex --block x.obj --grid 4x4 --pitch 10 --thickness 3 --unit mm", "give one of --block");
+}
