@@ -1,5 +1,7 @@
 #include "run/run_session.h"
 
+#include "run/geometry_bundle.h"
+
 #include "io/file_digest.h"
 #include "io/folder_lock.h"
 #include "io/input_error.h"
@@ -188,6 +190,7 @@ std::unique_ptr<RunSession> RunSession::start(const RunRequest& request, const R
     s.scene_ = readSceneText(sceneText, request.scene);
   }
   if (!request.bundle.empty()) s.scene_.bundle = request.bundle;
+  if (s.scene_.bundle.empty()) s.scene_.bundle = geometryBundle(*s.scene_.geometry, s.output_.empty() ? "" : geometryCache(s.output_), log);
   if (request.threads >= 0) s.scene_.solver.threads = request.threads;
   if (!s.output_.empty()) {
     // Where the results go, checked before any work: writable, and not the bundle itself.

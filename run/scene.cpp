@@ -3,10 +3,12 @@
 
 #include "io/input_error.h"
 #include "io/text_file.h"
+#include "geometry/plane_tiling.h"
 #include "levelset/shape.h"
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -255,6 +257,39 @@ void readOutputTable(const std::string& path, const toml::table& root, Scene& sc
   output.finish();
 }
 
+// [geometry]: a slab generated from a tiling, in place of `bundle`
+void readGeometryTable(const std::string& path, const toml::table& root, Scene& scene) {
+  const toml::table* table = root["geometry"].as_table();
+  if (!table) return;
+  GeometryRecipe g;
+  Table geometry(path, "geometry", table);
+  geometry.text("tiling", g.tiling);
+  geometry.number("pitch", g.pitch, 1e-6, 100, "m");
+  Eigen::Vector2d grid(g.columns, g.rows);
+  if (geometry.vector<2>("grid", grid, "columns, rows")) {
+    if (grid.x() != std::round(grid.x()) || grid.y() != std::round(grid.y()) || grid.minCoeff() < 1 || grid.prod() > 10000)
+      throw InputError(path + ": geometry.grid must be [columns, rows], whole numbers of at least 1 and 10000 tiles in all");
+    g.columns = static_cast<int>(grid.x());
+    g.rows = static_cast<int>(grid.y());
+  }
+  geometry.integer("columns", g.columns, 1, 10000);
+  geometry.integer("rows", g.rows, 1, 10000);
+  geometry.number("thickness", g.thickness, 1e-6, 100, "m");
+  geometry.number("angle", g.angle, 0, 89.9, "degrees");
+  geometry.text("surface", g.surface);
+  geometry.number("radius", g.radius, 0, 1e6, "m");
+  std::string fix = "perimeter";
+  geometry.text("fix", fix);
+  if (fix != "perimeter" && fix != "none") throw InputError(path + ": geometry.fix must be \"perimeter\" or \"none\", got \"" + fix + "\"");
+  g.fixPerimeter = fix == "perimeter";
+  geometry.integer("seed", g.seed, 0, 1 << 30);
+  geometry.finish();
+  const std::vector<std::string>& kinds = tilingKinds();
+  if (std::find(kinds.begin(), kinds.end(), g.tiling) == kinds.end() && fs::path(g.tiling).is_relative())
+    g.tiling = (fs::path(path).parent_path() / g.tiling).string();  // a tiling file, beside the scene
+  scene.geometry = g;
+}
+
 }  // namespace
 
 Scene readSceneText(const std::string& text, const std::string& path) {
@@ -269,18 +304,21 @@ Scene readSceneText(const std::string& text, const std::string& path) {
   Scene scene;
   scene.path = path;
   const std::set<std::string> sections{"material", "span", "indenter", "protocol", "damping", "solver", "output",
-                                       "resolution"};
+                                       "resolution", "geometry"};
   for (const auto& [key, node] : root)
     if (!node.is_table() && std::string(key.str()) != "bundle")
       throw InputError(path + ": unknown key '" + std::string(key.str()) + "'; top-level keys: bundle and the tables [" +
-                       "material], [span], [indenter], [protocol], [damping], [solver], [output], [resolution]");
+                       "material], [span], [indenter], [protocol], [damping], [solver], [output], [resolution], [geometry]");
     else if (node.is_table() && !sections.count(std::string(key.str())))
       throw InputError(path + ": unknown table [" + std::string(key.str()) + "]; see docs/scene.md");
 
   Table top(path, "", &root);
   top.text("bundle", scene.bundle);
-  if (scene.bundle.empty()) throw InputError(path + ": bundle = \"...\" is missing: the slab to load (a bundle directory)");
-  if (fs::path(scene.bundle).is_relative()) scene.bundle = (fs::path(path).parent_path() / scene.bundle).string();
+  readGeometryTable(path, root, scene);
+  if (scene.bundle.empty() == !scene.geometry)
+    throw InputError(path + (scene.bundle.empty() ? ": bundle = \"...\" is missing: the slab to load (a bundle directory), or a [geometry] to generate"
+                                                  : ": give either bundle = \"...\" or a [geometry] table, not both"));
+  if (!scene.bundle.empty() && fs::path(scene.bundle).is_relative()) scene.bundle = (fs::path(path).parent_path() / scene.bundle).string();
 
   readMaterialTable(path, root, scene);
   readSpanTable(path, root, scene);
@@ -294,11 +332,15 @@ Scene readSceneText(const std::string& text, const std::string& path) {
 }
 
 std::string sceneWithOverrides(const std::string& path, const std::vector<std::pair<std::string, double>>& overrides) {
-  readScene(path);  // the base scene must be valid
+  const Scene base = readScene(path);  // the base scene must be valid
   toml::table root = toml::parse_file(path);
   const std::string bundle = root["bundle"].value_or(std::string());
-  if (fs::path(bundle).is_relative())
+  if (!bundle.empty() && fs::path(bundle).is_relative())
     root.insert_or_assign("bundle", fs::absolute(fs::path(path).parent_path() / bundle).lexically_normal().string());
+  const std::vector<std::string>& kinds = tilingKinds();
+  if (base.geometry && std::find(kinds.begin(), kinds.end(), base.geometry->tiling) == kinds.end())  // a tiling file, absolute
+    if (toml::table* g = root["geometry"].as_table(); g && g->contains("tiling"))
+      g->insert_or_assign("tiling", fs::absolute(base.geometry->tiling).lexically_normal().string());
   for (const auto& [key, value] : overrides) {
     const auto dot = key.find('.');
     if (dot == std::string::npos) throw InputError("scene key '" + key + "': give it as table.key, e.g. material.friction");
@@ -306,7 +348,8 @@ std::string sceneWithOverrides(const std::string& path, const std::vector<std::p
     if (!root.contains(table)) root.insert(table, toml::table{});
     toml::table* t = root[table].as_table();
     if (!t) throw InputError("scene key '" + key + "': [" + table + "] is not a table of the scene");
-    if (key == "span.interfaces" || key == "solver.threads" || key == "solver.implicit_max_iterations") {  // Table::integer
+    if (key == "span.interfaces" || key == "solver.threads" || key == "solver.implicit_max_iterations" || key == "geometry.columns" ||
+        key == "geometry.rows" || key == "geometry.seed") {  // Table::integer
       if (!(std::isfinite(value) && value == std::round(value) && std::abs(value) < 1e15)) {
         std::ostringstream m;
         m << "scene key '" << key << "' takes a whole number, not " << value << " (its run would not be the value it is labelled)";

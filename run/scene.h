@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -90,10 +91,25 @@ struct ResolutionOverride {
   }
 };
 
+/// A slab generated from a tiling, in place of a bundle ([geometry], docs/scene.md): the recipe of
+/// `tessera tile --tiling` in SI units (the angle in degrees). Defaults: the paper's slab.
+struct GeometryRecipe {
+  std::string tiling = "square";  ///< square, hex, triangle, rhombille, voronoi, or a polygon mesh file (m)
+  double pitch = 10e-3;           ///< m, between the centres of tiles sharing an edge
+  int columns = 7, rows = 7;      ///< grid = [columns, rows]
+  double thickness = 3.18e-3;     ///< m
+  double angle = 5;               ///< degrees, the faces' tilt
+  std::string surface = "plane";  ///< plane, sphere, cylinder
+  double radius = 0;              ///< m (sphere, cylinder)
+  bool fixPerimeter = true;       ///< fix = "perimeter" (or "none")
+  int seed = 1;                   ///< voronoi
+};
+
 /// Everything a `tessera run` needs besides the bundle itself. Lengths in m, SI throughout.
 struct Scene {
   std::string path;              ///< the scene file
   std::string bundle;            ///< bundle directory (relative paths resolved against the scene's folder)
+  std::optional<GeometryRecipe> geometry;  ///< or: the slab to generate (then `bundle` is set when it is built)
   ContactParameters contact;     ///< spanLength / spanInterfaces 0 = take them from the bundle
   SolverSettings solver;
   IndenterSettings indenter;

@@ -1,12 +1,17 @@
 // Scene files: what they set, and bad ones refused naming the file, the key and the range.
 #include "io/input_error.h"
+#include "levelset/bundle.h"
+#include "run/geometry_bundle.h"
 #include "run/scene.h"
 #include "tests/fixtures/temp_dir.h"
 
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+
 using namespace tessera;
 using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
 
 namespace {
 Scene sceneFrom(const test::TempDir& dir, const std::string& text) {
@@ -87,4 +92,43 @@ TEST_CASE("a scene can re-prepare the shapes at another resolution") {
                       Contains("edge_spacing_fraction must be 0 (the bundle's) or between 0.05 and 1"));
   REQUIRE_THROWS_WITH(sceneFrom(dir, "bundle = \"b\"\n[resolution]\nedge_spacing_fraction = 2\n"),
                       Contains("resolution.edge_spacing_fraction"));
+}
+
+TEST_CASE("a scene can carry its geometry: [geometry] in place of bundle, built once per recipe") {
+  test::TempDir dir;
+  const Scene paper = sceneFrom(dir, "[geometry]\n");  // the defaults: the paper's slab
+  REQUIRE(paper.bundle.empty());
+  REQUIRE(paper.geometry);
+  REQUIRE(paper.geometry->tiling == "square");
+  REQUIRE(paper.geometry->columns == 7);
+  REQUIRE(paper.geometry->pitch == Approx(10e-3));
+  REQUIRE(paper.geometry->angle == Approx(5));
+  const Scene hex = sceneFrom(dir, "[geometry]\ntiling = \"hex\"\ngrid = [4, 3]\npitch = 0.012\nthickness = 0.004\nangle = 7.5\n");
+  REQUIRE(hex.geometry->columns == 4);
+  REQUIRE(hex.geometry->rows == 3);
+  REQUIRE(sceneFrom(dir, "[geometry]\ntiling = \"my.obj\"\n").geometry->tiling == (dir / "my.obj"));
+  for (const std::string& bad : {std::string("bundle = \"slab\"\n[geometry]\n"), std::string("[material]\nE = 4e9\n"),
+                                 std::string("[geometry]\ngrid = [0, 3]\n"), std::string("[geometry]\nangle = 95\n"),
+                                 std::string("[geometry]\nfix = \"ring\"\n"), std::string("[geometry]\nwidth = 3\n")}) {
+    INFO(bad);
+    REQUIRE_THROWS_AS(sceneFrom(dir, bad), InputError);
+  }
+  // Built once: a second run finds it; another angle is another bundle.
+  std::vector<std::string> heard;
+  const auto log = [&](const std::string& m) { heard.push_back(m); };
+  GeometryRecipe small = *hex.geometry;
+  small.columns = small.rows = 3;
+  const std::string first = geometryBundle(small, dir / "cache", log);
+  REQUIRE(heard.size() == 1);
+  REQUIRE(readBundle(first).bodies.size() == 9);
+  REQUIRE(geometryBundle(small, dir / "cache", log) == first);
+  REQUIRE(heard.size() == 1);
+  small.angle = 10;
+  REQUIRE(geometryBundle(small, dir / "cache", log) != first);
+  REQUIRE(heard.size() == 2);
+  // The cases of a sweep share its folder's bundles/.
+  fs::create_directories(dir / "sweep");
+  test::writeFile(dir / "sweep/sweep.json", "{}");
+  REQUIRE(geometryCache(dir / "sweep/case_0") == (fs::path(dir / "sweep") / "bundles").string());
+  REQUIRE(geometryCache(dir / "run") == dir / "run");
 }

@@ -27,7 +27,9 @@ import numpy as np  # noqa: E402
 from figure_file import save_figure  # noqa: E402
 
 NAMES = {"material.youngs_modulus": ("E", "GPa", 1e-9), "material.friction": ("μ", "", 1.0),
-         "indenter.speed": ("speed", "mm/s", 1e3), "indenter.radius": ("R", "mm", 1e3)}
+         "indenter.speed": ("speed", "mm/s", 1e3), "indenter.radius": ("R", "mm", 1e3),
+         "geometry.angle": ("θ", "°", 1.0), "geometry.thickness": ("h", "mm", 1e3), "geometry.pitch": ("pitch", "mm", 1e3),
+         "geometry.radius": ("surface radius", "mm", 1e3)}
 
 
 def label(key):

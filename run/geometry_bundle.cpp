@@ -1,0 +1,85 @@
+#include "run/geometry_bundle.h"
+
+#include "geometry/base_surface.h"
+#include "geometry/plane_tiling.h"
+#include "io/file_digest.h"
+#include "io/input_error.h"
+#include "levelset/assembly_checks.h"
+#include "levelset/generated_slab.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The recipe as text, every value exact: equal texts, equal bundles.
+std::string recipeText(const GeometryRecipe& g) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "tiling " << g.tiling << "\npitch " << g.pitch << "\ngrid " << g.columns << " " << g.rows << "\nthickness " << g.thickness
+      << "\nangle " << g.angle << "\nsurface " << g.surface << "\nradius " << g.radius << "\nfix " << g.fixPerimeter << "\nseed "
+      << g.seed << "\n";
+  return out.str();
+}
+
+// An exclusive lock on a file, waited for (released when closed).
+struct WaitedLock {
+  int fd = -1;
+  explicit WaitedLock(const std::string& path) {
+    fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0 || ::flock(fd, LOCK_EX) != 0) throw InputError(path + ": cannot lock it; check that its folder is writable");
+  }
+  ~WaitedLock() {
+    if (fd >= 0) ::close(fd);
+  }
+  WaitedLock(const WaitedLock&) = delete;
+  WaitedLock& operator=(const WaitedLock&) = delete;
+};
+
+}  // namespace
+
+std::string geometryCache(const std::string& output) {
+  // A case's run writes to SWEEP/case_N (or a folder inside it).
+  const fs::path parent = fs::absolute(output).lexically_normal().parent_path();
+  for (const fs::path& folder : {parent, parent.parent_path()})
+    if (fs::exists(folder / "sweep.json")) return (folder / "bundles").string();
+  return output;
+}
+
+std::string geometryBundle(const GeometryRecipe& recipe, const std::string& cache, const std::function<void(const std::string&)>& log) {
+  if (cache.empty()) throw InputError("a scene with [geometry] needs an output folder, where its bundle is kept");
+  const std::string text = recipeText(recipe);
+  const fs::path folder = fs::path(cache) / ("geometry_" + textDigest(text).substr(0, 16));
+  fs::create_directories(cache);
+  const WaitedLock lock(folder.string() + ".lock");
+  if (fs::exists(folder / "bundle.h5")) return folder.string();
+  GeneratedSlabOptions options;
+  const std::vector<std::string>& kinds = tilingKinds();
+  if (std::find(kinds.begin(), kinds.end(), recipe.tiling) != kinds.end())
+    options.tiling = {recipe.tiling, recipe.pitch, recipe.columns, recipe.rows, static_cast<unsigned>(recipe.seed)};
+  else
+    options.tilingFile = recipe.tiling;
+  options.thickness = recipe.thickness;
+  options.angle = recipe.angle * M_PI / 180;
+  options.surface = baseSurface(recipe.surface, recipe.radius);
+  options.fixPerimeter = recipe.fixPerimeter;
+  if (log) log("generating the [geometry] slab (" + recipe.tiling + ") into " + folder.string());
+  PrepLog prep;
+  AssembleReport report;
+  const Bundle bundle = generatedSlab(options, "m", ShapeResolution{}, ShapeLimits{}, prep, report);
+  checkAssemblyBeforeWriting(bundle, std::nullopt, 0, "check geometry.pitch and geometry.angle", "check geometry.pitch and the unit (m)", true);
+  checkBundleOutput(folder.string(), true);
+  writeBundle(folder.string(), bundle);
+  return folder.string();
+}
+
+}  // namespace tessera
