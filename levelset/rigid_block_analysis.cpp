@@ -76,7 +76,6 @@ struct LinearProgram {
   }
 
   // True when the simplex method finds an optimum; false when the problem has no feasible point.
-  // The first solve presolves; later ones start from the last basis (a program changed a little).
   bool solve() {
     glp_term_out(GLP_OFF);
     glp_smcp parameters;
@@ -91,10 +90,8 @@ struct LinearProgram {
     }
     if (code == GLP_ENOPFS || code == GLP_ENODFS) return false;
     if (code != 0) throw std::runtime_error("the linear program could not be solved (GLPK code " + std::to_string(code) + ")");
-    solved = glp_get_status(get()) == GLP_OPT;
-    return solved;
+    return glp_get_status(get()) == GLP_OPT;
   }
-  bool solved = false;  // an optimal basis is loaded
 };
 
 std::vector<BodyMotion> motionOf(const Freedoms& freedoms, const Eigen::VectorXd& x) {
@@ -204,116 +201,133 @@ InterlockingVerdict checkInterlocking(const Bundle& bundle, const std::vector<Co
   return verdict;
 }
 
-StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction,
-                                bool findLeastFriction) {
-  constexpr int kSides = 8;  // of the friction pyramid
-  const Freedoms freedoms(bundle);
-  StabilityVerdict verdict;
-  if (freedoms.count == 0) {
-    verdict.stable = true;
-    verdict.leastFriction = 0;
-    return verdict;
-  }
-  const int equations = 6 * freedoms.count, count = static_cast<int>(corners.size());
-  // Columns per corner: the normal force f_n, then f_k >= 0 along the pyramid's edges t_k.
-  LinearProgram lp;
-  glp_add_rows(lp.get(), equations + std::max(count, 0));
-  // Equilibrium: the contact forces balance the weight (volume / L^3, density and g factored out).
-  for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body) {
-    const int k = freedoms.index[body];
-    if (k < 0) continue;
-    const double weight = bundle.shapes[bundle.bodies[body].shape].mass.volume / std::pow(freedoms.length, 3);
-    for (int i = 0; i < 6; ++i) {
-      const double rhs = i == 2 ? weight : 0.0;  // the contacts push up by the weight
-      glp_set_row_bnds(lp.get(), 6 * k + i + 1, GLP_FX, rhs, rhs);
+namespace {
+
+// Rigid-block equilibrium with friction, a feasibility program: per corner the normal force f_n,
+// then f_k >= 0 along the edges t_k of the friction pyramid (columns), the free bodies' force and
+// moment balances with their weights (rows), and a friction row per corner, sum_k f_k <= mu f_n.
+class EquilibriumProgram {
+public:
+  static constexpr int kSides = 8;  // of the friction pyramid
+
+  EquilibriumProgram(const Bundle& bundle, const Freedoms& freedoms, const std::vector<ContactCorner>& corners)
+      : equations_(6 * freedoms.count), count_(static_cast<int>(corners.size())), open_(corners.size(), 0) {
+    glp_add_rows(lp_.get(), equations_ + count_);
+    // Equilibrium: the contact forces balance the weight (volume / L^3: density and g factored out).
+    for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body) {
+      const int k = freedoms.index[body];
+      if (k < 0) continue;
+      const double weight = bundle.shapes[bundle.bodies[body].shape].mass.volume / std::pow(freedoms.length, 3);
+      for (int i = 0; i < 6; ++i) glp_set_row_bnds(lp_.get(), 6 * k + i + 1, GLP_FX, i == 2 ? weight : 0.0, i == 2 ? weight : 0.0);
     }
-  }
-  for (int c = 0; c < count; ++c) glp_set_row_bnds(lp.get(), equations + c + 1, GLP_UP, 0, 0);
-  if (count > 0) glp_add_cols(lp.get(), count * (kSides + 1));
-  std::vector<int> ri, ci;
-  std::vector<double> vi;
-  for (int c = 0; c < count; ++c) {
-    const ContactCorner& corner = corners[c];
-    const Eigen::Vector3d u = corner.normal.unitOrthogonal(), v = corner.normal.cross(u);
-    for (int j = 0; j <= kSides; ++j) {
-      const int column = c * (kSides + 1) + j;
-      glp_set_col_bnds(lp.get(), column + 1, GLP_LO, 0, 0);
-      const double angle = 2 * M_PI * (j - 1) / kSides;
-      const Eigen::Vector3d direction = j == 0 ? corner.normal : Eigen::Vector3d(std::cos(angle) * u + std::sin(angle) * v);
-      for (const Entry& e : wrench(bundle, freedoms, corner, direction)) {
-        ri.push_back(e.column);
-        ci.push_back(column);
-        vi.push_back(e.value);
-      }
-      if (j > 0) {  // friction row: sum_k f_k - mu f_n <= 0 (mu set below)
-        ri.push_back(equations + c);
-        ci.push_back(column);
-        vi.push_back(1.0);
+    for (int c = 0; c < count_; ++c) glp_set_row_bnds(lp_.get(), equations_ + c + 1, GLP_UP, 0, 0);
+    if (count_ > 0) glp_add_cols(lp_.get(), count_ * (kSides + 1));
+    std::vector<int> ri, ci;
+    std::vector<double> vi;
+    for (int c = 0; c < count_; ++c) {
+      const ContactCorner& corner = corners[c];
+      const Eigen::Vector3d u = corner.normal.unitOrthogonal(), v = corner.normal.cross(u);
+      for (int j = 0; j <= kSides; ++j) {
+        const double angle = 2 * M_PI * (j - 1) / kSides;
+        const Eigen::Vector3d direction = j == 0 ? corner.normal : Eigen::Vector3d(std::cos(angle) * u + std::sin(angle) * v);
+        for (const Entry& e : wrench(bundle, freedoms, corner, direction)) {
+          ri.push_back(e.column);
+          ci.push_back(column(c, j));
+          vi.push_back(e.value);
+        }
       }
     }
+    lp_.load(ri, ci, vi);
   }
-  lp.load(ri, ci, vi);
-  // Feasible at friction mu, with the corners marked `open` carrying nothing? At 0 the friction
-  // columns are held at 0 (the presolver drops them).
-  std::vector<char> open(count, 0);
-  const auto feasibleAt = [&](double mu) {
+
+  /// Corners that carry nothing from now on.
+  void setOpen(const std::vector<char>& open) { open_ = open; }
+
+  /// Feasible at friction mu? At 0 the friction columns are held at 0 (the presolver drops them).
+  bool feasibleAt(double mu) {
     std::vector<int> index(kSides + 2);
     std::vector<double> value(kSides + 2);
-    for (int c = 0; c < count; ++c) {
+    for (int c = 0; c < count_; ++c) {
       for (int j = 0; j <= kSides; ++j) {
-        index[j + 1] = c * (kSides + 1) + j + 1;
+        index[j + 1] = column(c, j) + 1;
         value[j + 1] = j == 0 ? -mu : 1.0;
-        const bool held = open[c] || (j > 0 && mu == 0);
-        glp_set_col_bnds(lp.get(), index[j + 1], held ? GLP_FX : GLP_LO, 0, 0);
+        const bool held = open_[c] || (j > 0 && mu == 0);
+        glp_set_col_bnds(lp_.get(), index[j + 1], held ? GLP_FX : GLP_LO, 0, 0);
       }
-      glp_set_mat_row(lp.get(), equations + c + 1, kSides + 1, index.data(), value.data());
+      glp_set_mat_row(lp_.get(), equations_ + c + 1, kSides + 1, index.data(), value.data());
     }
-    return count > 0 && lp.solve();
-  };
-  // The friction a feasible solution uses: max over corners of sum_k f_k / f_n (<= mu).
-  const auto frictionUsed = [&]() {
+    return count_ > 0 && lp_.solve();
+  }
+
+  /// The friction the last feasible solution uses: max over corners of sum_k f_k / f_n (<= mu).
+  double frictionUsed() const {
     double used = 0;
-    for (int c = 0; c < count; ++c) {
-      const double normal = glp_get_col_prim(lp.get(), c * (kSides + 1) + 1);
+    for (int c = 0; c < count_; ++c) {
+      const double normal = std::max(glp_get_col_prim(lp_.get(), column(c, 0) + 1), 1e-300);
       double tangential = 0;
-      for (int j = 1; j <= kSides; ++j) tangential += glp_get_col_prim(lp.get(), c * (kSides + 1) + j + 1);
-      if (tangential > 1e-12 * std::max(normal, 1e-300)) used = std::max(used, tangential / std::max(normal, 1e-300));
+      for (int j = 1; j <= kSides; ++j) tangential += glp_get_col_prim(lp_.get(), column(c, j) + 1);
+      if (tangential > 1e-12 * normal) used = std::max(used, tangential / normal);
     }
     return used;
-  };
-  if (feasibleAt(0)) {  // frictionless equilibrium: no admissible motion lowers the weight (Farkas)
-    verdict.stable = true;
-    verdict.leastFriction = 0;
-    return verdict;
   }
-  // Some admissible motion (A x >= 0) lowers the weight. The one that lowers it most opens some
-  // contacts: those carry nothing along it, so only the others may hold the bodies by friction.
-  // (Equilibrium with every contact would also accept forces the blocks could only get from a
-  // prestress they do not have: a triangle slab that so "stands" falls in a run.)
-  const int columns = equations;
+
+private:
+  static int column(int corner, int j) { return corner * (kSides + 1) + j; }
+  LinearProgram lp_;
+  int equations_, count_;
+  std::vector<char> open_;
+};
+
+// The admissible motion that lowers the weights most (max weight . x down over A x >= 0, |x| <= 1)
+// and the corners it opens ((A x)_c above 1e-6 of a motion whose largest velocity is 1).
+std::pair<Eigen::VectorXd, std::vector<char>> steepestFall(const Bundle& bundle, const Freedoms& freedoms,
+                                                           const std::vector<ContactCorner>& corners) {
+  const int count = static_cast<int>(corners.size()), columns = 6 * freedoms.count;
   const std::vector<Eigen::Triplet<double>> triplets = contactMatrix(bundle, freedoms, corners);
   Eigen::VectorXd lowering = Eigen::VectorXd::Zero(columns);
   for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body)
     if (freedoms.index[body] >= 0) lowering[6 * freedoms.index[body] + 2] = -bundle.shapes[bundle.bodies[body].shape].mass.volume;
-  const auto [fall, work] = bestMotion(triplets, count, columns, lowering, 0.0);
+  const Eigen::VectorXd fall = bestMotion(triplets, count, columns, lowering, 0.0).first;
   Eigen::VectorXd opening = Eigen::VectorXd::Zero(count);
   for (const auto& t : triplets) opening[t.row()] += t.value() * fall[t.col()];
-  for (int c = 0; c < count; ++c) open[c] = opening[c] > 1e-6;  // of a motion whose largest velocity is 1
+  std::vector<char> open(count, 0);
+  for (int c = 0; c < count; ++c) open[c] = opening[c] > 1e-6;
+  return {fall, open};
+}
+
+}  // namespace
+
+StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction,
+                                bool findLeastFriction) {
+  const Freedoms freedoms(bundle);
+  StabilityVerdict verdict;
+  verdict.stable = true;
+  verdict.leastFriction = 0;
+  if (freedoms.count == 0) return verdict;
+  EquilibriumProgram program(bundle, freedoms, corners);
+  if (program.feasibleAt(0)) return verdict;  // frictionless: no admissible motion lowers the weights (Farkas)
+  verdict.leastFriction.reset();
+  // Some admissible motion lowers the weights. The one that lowers them most opens some contacts:
+  // those carry nothing along it, so only the others may hold the bodies by friction. (Equilibrium
+  // with every contact would also accept forces the blocks could only get from a prestress they do
+  // not have: a triangle slab that so "stands" falls in a run.)
+  const auto [fall, open] = steepestFall(bundle, freedoms, corners);
+  program.setOpen(open);
   verdict.falling = motionOf(freedoms, fall);
-  verdict.stable = friction > 0 && feasibleAt(friction);
+  verdict.stable = friction > 0 && program.feasibleAt(friction);
   if (!findLeastFriction) return verdict;
   verdict.searched = true;
   double low = verdict.stable ? 0 : friction, high = verdict.stable ? friction : 10;
-  if (!verdict.stable && !feasibleAt(high)) return verdict;
-  if (verdict.stable && feasibleAt(1e-3)) {  // wedged rigid blocks: any friction will do
+  if (!verdict.stable && !program.feasibleAt(high)) return verdict;
+  high = std::min(high, program.frictionUsed());  // the solution at `high` is the last one solved
+  if (program.feasibleAt(1e-3)) {  // wedged rigid blocks: any friction will do
     verdict.leastFriction = 1e-3;
     return verdict;
   }
-  if (verdict.stable) low = 1e-3;
-  high = std::min(high, frictionUsed());
+  low = std::max(low, 1e-3);
   while (high - low > std::max(1e-3, 0.01 * high)) {  // to 1 % (the pyramid is within 8 % of the cone)
     const double mid = 0.5 * (low + high);
-    if (feasibleAt(mid)) high = std::min(mid, frictionUsed());
+    if (program.feasibleAt(mid)) high = std::min(mid, program.frictionUsed());
     else low = mid;
   }
   verdict.leastFriction = high;

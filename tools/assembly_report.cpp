@@ -55,10 +55,10 @@ void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
   else if (st.leastFriction) std::snprintf(least, sizeof least, "least friction %.3f", *st.leastFriction);
   std::printf("  stable        %s at friction %.3g: %s (%s)\n", st.stable ? "yes" : "no", s.friction,
               st.stable ? "compressive forces within the friction cones carry every free body's weight"
-                        : "no compressive forces within the friction cones carry every free body's weight",
+                        : "the contacts its steepest way down keeps closed cannot carry every free body's weight",
               least);
   if (!st.stable && !st.falling.empty()) {
-    std::printf("                it would go this way, opening the contacts it leaves:\n");
+    std::printf("                that way down, opening the contacts it leaves:\n");
     printMotion(st.falling);
   }
   std::printf("  checked in %.2f s\n", s.seconds);

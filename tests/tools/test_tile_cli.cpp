@@ -233,7 +233,7 @@ TEST_CASE("a body that touches nothing is reported, not refused") {
   REQUIRE_THAT(r.out, Contains("0 of 1 free bodies held"));
 }
 
-TEST_CASE("tile --tiling: generated hex slab, its verdict and check --json; a tiling file; mistakes exit 2 naming the fix") {
+TEST_CASE("tile --tiling: a generated hex slab and its verdict, a tiling file, and mistakes that exit 2 naming the fix") {
   test::TempDir dir;
   const test::CliResult hex =
       test::runTessera("tile --tiling hex --grid 4x4 --pitch 10 --thickness 3.18 --angle 5 --unit mm -o " + quoted(dir / "hex"));
