@@ -7,6 +7,10 @@ namespace tessera {
 /// block is centred at the origin with z up, closed and outward-oriented. Invalid parameters
 /// throw InputError naming the constraint.
 
+/// The default amplitude of curved faces (wave, osteomorphic), as a fraction of the block's size
+/// (0.2 mm on a 10 mm block): a default that scales with the block.
+constexpr double kDefaultAmplitudePerSize = 0.02;
+
 /// Axis-aligned box of sides a (x), b (y), h (z).
 TriangleMesh makeBox(double a, double b, double h);
 

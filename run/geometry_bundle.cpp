@@ -1,6 +1,7 @@
 #include "run/geometry_bundle.h"
 
 #include "geometry/base_surface.h"
+#include "geometry/block_generators.h"
 #include "geometry/plane_tiling.h"
 #include "io/file_digest.h"
 #include "io/input_error.h"
@@ -27,8 +28,31 @@ std::string recipeText(const GeometryRecipe& g) {
   out.precision(17);
   out << "tiling " << g.tiling << "\npitch " << g.pitch << "\ngrid " << g.columns << " " << g.rows << "\nthickness " << g.thickness
       << "\nangle " << g.angle << "\nsurface " << g.surface << "\nradius " << g.radius << "\nfix " << g.fixPerimeter << "\nseed "
-      << g.seed << "\n";
+      << g.seed << "\nfamily " << g.family << "\nsize " << g.size << "\namplitude " << g.amplitude << "\n";
   return out.str();
+}
+
+// A family block (tessera block) on the square grid, `size` apart, as parts in place.
+std::vector<AssemblyPart> familySlabParts(const GeometryRecipe& g) {
+  const double theta = g.angle * M_PI / 180, amplitude = g.amplitude > 0 ? g.amplitude : kDefaultAmplitudePerSize * g.size;
+  TriangleMesh block;
+  if (g.family == "planar") block = makePlanarBlock(g.size, g.thickness, theta);
+  else if (g.family == "wave") block = makeWaveBlock(g.size, g.thickness, theta, amplitude, 1, 24);
+  else if (g.family == "box") block = makeBox(g.size, g.size, g.thickness);
+  else block = makeOsteomorphicBlock(g.size, g.size, g.thickness, amplitude, 0, 12);
+  SquareGridOptions grid;
+  grid.columns = g.columns;
+  grid.rows = g.rows;
+  grid.pitch = g.size;
+  grid.alternate = g.family != "osteomorphic";  // osteomorphic copies match in the same orientation
+  grid.fixPerimeter = g.fixPerimeter;
+  std::vector<AssemblyPart> parts;
+  for (const Placement& p : squareGrid(grid, g.family)) {
+    AssemblyPart part{p.name, g.family + " block " + p.name, block, p.fixed};
+    for (Eigen::Vector3d& x : part.mesh.vertices) x = p.rotation * x + p.translation;
+    parts.push_back(std::move(part));
+  }
+  return parts;
 }
 
 // An exclusive lock on a file, waited for (released when closed).
@@ -62,20 +86,28 @@ std::string geometryBundle(const GeometryRecipe& recipe, const std::string& cach
   fs::create_directories(cache);
   const WaitedLock lock(folder.string() + ".lock");
   if (fs::exists(folder / "bundle.h5")) return folder.string();
-  GeneratedSlabOptions options;
-  const std::vector<std::string>& kinds = tilingKinds();
-  if (std::find(kinds.begin(), kinds.end(), recipe.tiling) != kinds.end())
-    options.tiling = {recipe.tiling, recipe.pitch, recipe.columns, recipe.rows, static_cast<unsigned>(recipe.seed)};
-  else
-    options.tilingFile = recipe.tiling;
-  options.thickness = recipe.thickness;
-  options.angle = recipe.angle * M_PI / 180;
-  options.surface = baseSurface(recipe.surface, recipe.radius);
-  options.fixPerimeter = recipe.fixPerimeter;
-  if (log) log("generating the [geometry] slab (" + recipe.tiling + ") into " + folder.string());
+  if (log) log("generating the [geometry] slab (" + (recipe.family.empty() ? recipe.tiling : recipe.family + " blocks") + ") into " + folder.string());
   PrepLog prep;
   AssembleReport report;
-  const Bundle bundle = generatedSlab(options, "m", ShapeResolution{}, ShapeLimits{}, prep, report);
+  Bundle bundle;
+  if (!recipe.family.empty()) {
+    AssembleOptions assemble;
+    assemble.unit = "m";
+    assemble.sameShapeTolerance = 1e-9;
+    bundle = assembleParts(familySlabParts(recipe), assemble, prep, report);
+  } else {
+    GeneratedSlabOptions options;
+    const std::vector<std::string>& kinds = tilingKinds();
+    if (std::find(kinds.begin(), kinds.end(), recipe.tiling) != kinds.end())
+      options.tiling = {recipe.tiling, recipe.pitch, recipe.columns, recipe.rows, static_cast<unsigned>(recipe.seed)};
+    else
+      options.tilingFile = recipe.tiling;
+    options.thickness = recipe.thickness;
+    options.angle = recipe.angle * M_PI / 180;
+    options.surface = baseSurface(recipe.surface, recipe.radius);
+    options.fixPerimeter = recipe.fixPerimeter;
+    bundle = generatedSlab(options, "m", ShapeResolution{}, ShapeLimits{}, prep, report);
+  }
   checkAssemblyBeforeWriting(bundle, std::nullopt, 0, "check geometry.pitch and geometry.angle", "check geometry.pitch and the unit (m)", true);
   checkBundleOutput(folder.string(), true);
   writeBundle(folder.string(), bundle);

@@ -283,7 +283,13 @@ void readGeometryTable(const std::string& path, const toml::table& root, Scene& 
   if (fix != "perimeter" && fix != "none") throw InputError(path + ": geometry.fix must be \"perimeter\" or \"none\", got \"" + fix + "\"");
   g.fixPerimeter = fix == "perimeter";
   geometry.integer("seed", g.seed, 0, 1 << 30);
+  geometry.text("family", g.family);
+  geometry.number("size", g.size, 1e-6, 100, "m");
+  geometry.number("amplitude", g.amplitude, 0, 100, "m");
   geometry.finish();
+  const std::set<std::string> families{"", "planar", "wave", "box", "osteomorphic"};
+  if (!families.count(g.family))
+    throw InputError(path + ": geometry.family must be planar, wave, box or osteomorphic (or left out for a tiling), got \"" + g.family + "\"");
   const std::vector<std::string>& kinds = tilingKinds();
   if (std::find(kinds.begin(), kinds.end(), g.tiling) == kinds.end() && fs::path(g.tiling).is_relative())
     g.tiling = (fs::path(path).parent_path() / g.tiling).string();  // a tiling file, beside the scene

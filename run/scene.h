@@ -103,6 +103,11 @@ struct GeometryRecipe {
   double radius = 0;              ///< m (sphere, cylinder)
   bool fixPerimeter = true;       ///< fix = "perimeter" (or "none")
   int seed = 1;                   ///< voronoi
+  /// Or a block family of `tessera block` (planar, wave, box, osteomorphic) of side `size`, laid
+  /// on the square grid `size` apart (turned in a checkerboard but for osteomorphic); "" = the tiling.
+  std::string family;
+  double size = 10e-3;            ///< m, the family block's side a
+  double amplitude = 0;           ///< m, of curved faces (wave, osteomorphic); 0 = 0.02 size
 };
 
 /// Everything a `tessera run` needs besides the bundle itself. Lengths in m, SI throughout.

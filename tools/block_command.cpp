@@ -18,10 +18,6 @@ namespace tessera::tools {
 
 namespace {
 
-// The default amplitude of curved faces, as a fraction of --size (0.2 mm on a 10 mm block): a
-// default that scales with the block.
-constexpr double kAmplitudePerSize = 0.02;
-
 struct BlockArguments {
   std::string family;
   std::string unit;
@@ -30,7 +26,7 @@ struct BlockArguments {
   std::optional<double> width;  // in --unit: side b of box and osteomorphic [default: size]
   double thickness = 3.18;  // in --unit
   double angle = 5;         // degrees
-  std::optional<double> amplitude;  // in --unit (wave, osteomorphic) [default: kAmplitudePerSize x size]
+  std::optional<double> amplitude;  // in --unit (wave, osteomorphic) [default: kDefaultAmplitudePerSize x size]
   double amplitudeY = 0;    // in --unit (osteomorphic)
   int waves = 1;            // wave
   int levels = 0;           // 0: the family's default, wave 24, osteomorphic 12
@@ -62,7 +58,7 @@ void runBlock(const BlockArguments& a) {
   const LengthUnit unit = parseLengthUnit(a.unit);
   checkBlockArguments(a, unit.metres);
   const double m = unit.metres, theta = a.angle * M_PI / 180, width = a.width ? *a.width : a.size;
-  const double amplitude = a.amplitude ? *a.amplitude : kAmplitudePerSize * a.size;
+  const double amplitude = a.amplitude ? *a.amplitude : kDefaultAmplitudePerSize * a.size;
   if (a.amplitudeY != 0 && a.family != "osteomorphic")
     throw InputError("--y-amplitude applies to the osteomorphic family only; leave it out for " + a.family);
   TriangleMesh mesh;

@@ -181,7 +181,7 @@ TEST_CASE("tilted blocks on a sphere and a cylinder: a dome and a vault without 
   for (std::size_t t = 0; t < flat.meshes.size(); ++t)
     REQUIRE(signedVolume(far.meshes[t]) == Approx(signedVolume(flat.meshes[t])).epsilon(1e-5));
   for (const BaseSurface& surface : {baseSurface("sphere", 0.6), baseSurface("cylinder", 0.6)})
-    for (const std::string& kind : {"hex", "square"}) {
+    for (const std::string kind : {"hex", "square"}) {
       INFO(kind);
       const GeneratedBlocks g = generate(kind, pitch, h, theta, surface);
       for (std::size_t t = 0; t < g.meshes.size(); ++t) {

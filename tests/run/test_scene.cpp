@@ -126,6 +126,15 @@ TEST_CASE("a scene can carry its geometry: [geometry] in place of bundle, built 
   small.angle = 10;
   REQUIRE(geometryBundle(small, dir / "cache", log) != first);
   REQUIRE(heard.size() == 2);
+  // A block family on the square grid: the wave block, one shape for the checkerboard.
+  GeometryRecipe wave;
+  wave.family = "wave";
+  wave.columns = wave.rows = 3;
+  const Bundle waves = readBundle(geometryBundle(wave, dir / "cache", log));
+  REQUIRE(waves.bodies.size() == 9);
+  REQUIRE(waves.shapes.size() == 1);
+  REQUIRE(waves.spanLength == Approx(0.01));
+  REQUIRE_THROWS_AS(sceneFrom(dir, "[geometry]\nfamily = \"cube\"\n"), InputError);
   // The cases of a sweep share its folder's bundles/.
   fs::create_directories(dir / "sweep");
   test::writeFile(dir / "sweep/sweep.json", "{}");
