@@ -187,6 +187,10 @@ const std::vector<std::string>& tilingKinds() {
   return kinds;
 }
 
+bool isTilingKind(const std::string& name) {
+  return std::find(tilingKinds().begin(), tilingKinds().end(), name) != tilingKinds().end();
+}
+
 PlaneTiling makeTiling(const TilingOptions& o) {
   if (!(o.pitch > 0) || !std::isfinite(o.pitch)) throw InputError("tiling: the pitch must be positive");
   if (o.columns < 1 || o.rows < 1) throw InputError("tiling: give at least one column and one row");

@@ -34,6 +34,8 @@ PlaneTiling makeTiling(const TilingOptions& options);
 
 /// The names of the built-in tilings.
 const std::vector<std::string>& tilingKinds();
+/// Whether `name` is one of them (else it names a tiling file).
+bool isTilingKind(const std::string& name);
 
 /// The tile across each edge: across[t][k] = {u, l} when edge k of tile t is edge l of tile u
 /// (corners within `tolerance`, m, of each other, in opposite order), {-1, -1} on the boundary.

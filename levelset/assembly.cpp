@@ -67,13 +67,8 @@ AssemblyLevelSets::AssemblyLevelSets(const Bundle& bundle) : shapes_(bundle.shap
 }
 
 double AssemblyLevelSets::phi(int s, const Eigen::Vector3d& x) const {
-  const Shape& shape = shapes_[s];
-  if (shape.convex) return planesLevelSet(shape.convex->planes, x);
-  const MeshSdf& exact = shape.exactMesh.empty() ? derived_[s] : shape.exactMesh;
-  double phi;
   Eigen::Vector3d gradient;
-  if (!exact.empty() && exact.evaluate(x, phi, gradient)) return phi;
-  return shape.sdf.sample(x).phi;
+  return phi(s, x, gradient);
 }
 
 double AssemblyLevelSets::phi(int s, const Eigen::Vector3d& x, Eigen::Vector3d& gradient) const {

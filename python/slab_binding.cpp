@@ -187,8 +187,7 @@ void bindSlabs(py::module_& m) {
          std::optional<double> pitch, const std::string& surface, double radius, unsigned seed, bool fixPerimeter,
          std::optional<double> voxel, std::optional<double> spacing, double edgeSpacing, bool replace) {
         GeneratedSlabOptions options;
-        const auto& kinds = tilingKinds();
-        if (std::find(kinds.begin(), kinds.end(), tiling) != kinds.end()) {
+        if (isTilingKind(tiling)) {
           if (!pitch) throw InputError("tiling '" + tiling + "' needs pitch, the distance between neighbouring tile centres in m");
           if (grid.first < 1 || grid.second < 1 || static_cast<long>(grid.first) * grid.second > 10000)
             throw InputError("grid must be (columns, rows), each at least 1 and at most 10000 tiles in all");

@@ -97,8 +97,7 @@ std::string geometryBundle(const GeometryRecipe& recipe, const std::string& cach
     bundle = assembleParts(familySlabParts(recipe), assemble, prep, report);
   } else {
     GeneratedSlabOptions options;
-    const std::vector<std::string>& kinds = tilingKinds();
-    if (std::find(kinds.begin(), kinds.end(), recipe.tiling) != kinds.end())
+    if (isTilingKind(recipe.tiling))
       options.tiling = {recipe.tiling, recipe.pitch, recipe.columns, recipe.rows, static_cast<unsigned>(recipe.seed)};
     else
       options.tilingFile = recipe.tiling;

@@ -290,8 +290,7 @@ void readGeometryTable(const std::string& path, const toml::table& root, Scene& 
   const std::set<std::string> families{"", "planar", "wave", "box", "osteomorphic"};
   if (!families.count(g.family))
     throw InputError(path + ": geometry.family must be planar, wave, box or osteomorphic (or left out for a tiling), got \"" + g.family + "\"");
-  const std::vector<std::string>& kinds = tilingKinds();
-  if (std::find(kinds.begin(), kinds.end(), g.tiling) == kinds.end() && fs::path(g.tiling).is_relative())
+  if (!isTilingKind(g.tiling) && fs::path(g.tiling).is_relative())
     g.tiling = (fs::path(path).parent_path() / g.tiling).string();  // a tiling file, beside the scene
   scene.geometry = g;
 }
@@ -343,8 +342,7 @@ std::string sceneWithOverrides(const std::string& path, const std::vector<std::p
   const std::string bundle = root["bundle"].value_or(std::string());
   if (!bundle.empty() && fs::path(bundle).is_relative())
     root.insert_or_assign("bundle", fs::absolute(fs::path(path).parent_path() / bundle).lexically_normal().string());
-  const std::vector<std::string>& kinds = tilingKinds();
-  if (base.geometry && std::find(kinds.begin(), kinds.end(), base.geometry->tiling) == kinds.end())  // a tiling file, absolute
+  if (base.geometry && !isTilingKind(base.geometry->tiling))  // a tiling file, absolute
     if (toml::table* g = root["geometry"].as_table(); g && g->contains("tiling"))
       g->insert_or_assign("tiling", fs::absolute(base.geometry->tiling).lexically_normal().string());
   for (const auto& [key, value] : overrides) {

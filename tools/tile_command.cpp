@@ -64,8 +64,7 @@ Bundle slabFromTiling(const TileArguments& a, PrepLog& log) {
   if (!a.thickness) throw InputError("--tiling needs --thickness: the blocks' thickness, in --unit");
   const double m = parseLengthUnit(a.unit).metres;
   GeneratedSlabOptions options;
-  const auto& kinds = tilingKinds();
-  if (std::find(kinds.begin(), kinds.end(), a.tiling) != kinds.end()) {
+  if (isTilingKind(a.tiling)) {
     if (!a.pitch) throw InputError("--tiling " + a.tiling + " needs --pitch: the distance between neighbouring tile centres, in --unit");
     options.tiling.kind = a.tiling;
     std::tie(options.tiling.columns, options.tiling.rows) = parseGrid(a.grid, a.maxBodies);
