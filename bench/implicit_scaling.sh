@@ -9,7 +9,9 @@
 # Usage: bench/implicit_scaling.sh [N ...]          (default: 7 15 31)
 # Env:   BUILD_DIR (build), OUT (/tmp/tessera_scaling), THREADS (2), EXPLICIT_LIMIT (900 s),
 #        SPEED (the scene's indenter.speed, m/s; 0: the protocol's c (h/L)^2 rule; default: 0.03 as the
-#        default scene)
+#        default scene), METHODS ("implicit explicit"), TOLERANCES (solver.implicit_tolerance values,
+#        one implicit run each; default: the built-in one), BLOCK (a block mesh in mm; default: the
+#        default block) and TILE_OPTIONS (more `tessera tile` options, e.g. --no-alternate)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 tessera="${BUILD_DIR:-$here/build}/tools/tessera"
@@ -17,6 +19,8 @@ out=${OUT:-/tmp/tessera_scaling}
 threads=${THREADS:-2}
 limit=${EXPLICIT_LIMIT:-900}
 speed=${SPEED:-0.03}
+methods=(${METHODS:-implicit explicit})
+tolerances=(${TOLERANCES:-default})
 sizes=("$@")
 [ ${#sizes[@]} -gt 0 ] || sizes=(7 15 31)
 python=/usr/bin/python3
@@ -30,22 +34,34 @@ s = json.load(open(folder + "/summary.json"))
 r, run = s["response"], s["run"]
 e = r.get("energy", {})
 work = e.get("work_mJ", 0) or 1
-print(f"{folder.split('/')[-1]:>14} {method:>8} {note}{float(wall):8.1f} s  steps {run['steps']:>8}  "
+iterations = f" ({run['newton_iterations']} iterations)" if run.get('method') == 'implicit' else ""
+print(f"{folder.split('/')[-1]:>14} {method:>8} {note}{float(wall):8.1f} s  steps {run['steps']:>8}{iterations}  "
       f"P_max {r['peak_load_N']:8.3f} N  K {r['stiffness_N_per_mm']:9.3f} N/mm  delta(P_max) {r['delta_at_peak_mm']:6.3f} mm  "
       f"W {r['loading_energy_to_end_mJ']:8.2f} mJ  failure {r.get('failure_deflection_mm')} ({r.get('failure_mode')})  "
       f"residual {100 * e.get('residual_mJ', 0) / work:5.2f} %")
 EOF
 }
 
+block=${BLOCK:-$here/assets/blocks/planar_a10_h3.18_5deg.obj}
+name=$(basename "$block" .obj)
 for n in "${sizes[@]}"; do
-  slab="$out/slab$n"
-  [ -f "$slab/bundle.h5" ] || "$tessera" tile --block "$here/assets/blocks/planar_a10_h3.18_5deg.obj" --unit mm \
-    --grid "${n}x${n}" --pitch 10 --fix perimeter --voxel 0.25 --spacing 0.6 --replace -o "$slab" > /dev/null
-  for method in implicit explicit; do
-    scene="$out/scene_${n}_$method.toml"
+  slab="$out/slab${n}_$name"
+  [ -f "$slab/bundle.h5" ] || "$tessera" tile --block "$block" --unit mm --grid "${n}x${n}" --pitch 10 --fix perimeter \
+    --voxel 0.25 --spacing 0.6 ${TILE_OPTIONS:-} --replace -o "$slab" > /dev/null
+  cases=()
+  for method in "${methods[@]}"; do
+    if [ "$method" = implicit ]; then for t in "${tolerances[@]}"; do cases+=("implicit:$t"); done
+    else cases+=("$method:default"); fi
+  done
+  for case in "${cases[@]}"; do
+    method=${case%%:*} tolerance=${case#*:}
+    label=$method
+    setting=""
+    if [ "$tolerance" != default ]; then label="${method}_$tolerance"; setting="\nimplicit_tolerance = $tolerance"; fi
+    scene="$out/scene_${n}_${name}_$label.toml"
     sed -e "s#^bundle = .*#bundle = \"$slab\"#" -e "s#^speed = .*#speed = $speed#" \
-      -e "s#^\[damping\]#[solver]\nmethod = \"$method\"\n\n[damping]#" "$here/assets/scenes/default.toml" > "$scene"
-    run="$out/${n}_$method"
+      -e "s#^\[damping\]#[solver]\nmethod = \"$method\"$setting\n\n[damping]#" "$here/assets/scenes/default.toml" > "$scene"
+    run="$out/${n}_${name}_$label"
     rm -rf "$run"
     start=$(date +%s.%N)
     if [ "$method" = explicit ]; then
@@ -69,7 +85,7 @@ print(f"{'slab' + n:>14}  explicit ~{wall * (steps + left) / max(steps, 1):8.0f}
       f"{left:.0f} more to delta_max)")
 EOF
     else
-      summary "$run" "$method" "$wall" " "
+      summary "$run" "$label" "$wall" " "
     fi
   done
 done

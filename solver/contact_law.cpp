@@ -1,4 +1,5 @@
 #include "solver/contact_law.h"
+#include "solver/cpu_versions.h"
 #include "solver/node_contact_law.h"
 
 namespace tessera {
@@ -7,7 +8,7 @@ namespace {
 
 // The law over n entries in SIMD lanes; compiled for the baseline CPU and for AVX2 and AVX-512
 // machines (chosen at load time).
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+TESSERA_CPU_VERSIONS
 void contactLaw(const ContactLawConstants<ContactReal>& k, const NodeContactBatch& b) {
   const int n = b.count;
   const ContactReal *__restrict nx = b.nx, *__restrict ny = b.ny, *__restrict nz = b.nz, *__restrict depth = b.depth,

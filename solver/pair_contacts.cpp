@@ -2,6 +2,7 @@
 
 #include "geometry/convex_planes.h"
 #include "solver/contact_law.h"
+#include "solver/cpu_versions.h"
 #include "solver/node_contact_law.h"
 
 #include <algorithm>
@@ -92,7 +93,7 @@ struct SideMotion {
 };
 
 // Points moved into another frame, x' = R x + t, n at once (SIMD).
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+TESSERA_CPU_VERSIONS
 void transformPoints(int n, const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const double* __restrict x,
                      const double* __restrict y, const double* __restrict z, double* __restrict ox, double* __restrict oy,
                      double* __restrict oz) {
@@ -109,7 +110,7 @@ void transformPoints(int n, const Eigen::Matrix3d& R, const Eigen::Vector3d& t, 
 // DenseSdf::value of n points at once (SIMD, the corners gathered), as it, and a vector along its
 // gradient (DenseSdf::sample's times the voxel size; outside the grid, x less its nearest grid
 // point) from the same corner reads; int indices (the grid has fewer than 2^31 nodes).
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+TESSERA_CPU_VERSIONS
 void gridSamples(const DenseSdf& sdf, int n, const double* __restrict x, const double* __restrict y,
                  const double* __restrict z, double* __restrict value, double* __restrict gx, double* __restrict gy,
                  double* __restrict gz) {
@@ -366,7 +367,7 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
 // (storeKept): key, lever r = RM p + (c_M - c_a), the best plane's world normal RM n, depth -phi,
 // and area: `share` of the node's, projected on the contact plane, -n_i . n (taken in M's frame),
 // clipped at 0 (facingSharedArea). The batch needs room for four entries past the last candidate.
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+TESSERA_CPU_VERSIONS
 int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& planes, const SideMotion& side,
                    const Eigen::Matrix3d& RM, double share, PairBatch& batch) {
   const BatchSlice out(batch, start);
@@ -415,7 +416,7 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
 // ShapeModel::gridLevelSet of n points at once (SIMD), in place, from their grid values and
 // vectors along the gradient (gridSamples): inside, the vector made unit, or phi 0 (no contact)
 // where it is zero; outside, phi as it is.
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+TESSERA_CPU_VERSIONS
 void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double* __restrict gy, double* __restrict gz) {
 #pragma omp simd
   for (int i = 0; i < n; ++i) {
@@ -435,7 +436,7 @@ void gridLevelSets(int n, double* __restrict phi, double* __restrict gx, double*
 // (CandidateLanes), those inside (phi < 0) packed to the front of the lanes (storeKept): key,
 // lever r = RO o + (c_O - c_M) + (c_M - c_a), the world normal RO g, depth -phi, and area: `share`
 // of the node's, projected on the contact plane, -(RM n_i) . (RO g), clipped at 0 (facingSharedArea).
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+TESSERA_CPU_VERSIONS
 int levelSetContacts(int start, const SideCandidates& c, const SideMotion& side, const double* __restrict ox,
                      const double* __restrict oy, const double* __restrict oz, const double* __restrict phi,
                      const double* __restrict gx, const double* __restrict gy, const double* __restrict gz,
@@ -504,7 +505,7 @@ struct PairSums {
 // NodeContacts::kLawBlock entries: the padding entries, all 0 in the batch (key 0, area 0) and in
 // the contacts' state arrays (no spring, stored energy or area), add exactly 0 to every sum and
 // stay 0.
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+TESSERA_CPU_VERSIONS
 PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotion (&sides)[2], PairBatch& b,
                     NodeContacts& contacts, int count) {
   using Real = ContactReal;

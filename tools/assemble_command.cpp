@@ -122,7 +122,7 @@ void runAssemble(const AssembleArguments& a) {
                 levelSetPath(s).c_str());
   }
   printAssemblySummary(bundle, summary, "assemble");
-  printAssemblyStatics(bundle, analyseAssembly(bundle, AssemblyLevelSets(bundle), kDefaultFriction, false));
+  printAssemblyVerdict(bundle, a.output);
   std::printf("  span rule     %s\n", report.spanRule.c_str());
   std::printf("written to %s in %.2f s\n", a.output.c_str(), seconds);
 }

@@ -1,6 +1,7 @@
 #include "tools/assembly_report.h"
 
 #include "geometry/length_unit.h"
+#include "levelset/assembly.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -62,6 +63,15 @@ void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
     printMotion(st.falling);
   }
   std::printf("  checked in %.2f s\n", s.seconds);
+}
+
+void printAssemblyVerdict(const Bundle& bundle, const std::string& folder) {
+  if (bundle.bodies.size() <= kVerdictBodyLimit) {
+    printAssemblyStatics(bundle, analyseAssembly(bundle, AssemblyLevelSets(bundle), kDefaultFriction, false));
+    return;
+  }
+  std::printf("  interlocked   not checked here for %zu bodies (over %zu; it can take minutes): tessera check %s\n",
+              bundle.bodies.size(), kVerdictBodyLimit, folder.c_str());
 }
 
 }  // namespace tessera::tools

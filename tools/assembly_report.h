@@ -18,4 +18,12 @@ inline const double kDefaultFriction = ContactParameters{}.friction;
 /// and assemble print it.
 void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& statics);
 
+/// The most bodies tile and assemble check after writing: the checks' linear programs grow about
+/// as the cube of the bodies (0.14 s for a 7 x 7 slab, 11 s for 15 x 15, minutes for 31 x 31).
+constexpr std::size_t kVerdictBodyLimit = 150;
+
+/// tile's and assemble's verdict: printAssemblyStatics at the default friction for an assembly of
+/// at most kVerdictBodyLimit bodies, else a line naming `tessera check FOLDER`.
+void printAssemblyVerdict(const Bundle& bundle, const std::string& folder);
+
 }  // namespace tessera::tools

@@ -99,7 +99,7 @@ void writeCheckedSlab(const TileArguments& a, const Bundle& bundle, const PrepLo
   writeBundle(a.output, bundle);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   printAssemblySummary(bundle, summary, "tile");
-  printAssemblyStatics(bundle, analyseAssembly(bundle, AssemblyLevelSets(bundle), kDefaultFriction, false));
+  printAssemblyVerdict(bundle, a.output);
   std::printf("written to %s in %.2f s\n", a.output.c_str(), seconds);
 }
 

@@ -233,6 +233,17 @@ TEST_CASE("a body that touches nothing is reported, not refused") {
   REQUIRE_THAT(r.out, Contains("0 of 1 free bodies held"));
 }
 
+TEST_CASE("tile leaves the rigid-block verdict of a large slab to tessera check, naming it") {
+  test::TempDir dir;
+  const test::CliResult r =
+      test::runTessera("tile --tiling square --grid 13x13 --pitch 10 --thickness 3.18 --angle 5 --unit mm -o " + quoted(dir / "big"));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE_THAT(r.out, Contains("169 bodies"));
+  REQUIRE_THAT(r.out, Contains("interlocked   not checked here for 169 bodies (over 150") && Contains("tessera check " + (dir / "big")));
+  REQUIRE_THAT(r.out, !Contains("interlocked   yes") && !Contains("stable"));
+}
+
 TEST_CASE("tile --tiling: a generated hex slab and its verdict, a tiling file, and mistakes that exit 2 naming the fix") {
   test::TempDir dir;
   const test::CliResult hex =
