@@ -45,6 +45,15 @@ FolderLock::~FolderLock() {
   if (fd_ >= 0) ::close(fd_);  // releases the lock
 }
 
+FileLock::FileLock(const std::string& path) {
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ >= 0 && ::flock(fd_, LOCK_EX) == 0) return;
+  if (fd_ >= 0) ::close(fd_);
+  throw InputError(path + ": cannot lock it; check that its folder exists and is writable");
+}
+
+FileLock::~FileLock() { ::close(fd_); }  // releases the lock
+
 // /proc/locks lines: "1: FLOCK  ADVISORY  WRITE 1234 08:01:5678 0 EOF" (pid, then the file's
 // device major:minor in hex and its inode in decimal).
 long folderLockHolder(const std::string& folder) {

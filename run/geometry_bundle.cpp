@@ -4,6 +4,7 @@
 #include "geometry/block_generators.h"
 #include "geometry/plane_tiling.h"
 #include "io/file_digest.h"
+#include "io/folder_lock.h"
 #include "io/input_error.h"
 #include "levelset/assembly_checks.h"
 #include "levelset/generated_slab.h"
@@ -11,10 +12,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <sstream>
-
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
 
 namespace tessera {
 
@@ -55,20 +52,6 @@ std::vector<AssemblyPart> familySlabParts(const GeometryRecipe& g) {
   return parts;
 }
 
-// An exclusive lock on a file, waited for (released when closed).
-struct WaitedLock {
-  int fd = -1;
-  explicit WaitedLock(const std::string& path) {
-    fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0 || ::flock(fd, LOCK_EX) != 0) throw InputError(path + ": cannot lock it; check that its folder is writable");
-  }
-  ~WaitedLock() {
-    if (fd >= 0) ::close(fd);
-  }
-  WaitedLock(const WaitedLock&) = delete;
-  WaitedLock& operator=(const WaitedLock&) = delete;
-};
-
 }  // namespace
 
 std::string geometryCache(const std::string& output) {
@@ -84,7 +67,7 @@ std::string geometryBundle(const GeometryRecipe& recipe, const std::string& cach
   const std::string text = recipeText(recipe);
   const fs::path folder = fs::path(cache) / ("geometry_" + textDigest(text).substr(0, 16));
   fs::create_directories(cache);
-  const WaitedLock lock(folder.string() + ".lock");
+  const FileLock lock(folder.string() + ".lock");
   if (fs::exists(folder / "bundle.h5")) return folder.string();
   if (log) log("generating the [geometry] slab (" + (recipe.family.empty() ? recipe.tiling : recipe.family + " blocks") + ") into " + folder.string());
   PrepLog prep;

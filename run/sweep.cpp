@@ -21,8 +21,6 @@
 #include <map>
 #include <sstream>
 
-#include <fcntl.h>
-#include <sys/file.h>
 #include <unistd.h>
 
 namespace tessera {
@@ -343,15 +341,7 @@ int writeSweepTables(const std::string& folder) {
   const fs::path dir(folder);
   // One writer at a time: each reads every case and writes the whole table, so a later writer
   // never replaces a table with one that misses a case completed meanwhile.
-  struct TablesLock {
-    int fd;
-    explicit TablesLock(const fs::path& path) : fd(::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
-      if (fd >= 0 && ::flock(fd, LOCK_EX) == 0) return;
-      if (fd >= 0) ::close(fd);
-      throw InputError(path.string() + ": cannot lock the sweep's tables; check the folder's permissions");
-    }
-    ~TablesLock() { ::close(fd); }
-  } lock(dir / ".tables.lock");
+  const FileLock lock((dir / ".tables.lock").string());
   const nlohmann::json manifest = nlohmann::json::parse(readTextFile(dir / "sweep.json"));
   const std::vector<std::string> keys = manifest.at("keys");
   std::string csv = "case";
