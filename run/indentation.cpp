@@ -235,7 +235,7 @@ private:
     s.loadedContacts = static_cast<double>(c.loaded);
     s.loadedSliding = static_cast<double>(c.loadedSliding);
     s.kinetic = e.kinetic;
-    s.externalWork = e.obstacleWork;
+    s.obstacleWork = e.obstacleWork;
     s.elastic = e.elastic;
     s.friction = e.friction;
     s.damping = e.damping;
@@ -250,12 +250,12 @@ private:
   // Quasi-static check while loading up to the peak (past the first 5 % of h of contact): warned once.
   void checkQuasiStatic(double delta, double load) {
     const CurveSample& last = record_.curve.back();
-    if (warnedQuasiStatic_ || load < state_.peak || delta <= 0.05 * record_.thickness || !(last.externalWork > 0) ||
-        last.kinetic <= scene_.protocol.quasiStaticLimit * last.externalWork)
+    if (warnedQuasiStatic_ || load < state_.peak || delta <= 0.05 * record_.thickness || !(last.obstacleWork > 0) ||
+        last.kinetic <= scene_.protocol.quasiStaticLimit * last.obstacleWork)
       return;
     warnedQuasiStatic_ = true;
     if (hooks_.warning)
-      hooks_.warning("loading too fast: kinetic energy " + std::to_string(last.kinetic / last.externalWork).substr(0, 6) +
+      hooks_.warning("loading too fast: kinetic energy " + std::to_string(last.kinetic / last.obstacleWork).substr(0, 6) +
                      " x the indenter's work at delta = " + std::to_string(delta * 1e3).substr(0, 5) +
                      " mm (limit protocol.quasi_static_limit); lower indenter.speed or indenter.speed_ratio");
   }
@@ -288,13 +288,13 @@ private:
     const double target = scene_.protocol.quasiStaticTarget;
     if (target > 0 && (steered || (state_.peak > 0 && load < 0.5 * state_.peak))) state_.rateAdapted = true;
     const CurveSample& last = record_.curve.back();
-    if (target > 0 && !state_.rateAdapted && last.externalWork > 0 && velocity > 0) {
+    if (target > 0 && !state_.rateAdapted && last.obstacleWork > 0 && velocity > 0) {
       double recent = 0;
       const std::size_t n = record_.curve.size();
       for (std::size_t i = n - std::min<std::size_t>(n, kRecentSamples); i < n; ++i)
-        if (record_.curve[i].externalWork > 0)
-          recent = std::max(recent, record_.curve[i].kinetic / record_.curve[i].externalWork);
-      control.indenterSpeed = adaptedIndenterSpeed(velocity, last.kinetic / last.externalWork, recent, target,
+        if (record_.curve[i].obstacleWork > 0)
+          recent = std::max(recent, record_.curve[i].kinetic / record_.curve[i].obstacleWork);
+      control.indenterSpeed = adaptedIndenterSpeed(velocity, last.kinetic / last.obstacleWork, recent, target,
                                                    kSlowestSpeedFraction * speed_, speed_);
     }
     if (control.indenterSpeed != velocity) {

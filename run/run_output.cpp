@@ -85,7 +85,7 @@ void writeCurveCsv(const fs::path& dir, const IndentationRecord& record) {
   char line[320];
   for (const CurveSample& s : record.curve) {
     std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g\n", s.delta * 1e3, s.load,
-                  s.time, s.kinetic, s.externalWork, s.contacts, s.blockDisplacement * 1e3, s.indenterPenetration * 1e3,
+                  s.time, s.kinetic, s.obstacleWork, s.contacts, s.blockDisplacement * 1e3, s.indenterPenetration * 1e3,
                   s.blockContacts > 0 ? s.slidingContacts / s.blockContacts : 0.0,
                   s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0);
     out += line;
@@ -129,7 +129,7 @@ nlohmann::json responseJson(const Scene& scene, const IndentationRecord& record,
                         {"at_failure", failed ? contactState(response.atFailure) : nlohmann::json(nullptr)},
                         {"end", {{"delta_mm", end.delta * 1e3}, {"load_N", end.load}, {"block_displacement_mm", end.blockDisplacement * 1e3}}},
                         {"energy",
-                         {{"work_mJ", end.externalWork * 1e3},
+                         {{"work_mJ", end.obstacleWork * 1e3},
                           {"elastic_mJ", end.elastic * 1e3},
                           {"kinetic_mJ", end.kinetic * 1e3},
                           {"friction_mJ", end.friction * 1e3},

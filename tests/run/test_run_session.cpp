@@ -51,7 +51,7 @@ void requireSameCurve(const std::vector<CurveSample>& a, const std::vector<Curve
     REQUIRE(a[i].time == b[i].time);
     REQUIRE(a[i].delta == b[i].delta);
     REQUIRE(a[i].load == b[i].load);
-    REQUIRE(a[i].externalWork == b[i].externalWork);
+    REQUIRE(a[i].obstacleWork == b[i].obstacleWork);
     REQUIRE(a[i].residual == b[i].residual);
   }
 }
@@ -163,7 +163,7 @@ TEST_CASE("sample hook: a run it does not steer is the protocol's run, a hold do
   for (std::size_t i : during) {
     INFO("held sample " << i);
     REQUIRE(curve[i].delta == start.delta);                 // the indenter still
-    REQUIRE(curve[i].externalWork == start.externalWork);  // and doing no work
+    REQUIRE(curve[i].obstacleWork == start.obstacleWork);  // and doing no work
     REQUIRE(curve[i].load <= start.load * 1.001);           // the slab relaxes under it
   }
   REQUIRE(curve[during.back()].time - start.time > 0);
@@ -289,9 +289,9 @@ TEST_CASE("implicit against explicit on a 5 x 5 slab past its peak: P_max and K 
   // The residual is first-order in the increments where a node's nearest face switches or the
   // load drops within one (docs/physics.md, "Implicit method").
   for (const CurveSample& c : b->record().curve)
-    if (c.delta <= rb.deltaAtPeak) REQUIRE(std::abs(c.residual) < 0.01 * c.externalWork + 1e-6);
+    if (c.delta <= rb.deltaAtPeak) REQUIRE(std::abs(c.residual) < 0.01 * c.obstacleWork + 1e-6);
   const CurveSample& end = b->record().curve.back();
-  REQUIRE(std::abs(end.residual) < 0.03 * end.externalWork);
+  REQUIRE(std::abs(end.residual) < 0.03 * end.obstacleWork);
   REQUIRE(b->world().stepCount() < a->world().stepCount() / 50);
 }
 
