@@ -19,7 +19,7 @@ void contactLaw(const ContactLawConstants<ContactReal>& k, const NodeContactBatc
 #pragma omp simd
   for (int i = 0; i < n; ++i) {
     const SpringUpdate<ContactReal> u = updateSpring(k, nx[i], ny[i], nz[i], depth[i], area[i], vx[i], vy[i], vz[i], ux[i], uy[i], uz[i]);
-    const ContactForce<ContactReal> f = contactForce(k, nx[i], ny[i], nz[i], depth[i], area[i], u.approach, ux[i], uy[i], uz[i]);
+    const ContactForce<ContactReal> f = contactForce(k, nx[i], ny[i], nz[i], depth[i], area[i], u.normalSpeed, ux[i], uy[i], uz[i]);
     fx[i] = f.fx;
     fy[i] = f.fy;
     fz[i] = f.fz;

@@ -92,7 +92,7 @@ public:
       energyBefore = c.energy;
     }
     // The law of the explicit step with v dt = rel: the spring turned onto the tangent plane plus
-    // the tangential part of rel, capped at mu f_n; the normal viscosity at the approach rate.
+    // the tangential part of rel, capped at mu f_n; the normal viscosity at the normal speed.
     const double vn = rel.dot(n), rate = increment_ > 0 ? vn / increment_ : 0.0;
     double ux = spring.x(), uy = spring.y(), uz = spring.z();
     const double turnedDotTrial = trialSpring(trialLaw_, n.x(), n.y(), n.z(), rel.x(), rel.y(), rel.z(), vn, ux, uy, uz);

@@ -23,8 +23,9 @@ struct ContactLawConstants {
   }
 };
 
-/// The normal force of one contact at the approach speed v_n = v . n: f_n = k_n a d - eta_n a v_n
-/// clipped at 0, with its elastic part k_n a d, and k_t a (0 for a node facing away, area 0).
+/// The normal force of one contact at the normal speed v_n = v . n (positive while the sides
+/// separate): f_n = k_n a d - eta_n a v_n clipped at 0, with its elastic part k_n a d, and k_t a
+/// (0 for a node facing away, area 0).
 template <class Real>
 struct NormalForce {
   Real kna, kta, elastic, fn;
@@ -43,11 +44,11 @@ __attribute__((always_inline)) inline NormalForce<Real> normalForce(const Contac
 }
 
 /// What the update of a contact's tangential spring dissipated: J by sliding, 1 if it slid, the
-/// approach speed v_n = v . n (m/s) that contactForce takes, the normal force f_n (N) and what
-/// the normal viscosity dissipated this step, (k_n a d - f_n) v_n dt (J).
+/// normal speed v_n = v . n (m/s; positive while separating) that contactForce takes, the normal
+/// force f_n (N) and what the normal viscosity dissipated this step, (k_n a d - f_n) v_n dt (J).
 template <class Real>
 struct SpringUpdate {
-  Real friction, sliding, approach, normal, viscous;
+  Real friction, sliding, normalSpeed, normal, viscous;
 };
 
 /// The spring's trial value for one contact, in place: its tangential spring u turned onto the

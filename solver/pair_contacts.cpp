@@ -60,14 +60,14 @@ struct PairBatch {
   int changed = -1;
   std::vector<std::uint32_t> key;
   std::vector<ContactReal> rx, ry, rz, nx, ny, nz, depth, area;
-  std::vector<ContactReal> approach, turned;  // the law's: each contact's v_n and t . s (trialSpring)
+  std::vector<ContactReal> normalSpeed, turned;  // the law's: each contact's v_n and t . s (trialSpring)
 
   /// Room for n contacts (values unset).
   void reserve(int n) {
     if (static_cast<int>(key.size()) >= n) return;
     const std::size_t size = static_cast<std::size_t>(n + n / 2);
     key.resize(size);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &approach, &turned}) v->resize(size);
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &normalSpeed, &turned}) v->resize(size);
   }
   /// A new contact at the end (values unset); its index.
   int append() {
@@ -79,7 +79,7 @@ struct PairBatch {
     constexpr int block = static_cast<int>(NodeContacts::kLawBlock);
     reserve(from + block);
     std::fill_n(key.data() + from, block, 0u);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &approach, &turned})
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &normalSpeed, &turned})
       std::fill_n(v->data() + from, block, ContactReal(0));
   }
 };
@@ -524,7 +524,7 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
              *__restrict depth = b.depth.data(), *__restrict area = b.area.data();
   Real *__restrict ux = contacts.springX.data(), *__restrict uy = contacts.springY.data(),
        *__restrict uz = contacts.springZ.data(), *__restrict stored = contacts.energy.data(),
-       *__restrict storedArea = contacts.area.data(), *__restrict approach = b.approach.data(),
+       *__restrict storedArea = contacts.area.data(), *__restrict normalSpeed = b.normalSpeed.data(),
        *__restrict turned = b.turned.data();
   // The law in three passes, the springs' trial (a division and a square root), their cap
   // (another of each), then the forces and sums: each short enough for the next contacts' work to
@@ -538,14 +538,14 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
     const Real sx = one ? sx1 : sx0, sy = one ? sy1 : sy0, sz = one ? sz1 : sz0;
     const Real vx = ax + (sy * rz[i] - sz * ry[i]), vy = ay + (sz * rx[i] - sx * rz[i]), vz = az + (sx * ry[i] - sy * rx[i]);
     const Real vn = vx * nx[i] + vy * ny[i] + vz * nz[i];
-    approach[i] = vn;
+    normalSpeed[i] = vn;
     turned[i] = trialSpring(law, nx[i], ny[i], nz[i], vx, vy, vz, vn, ux[i], uy[i], uz[i]);
   }
   // (The sums that need only the cap pass's values are taken there: fewer in the last pass than
   // registers.)
 #pragma omp simd reduction(+ : friction, sliding, weight, viscous) reduction(max : deepest)
   for (int i = 0; i < n; ++i) {
-    const SpringUpdate<Real> u = capSpring(law, depth[i], area[i], approach[i], turned[i], ux[i], uy[i], uz[i]);
+    const SpringUpdate<Real> u = capSpring(law, depth[i], area[i], normalSpeed[i], turned[i], ux[i], uy[i], uz[i]);
     friction += u.friction;
     sliding += u.sliding;
     weight += u.normal;
@@ -556,7 +556,7 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
 #pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, elastic, projection)
   for (int i = 0; i < n; ++i) {
     const Real ai = area[i], a0 = storedArea[i], e0 = stored[i];
-    const ContactForce<Real> f = contactForce(law, nx[i], ny[i], nz[i], depth[i], ai, approach[i], ux[i], uy[i], uz[i]);
+    const ContactForce<Real> f = contactForce(law, nx[i], ny[i], nz[i], depth[i], ai, normalSpeed[i], ux[i], uy[i], uz[i]);
     stored[i] = f.stored;
     storedArea[i] = ai;
     // Forces on a: +f for a node of a, -f for a node of b (side 1); a contact facing away (area 0)
