@@ -117,7 +117,7 @@ TEST_CASE("assemble refuses bad input in one line with the file, the problem and
 }
 
 TEST_CASE("scale invariance: the paper's slab in mm and a 6x larger copy exported in metres, y up, give one normalised curve, either method") {
-  // Default keys only (local damping as the default scene): resolution, indenter radius and
+  // Default keys but the load point (local damping as the default scene): resolution, indenter radius and
   // speed, settle threshold, fit window and delta_max all follow the block; so do the implicit
   // method's increments (ratios of the thinnest block and of the explicit step).
   const std::string method = GENERATE(std::string("explicit"), std::string("implicit"));
