@@ -1,7 +1,6 @@
 // tessera tile: blocks + a tessellation (built-in square grid or a layout file) -> a slab bundle.
 #include "io/input_error.h"
 #include "geometry/length_unit.h"
-#include "levelset/assembly.h"
 #include "levelset/generated_slab.h"
 #include "levelset/slab_plan.h"
 #include "levelset/tiler.h"
