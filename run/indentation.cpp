@@ -26,7 +26,7 @@ Snapshot snapshotOf(const World& world, int sphere, double delta, double load) {
     double area = 0;
     for (const NodeContact& c : p.contacts) area += c.area;
     s.forces.push_back({p.a, p.b, p.forcePoint, p.forceA, p.normalForceA, static_cast<int>(p.contacts.size()), area,
-                        p.tally.sliding});
+                        p.tally.sliding, world.normalStiffness(p)});
   }
   return s;
 }

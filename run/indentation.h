@@ -43,6 +43,7 @@ struct ForceLink {
   int nodeContacts = 0;          ///< node contacts of the pair
   double area = 0;               ///< m^2, their effective (projected) area
   int slidingNodes = 0;          ///< of them, at the Coulomb cap
+  double normalStiffness = 0;    ///< N/m^3, the pair's k_n (material.stiffness_rule)
 };
 
 /// Body poses and contact forces at one moment (for the ParaView time series).

@@ -37,7 +37,7 @@ void writeSnapshots(hid_t g, const std::vector<Snapshot>& snapshots, const std::
   h5::writeStrings(g, "body_names", bodyNames);
   std::vector<double> delta, load, position, orientation, velocity, indenter;
   std::vector<std::int32_t> offset{0}, pair, nodes, slidingNodes;
-  std::vector<double> point, force, normal, tangential, area, sliding;
+  std::vector<double> point, force, normal, tangential, area, sliding, stiffness;
   for (const Snapshot& s : snapshots) {
     delta.push_back(s.delta);
     load.push_back(s.load);
@@ -54,6 +54,7 @@ void writeSnapshots(hid_t g, const std::vector<Snapshot>& snapshots, const std::
       nodes.push_back(l.nodeContacts);
       slidingNodes.push_back(l.slidingNodes);
       area.push_back(l.area);
+      stiffness.push_back(l.normalStiffness);
       sliding.push_back(l.nodeContacts > 0 ? static_cast<double>(l.slidingNodes) / l.nodeContacts : 0.0);
     }
     offset.push_back(static_cast<std::int32_t>(pair.size() / 2));
@@ -75,6 +76,7 @@ void writeSnapshots(hid_t g, const std::vector<Snapshot>& snapshots, const std::
   writeWithUnit(g, "force_sliding_nodes", slidingNodes, {links}, "count", "of them, at the Coulomb cap");
   writeWithUnit(g, "force_sliding_fraction", sliding, {links}, "1", "force_sliding_nodes / force_node_contacts");
   writeWithUnit(g, "force_area", area, {links}, "m^2", "their effective (projected) area");
+  writeWithUnit(g, "force_normal_stiffness", stiffness, {links}, "N/m^3", "the pair's k_n (material.stiffness_rule)");
 }
 
 std::vector<Snapshot> readSnapshots(hid_t g, std::size_t bodies) {
@@ -97,6 +99,10 @@ std::vector<Snapshot> readSnapshots(hid_t g, std::size_t bodies) {
   const auto nodes = readSized<std::int32_t>(g, "force_node_contacts", links);
   const auto sliding = readSized<std::int32_t>(g, "force_sliding_nodes", links);
   const auto area = readSized<double>(g, "force_area", links);
+  // Absent from records written before per-pair stiffnesses: read as 0 (not known).
+  const auto stiffness = H5Lexists(g, "force_normal_stiffness", H5P_DEFAULT) > 0
+                             ? readSized<double>(g, "force_normal_stiffness", links)
+                             : std::vector<double>(links, 0.0);
   for (std::int32_t body : pair)
     if (body < -64 || body >= static_cast<std::int32_t>(bodies)) throw std::runtime_error("a contact record names no body");
   std::vector<Snapshot> snapshots;
@@ -113,7 +119,7 @@ std::vector<Snapshot> readSnapshots(hid_t g, std::size_t bodies) {
     s.indenter = vectorAt(indenter, k);
     for (auto l = static_cast<std::size_t>(offset[k]); l < static_cast<std::size_t>(offset[k + 1]); ++l)
       s.forces.push_back({pair[2 * l], pair[2 * l + 1], vectorAt(point, l), vectorAt(force, l), vectorAt(normal, l), nodes[l],
-                          area[l], sliding[l]});
+                          area[l], sliding[l], stiffness[l]});
     snapshots.push_back(std::move(s));
   }
   return snapshots;

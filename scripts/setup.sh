@@ -34,6 +34,7 @@ packages=(
   python3-dev pybind11-dev                      # the Python module
   python3-pytest python3-h5py                   # its tests; tessera.open_run reads results.h5
   libbenchmark-dev                              # benchmarks (bench/)
+  calculix-ccx python3-gmsh                     # finite-element references (bench/validation)
 )
 for option in "$@"; do
   case "$option" in

@@ -9,6 +9,12 @@ namespace tessera {
 /// LAMMPS ls/dem and Kawamoto et al. 2016; equal volumes: a's nodes).
 enum class ContactEvaluation { TwoWay, OneWay };
 
+/// Which stiffness each contact gets (docs/physics.md, "Contact stiffness"): one k_n = E M / L for
+/// every contact (span: the paper's rule, from the slab's free span), or k_n = E / (w_a + w_b) per
+/// pair, w the length of the elastic bar from each body's centroid to the contact, 0 for a fixed
+/// body or an obstacle (bars: from the blocks' own geometry, for any assembly).
+enum class StiffnessRule { Span, Bars };
+
 /// The contact law's parameters (docs/physics.md). Defaults: the paper's material and slab.
 struct ContactParameters {
   double youngsModulus = 4.2e9;   ///< E, Pa
@@ -23,6 +29,7 @@ struct ContactParameters {
   /// converge under node refinement. For demonstrating exactly that; never for results.
   double perNodeStiffness = 0.0;
   ContactEvaluation evaluation = ContactEvaluation::TwoWay;  ///< scene: solver.contact_evaluation
+  StiffnessRule stiffnessRule = StiffnessRule::Span;          ///< scene: material.stiffness_rule
 
   /// The share of its area each node of side `side` of a body pair (a, b) carries (side 0: a's
   /// nodes in b; side 1: b's in a), given the bodies' volumes: 0.5 two-way; one-way 1 for the

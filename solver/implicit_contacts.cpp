@@ -56,15 +56,20 @@ inline void addOuterLower(Eigen::Matrix<double, N, N>& m, const Eigen::Matrix<do
   }
 }
 
+// The law's constants for a pair (its stiffnesses: pairStiffness) over a rate step dt.
+ContactLawConstants<double> lawOf(const ImplicitScene& scene, const PairContacts& pair, double factor, double dt) {
+  const auto [kn, kt] = pairStiffness(scene.parameters, scene.kn, scene.kt, pair.stiffnessScale, factor);
+  return ContactLawConstants<double>::of(scene.parameters, kn, kt, dt);
+}
+
 // The law over a pair's contacts as they are found, and what they add up to.
 class Accumulator {
 public:
   Accumulator(const ImplicitScene& scene, const PairContacts& pair, const NodeContacts& committed, double stiffnessFactor,
               ImplicitPairResult& out)
       : committed_(committed), out_(out), centreA_(scene.bodies->position[pair.a]), increment_(scene.increment),
-        trialLaw_(ContactLawConstants<double>::of(scene.parameters, stiffnessFactor * scene.kn, stiffnessFactor * scene.kt, 1.0)),
-        rateLaw_(ContactLawConstants<double>::of(scene.parameters, stiffnessFactor * scene.kn, stiffnessFactor * scene.kt,
-                                                 scene.increment)) {
+        trialLaw_(lawOf(scene, pair, stiffnessFactor, 1.0)),
+        rateLaw_(lawOf(scene, pair, stiffnessFactor, scene.increment)) {
     std::vector<NodeContact> kept = std::move(out_.contacts);  // its capacity, not its values
     out_ = ImplicitPairResult{};
     out_.contacts = std::move(kept);

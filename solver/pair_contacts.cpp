@@ -919,7 +919,8 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
     return;
   }
   Scratch& scratch = threadScratch;
-  Accumulator acc{scene, pair, scene.bodies->position[pair.a], scene.kn, scene.kt, scratch.batch};
+  const auto [kn, kt] = pairStiffness(scene.parameters, scene.kn, scene.kt, pair.stiffnessScale, 1.0);
+  Accumulator acc{scene, pair, scene.bodies->position[pair.a], kn, kt, scratch.batch};
   scratch.batch.changed = 0;  // listed by blocks (both sides)
   const RigidBodies& bodies = *scene.bodies;
   const auto& shapes = *scene.shapes;
@@ -976,8 +977,8 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
 void evaluateSpherePair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = beginEvaluation(scene, pair);
   const SphereObstacle& sphere = (*scene.spheres)[-1 - pair.b];
-  Accumulator acc{scene, pair, scene.bodies->position[pair.a],
-                  scene.kn * sphere.stiffnessFactor, scene.kt * sphere.stiffnessFactor, threadScratch.batch};
+  const auto [kn, kt] = pairStiffness(scene.parameters, scene.kn, scene.kt, pair.stiffnessScale, sphere.stiffnessFactor);
+  Accumulator acc{scene, pair, scene.bodies->position[pair.a], kn, kt, threadScratch.batch};
   const Eigen::Vector3d& position = scene.bodies->position[pair.a];
   const Eigen::Vector3d centre = scene.bodies->orientation[pair.a].conjugate() * (sphere.center - position);
   const double reach = sphere.radius + scene.candidateBand;
@@ -993,7 +994,8 @@ void evaluateSpherePair(const ContactScene& scene, PairContacts& pair) {
 void evaluatePlanePair(const ContactScene& scene, PairContacts& pair) {
   const bool rebuild = beginEvaluation(scene, pair);
   const PlaneObstacle& plane = (*scene.planes)[-1 - pair.b - static_cast<int>(scene.spheres->size())];
-  Accumulator acc{scene, pair, scene.bodies->position[pair.a], scene.kn, scene.kt, threadScratch.batch};
+  const auto [kn, kt] = pairStiffness(scene.parameters, scene.kn, scene.kt, pair.stiffnessScale, 1.0);
+  Accumulator acc{scene, pair, scene.bodies->position[pair.a], kn, kt, threadScratch.batch};
   const ShapeModel& sm = (*scene.shapes)[scene.bodies->shape[pair.a]];
   visitObstacle(scene, pair, acc, rebuild, sm.nodes.box, Motion{plane.point, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()},
                 [&](const Eigen::Vector3d& x, Eigen::Vector3d& normal) {

@@ -174,6 +174,8 @@ enum class PairKind : std::uint8_t { Bodies, Sphere, Plane };
 struct PairContacts {
   int a = -1, b = -1;
   PairKind kind = PairKind::Bodies;  ///< pairKind(b, spheres)
+  /// This pair's k_n over the scene's (1 under the span rule; the bar rule's, World::stiffnessScale).
+  double stiffnessScale = 1.0;
   NodeContacts contacts;  ///< of the last evaluation
   /// During an evaluation, the contacts of the one before (their history); between evaluations,
   /// spare arrays (no allocation per step).
@@ -221,6 +223,12 @@ struct ContactScene {
   /// Of the bodies and spheres, to this evaluation; null: each pair computes its exact motion.
   const Travel* travel = nullptr;
 };
+
+/// k_n and k_t of a pair, N/m^3: the scene's times the pair's stiffnessScale and `factor` (an
+/// obstacle's); a k_t given absolute (N/m^3) is the scene's whatever the pair.
+inline std::pair<double, double> pairStiffness(const ContactParameters& p, double kn, double kt, double scale, double factor) {
+  return {kn * scale * factor, kt * (p.tangentialStiffnessAbsolute > 0 ? 1.0 : scale) * factor};
+}
 
 /// The kind of the pair (a, b) in a World with `spheres` spheres.
 inline PairKind pairKind(int b, int spheres) {

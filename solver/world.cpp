@@ -45,8 +45,9 @@ namespace {
 //   G_k = k_n sum a ((e_k x r).n)^2 + k_t sum a (|e_k x r|^2 - ((e_k x r).n)^2)    omega^2 = 2 G_k / I_k
 // (k_t counts only with friction; without it no tangential force acts.) Translation-rotation
 // coupling is left out: the measured critical steps (bench/stability_map.cpp) bound what that costs.
-double fastestMode(const Shape& shape, double mass, const Eigen::Vector3d& inertia, const ContactParameters& p) {
-  const double kn = p.normalStiffness(), kt = p.friction > 0 ? p.tangentialStiffness() : 0.0;
+// kn, kt: the stiffest contact the body can have, N/m^3.
+double fastestMode(const Shape& shape, double mass, const Eigen::Vector3d& inertia, const ContactParameters& p, double kn,
+                   double kt) {
   double omega2 = 0.0;
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d e = Eigen::Vector3d::Unit(k);
@@ -81,12 +82,25 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
     throw std::invalid_argument("local damping must lie in [0, 1)");
   for (const Shape& s : bundle.shapes) shapes_.push_back(makeShapeModel(s, settings.exactConvexLevelSets, settings.exactMeshLevelSets));
   state_.bodies = makeRigidBodies(bundle, settings.density);
+  {
+    std::vector<std::vector<Eigen::Vector3d>> vertices;
+    for (const Shape& s : bundle.shapes) vertices.push_back(s.mesh.vertices);
+    bars_ = ContactBars(std::move(vertices), state_.bodies.shape, state_.bodies.position, state_.bodies.orientation,
+                        state_.bodies.fixed);
+  }
 
   double omega = 0.0, thinnest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < state_.bodies.size(); ++i) {
     const Shape& shape = bundle.shapes[state_.bodies.shape[i]];
     thinnest = std::min(thinnest, boundingBox(shape.mesh.vertices).sizes().minCoeff());
-    if (!state_.bodies.fixed[i]) omega = std::max(omega, fastestMode(shape, state_.bodies.mass[i], state_.bodies.inertia[i], parameters));
+    if (state_.bodies.fixed[i]) continue;
+    // The stiffest contact: k_n = E M / L (span), or E over the body's shortest bar (bars).
+    const double scale = parameters.stiffnessRule == StiffnessRule::Bars
+                             ? parameters.youngsModulus / bars_.shortest(static_cast<int>(i)) / parameters.normalStiffness()
+                             : 1.0;
+    const auto [kn, kt] = pairStiffness(parameters, parameters.normalStiffness(),
+                                        parameters.friction > 0 ? parameters.tangentialStiffness() : 0.0, scale, 1.0);
+    omega = std::max(omega, fastestMode(shape, state_.bodies.mass[i], state_.bodies.inertia[i], parameters, kn, kt));
   }
   automaticDt_ = omega > 0 ? settings.timeStepFactor * 2.0 / omega : 1e-6;
   dt_ = settings.timeStep > 0 ? settings.timeStep : automaticDt_;
@@ -190,6 +204,7 @@ void World::restore(const WorldState& s) {
   for (PairContacts& p : state_.pairs) {
     p.kind = pairKind(p.b, static_cast<int>(state_.spheres.size()));
     p.checkedTravel = -std::numeric_limits<double>::infinity();
+    p.stiffnessScale = stiffnessScale(p);
   }
 }
 
@@ -282,12 +297,14 @@ void World::updatePairs() {
         next.back().kind = pairKind(b, sphereCount);
         next.back().contacts.clear();
         next.back().candidatesValid = false;
+        next.back().stiffnessScale = stiffnessScale(next.back());
       }
     } else {
       PairContacts pair;
       pair.a = a;
       pair.b = b;
       pair.kind = pairKind(b, sphereCount);
+      pair.stiffnessScale = stiffnessScale(pair);
       next.push_back(std::move(pair));
     }
   }
@@ -297,6 +314,27 @@ void World::updatePairs() {
   state_.builtSphereCentre.clear();
   for (const auto& s : state_.spheres) state_.builtSphereCentre.push_back(s.center);
   state_.pairsValid = true;
+}
+
+// The pair's k_n over E M / L: 1 under the span rule; under the bar rule E / (w_a + w_b) over it
+// (ContactBars: the indenter comes down along -z, so it meets a body's top; a plane meets the
+// body's side facing it).
+double World::stiffnessScale(const PairContacts& pair) const {
+  if (parameters_.stiffnessRule == StiffnessRule::Span) return 1.0;
+  double bars = 0.0;
+  switch (pair.kind) {
+    case PairKind::Bodies: bars = bars_.betweenBodies(pair.a, pair.b); break;
+    case PairKind::Sphere: bars = bars_.againstObstacle(pair.a, Eigen::Vector3d::UnitZ()); break;
+    case PairKind::Plane:
+      bars = bars_.againstObstacle(pair.a, -state_.planes[-1 - pair.b - static_cast<int>(state_.spheres.size())].normal);
+      break;
+  }
+  return parameters_.youngsModulus / bars / parameters_.normalStiffness();
+}
+
+double World::normalStiffness(const PairContacts& pair) const {
+  const double factor = pair.kind == PairKind::Sphere ? state_.spheres[-1 - pair.b].stiffnessFactor : 1.0;
+  return parameters_.normalStiffness() * pair.stiffnessScale * factor;
 }
 
 // springStep: the time since the springs were last loaded, s: the step's dt after a drift, 0 when

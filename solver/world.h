@@ -1,5 +1,6 @@
 #pragma once
 #include "levelset/bundle.h"
+#include "solver/contact_bars.h"
 #include "solver/contact_parameters.h"
 #include "solver/obstacles.h"
 #include "solver/pair_contacts.h"
@@ -132,6 +133,9 @@ public:
   /// Force of the bodies on sphere k (the indenter's reaction), N.
   Eigen::Vector3d sphereReaction(int k) const { return state_.sphereReaction[k]; }
   const std::vector<PairContacts>& pairs() const { return state_.pairs; }
+  /// A pair's normal stiffness k_n, N/m^3 (ContactParameters::stiffnessRule; an obstacle's own
+  /// stiffness factor included).
+  double normalStiffness(const PairContacts& pair) const;
   EnergyBudget energy() const;
   double maxPenetration() const;  ///< m, deepest node in the last evaluation
 
@@ -149,6 +153,7 @@ private:
   void commitIncrement(double dt, int iterations);
   bool lostEquilibrium() const;
   void updatePairs();
+  double stiffnessScale(const PairContacts& pair) const;
   double candidateBand() const;
   void checkStability();
 
@@ -162,6 +167,7 @@ private:
   BodyKinematics kinematics_;           // of state_.bodies at the last evaluation (derived, not state)
   Travel travel_;                       // of the bodies and spheres, to the last evaluation (derived, not state)
   std::vector<double> bodyRadius_;      // m, each body's ShapeModel::radius
+  ContactBars bars_;                    // the bar rule's geometry, from the start poses
   double penetrationLimit_ = 0.0, thinnest_ = 0.0;
   double dt_ = 0.0, automaticDt_ = 0.0;
 };

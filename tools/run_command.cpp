@@ -153,13 +153,18 @@ void printRunHeader(const RunSession& session) {
   const ContactParameters& contact = session.contact();
   if (session.resumed())
     std::fprintf(stderr, "run: resuming %s at t = %.6g s (step %ld)\n", out.c_str(), world.time(), world.stepCount());
-  if (world.settings().method == SolverMethod::Implicit)
-    std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, implicit increments of up to %.3g s "
-                 "(the explicit step would be %.3g s)\n", session.bundle().bodies.size(), contact.youngsModulus * 1e-9,
-                 contact.friction, contact.normalStiffness(), world.timeStep(), world.automaticTimeStep());
+  char stiffness[96];
+  if (contact.stiffnessRule == StiffnessRule::Bars)
+    std::snprintf(stiffness, sizeof stiffness, "k_n = E / (w_a + w_b) per pair (bar rule)");
   else
-    std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, k_n = %.4g N/m^3, dt = %.3g s (automatic %.3g s)\n",
-                 session.bundle().bodies.size(), contact.youngsModulus * 1e-9, contact.friction, contact.normalStiffness(),
+    std::snprintf(stiffness, sizeof stiffness, "k_n = %.4g N/m^3", contact.normalStiffness());
+  if (world.settings().method == SolverMethod::Implicit)
+    std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, %s, implicit increments of up to %.3g s "
+                 "(the explicit step would be %.3g s)\n", session.bundle().bodies.size(), contact.youngsModulus * 1e-9,
+                 contact.friction, stiffness, world.timeStep(), world.automaticTimeStep());
+  else
+    std::fprintf(stderr, "run: %zu bodies, E = %.4g GPa, mu = %.3g, %s, dt = %.3g s (automatic %.3g s)\n",
+                 session.bundle().bodies.size(), contact.youngsModulus * 1e-9, contact.friction, stiffness,
                  world.timeStep(), world.automaticTimeStep());
   for (const Shape& shape : session.bundle().shapes)
     std::fprintf(stderr, "run: shape '%s': %s\n", shape.name.c_str(),

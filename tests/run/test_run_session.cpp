@@ -24,13 +24,14 @@ namespace {
 
 // A 3 x 3 slab of the default block and the default scene on it, loaded to 0.6 mm (n x n and
 // another delta_max, `solver` the text of a [solver] table, `indenter` more [indenter] keys, if
-// given).
+// given; `material` more [material] keys).
 struct SmallTest {
   test::TempDir dir;
   std::string scene = dir / "scene.toml";
-  explicit SmallTest(int n = 3, double deltaMax = 0.6e-3, const std::string& solver = "", const std::string& indenter = "") {
+  explicit SmallTest(int n = 3, double deltaMax = 0.6e-3, const std::string& solver = "", const std::string& indenter = "",
+                     const std::string& material = "") {
     writeBundle(dir / "slab", test::smallSlab(n, 0.25e-3, 1.0e-3));
-    test::writeFile(scene, "bundle = \"slab\"\n[material]\nyoungs_modulus = 4.2e9\nfriction = 0.23\n"
+    test::writeFile(scene, "bundle = \"slab\"\n[material]\nyoungs_modulus = 4.2e9\nfriction = 0.23\n" + material +
                            "[indenter]\nradius = 2.5e-3\nspeed = 0.03\n" + indenter + "[protocol]\ndelta_max = " +
                                std::to_string(deltaMax) + "\n[damping]\nlocal = 0.3\n[output]\ncheckpoint_seconds = 1e5\n" +
                                (solver.empty() ? "" : "[solver]\n" + solver + "\n"));
@@ -58,10 +59,11 @@ void requireSameCurve(const std::vector<CurveSample>& a, const std::vector<Curve
 
 }  // namespace
 
-TEST_CASE("checkpoint round trip: a run stopped mid-loading and resumed in process ends bit-identical, either method") {
+TEST_CASE("checkpoint round trip: a run stopped mid-loading and resumed in process ends bit-identical, either method, either stiffness rule") {
   const std::string method = GENERATE(std::string("explicit"), std::string("implicit"));
-  INFO("method " << method);
-  SmallTest t(3, 0.6e-3, "method = \"" + method + "\"");
+  const std::string rule = GENERATE(std::string("span"), std::string("bars"));  // bars: found again from the start poses
+  INFO("method " << method << ", stiffness rule " << rule);
+  SmallTest t(3, 0.6e-3, "method = \"" + method + "\"", "", "stiffness_rule = \"" + rule + "\"\n");
   auto whole = RunSession::start(t.request(), {});
   whole->run({});
   REQUIRE(whole->record().stopReason == StopReason::DeltaMax);

@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+"""One FE reference run: a Tessera bundle meshed, pressed and solved by CalculiX (fe_model.py).
+
+Usage: run_case.py BUNDLE -o DIR [--youngs-modulus PA] [--poisson NU] [--friction MU]
+                   [--element-size F] [--deflection F] [--punch-radius F] [--increments N]
+                   [--penalty F] [--threads N]
+Lengths F are fractions of the loaded block's thickness h (its z-extent), as Tessera's own
+protocol lengths are. Writes DIR/curve.csv (per converged increment: delta_mm, the patch's downward
+displacement; load_N, the force on it; block_displacement_mm, the mean downward displacement of
+the loaded block's nodes, Tessera's delta_b), DIR/summary.json (the model, counts, time) and
+DIR/slab.inp with CalculiX's own files beside it. A step that stops early (past a limit load, ccx
+cannot find a balance) keeps its converged increments; summary.json says where and why. Exit 1
+when ccx solves no increment (its log named).
+"""
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import fe_model as fe  # noqa: E402
+
+
+def central_free_block(blocks) -> int:
+    """The free block nearest the blocks' mean centroid in plan, as Tessera's default target."""
+    centres = np.array([b.vertices.mean(axis=0)[:2] for b in blocks])
+    mean = centres.mean(axis=0)
+    free = [k for k, b in enumerate(blocks) if not b.fixed]
+    return min(free, key=lambda k: np.linalg.norm(centres[k] - mean))
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("bundle")
+    parser.add_argument("-o", "--out", required=True)
+    parser.add_argument("--youngs-modulus", type=float, default=4.2e9, help="Pa (default 4.2e9)")
+    parser.add_argument("--poisson", type=float, default=0.2)
+    parser.add_argument("--friction", type=float, default=0.23)
+    parser.add_argument("--element-size", type=float, default=0.3, help="fraction of h (default 0.3)")
+    parser.add_argument("--deflection", type=float, default=0.8, help="fraction of h (default 0.8)")
+    parser.add_argument("--punch-radius", type=float, default=0.3, help="fraction of h (default 0.3)")
+    parser.add_argument("--increments", type=int, default=40)
+    parser.add_argument("--penalty", type=float, default=50.0,
+                        help="contact slope K = PENALTY x E / element size (default 50)")
+    parser.add_argument("--threads", type=int, default=2)
+    args = parser.parse_args()
+
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    blocks = fe.read_bundle(args.bundle)
+    loaded = central_free_block(blocks)
+    h = float(np.ptp(blocks[loaded].vertices[:, 2]))
+    model = fe.Model(youngs_modulus=args.youngs_modulus / 1e6, poisson=args.poisson, friction=args.friction,
+                     increments=args.increments, element_size=args.element_size * h, penalty_factor=args.penalty)
+    start = time.time()
+    mesh = fe.mesh_blocks(blocks, model.element_size)
+    held, pressed = fe.slab_supports(mesh, loaded, args.punch_radius * h, args.deflection * h)
+    inp = out / "slab.inp"
+    fe.write_input(inp, mesh, model, held, pressed,
+                   watch=mesh.node_ids(loaded, np.ones(len(mesh.meshes[loaded].nodes), bool)))
+    meshed = time.time() - start
+    stopped = fe.run_ccx(inp, args.threads)
+    totals = fe.read_totals(out / "slab.dat") if (out / "slab.dat").exists() else []
+    if not totals:
+        print(f"run_case: ccx solved no increment ({out / 'slab.log'}): {stopped}", file=sys.stderr)
+        return 1
+    mean = dict(fe.read_mean_displacements(out / "slab.dat"))
+    curve = [(0.0, 0.0, 0.0)] + [(t / model.increments * args.deflection * h, -force[2], -mean[t][2])
+                                 for t, force in totals]
+    (out / "curve.csv").write_text("delta_mm,load_N,block_displacement_mm\n" +
+                                   "".join(f"{d:.9g},{p:.9g},{b:.9g}\n" for d, p, b in curve))
+    summary = {
+        "bundle": str(Path(args.bundle).resolve()), "loaded_block": blocks[loaded].name, "thickness_mm": h,
+        "youngs_modulus_MPa": model.youngs_modulus, "poisson": model.poisson, "friction": model.friction,
+        "element_size_mm": model.element_size, "contact_slope_MPa_per_mm": model.contact_slope(),
+        "punch_radius_mm": args.punch_radius * h, "deflection_mm": args.deflection * h,
+        "nodes": int(sum(len(m.nodes) for m in mesh.meshes)),
+        "elements": int(sum(len(m.tets) for m in mesh.meshes)), "contact_pairs": len(mesh.pairs),
+        "patch_nodes": len(pressed[0].nodes), "increments": len(totals),
+        "completed": not stopped, "stopped": stopped,
+        "mesh_seconds": meshed, "total_seconds": time.time() - start,
+    }
+    (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    print(f"run_case: {blocks[loaded].name} pressed {args.deflection * h:.3g} mm: "
+          f"{summary['nodes']} nodes, {len(mesh.pairs)} contact pairs, {len(totals)} increments, "
+          f"load {curve[-1][1]:.4g} N, {summary['total_seconds']:.0f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

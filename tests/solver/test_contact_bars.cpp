@@ -1,0 +1,122 @@
+// The bar rule of contact stiffness (solver/contact_bars.h, docs/physics.md "Contact stiffness"):
+// its lengths against hand-computed bars, its equality with E M / L over a row of blocks, symmetry
+// in a and b, scale, and the equilibrium it gives a block resting on a support.
+#include "geometry/block_generators.h"
+#include "solver/contact_bars.h"
+#include "solver/world.h"
+#include "tests/fixtures/scenes.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace tessera;
+
+namespace {
+
+const double kA = 10e-3, kH = 3.18e-3;
+
+// A row of n boxes a x a x h along x, centroids a apart, the two end ones fixed.
+ContactBars row(int n, double a, double h) {
+  std::vector<Eigen::Vector3d> position;
+  std::vector<char> fixed;
+  for (int i = 0; i < n; ++i) {
+    position.emplace_back(i * a, 0.0, 0.0);
+    fixed.push_back(i == 0 || i == n - 1);
+  }
+  return ContactBars({makeBox(a, a, h).vertices}, std::vector<int>(n, 0), position,
+                     std::vector<Eigen::Quaterniond>(n, Eigen::Quaterniond::Identity()), fixed);
+}
+
+}  // namespace
+
+TEST_CASE("bar rule: half a block's width each side, none for a support, and a row as compliant as E M / L says") {
+  for (int n : {3, 5, 7, 31}) {
+    INFO("row of " << n);
+    const ContactBars bars = row(n, kA, kH);
+    REQUIRE(bars.betweenBodies(0, 1) == Approx(kA / 2).epsilon(1e-12));      // against a support: a/2
+    REQUIRE(bars.betweenBodies(n - 1, n - 2) == Approx(kA / 2).epsilon(1e-12));
+    if (n > 3) REQUIRE(bars.betweenBodies(1, 2) == Approx(kA).epsilon(1e-12));  // between free blocks: a
+    // The row's compliance: sum over its M = n - 1 contacts of 1 / k = (w_a + w_b) / E, against the
+    // paper's M contacts of 1 / (E M / L), L = (n - 2) a the free span.
+    double bars_sum = 0;
+    for (int i = 0; i + 1 < n; ++i) bars_sum += bars.betweenBodies(i, i + 1);
+    const double span = (n - 2) * kA;
+    REQUIRE(bars_sum == Approx(span).epsilon(1e-12));
+    // The shortest bar of a flat block is half its thickness, which is also its bar to the indenter.
+    REQUIRE(bars.shortest(1) == Approx(kH / 2).epsilon(1e-12));
+    REQUIRE(bars.againstObstacle(1, Eigen::Vector3d::UnitZ()) == Approx(kH / 2).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("bar rule: symmetric in a and b, split by the bodies' extents, and proportional to the geometry's scale") {
+  // A box on top of a box twice as tall, both free, turned about z: bars h and h/2 along z,
+  // centroids 1.5 h apart, split 2:1.
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()));
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    INFO("scale " << scale);
+    const double h = kH * scale;
+    const ContactBars bars({makeBox(kA * scale, kA * scale, 2 * h).vertices, makeBox(kA * scale, kA * scale, h).vertices},
+                           {0, 1}, {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 1.5 * h)}, {turn, turn}, {0, 0});
+    REQUIRE(bars.betweenBodies(0, 1) == Approx(1.5 * h).epsilon(1e-12));
+    REQUIRE(bars.betweenBodies(1, 0) == bars.betweenBodies(0, 1));
+    const ContactBars lowerFixed({makeBox(kA * scale, kA * scale, 2 * h).vertices, makeBox(kA * scale, kA * scale, h).vertices},
+                                {0, 1}, {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 1.5 * h)}, {turn, turn}, {1, 0});
+    REQUIRE(lowerFixed.betweenBodies(0, 1) == Approx(0.5 * h).epsilon(1e-12));  // the upper box's share: 1/3
+    REQUIRE(lowerFixed.betweenBodies(1, 0) == lowerFixed.betweenBodies(0, 1));
+  }
+}
+
+TEST_CASE("bar rule: a block resting on a support settles at m g w / (E A), w its bar; the span rule's at m g / (k_n A)") {
+  // Boxes of thickness t on a fixed box of thickness kH: centroids (t + kH) / 2 apart, the free
+  // box's share t / (t + kH), so w = t / 2, whatever the support's thickness.
+  ContactParameters p;
+  p.youngsModulus = 4.2e6;  // soft: a penetration large against float32 grid round-off
+  p.stiffnessRule = GENERATE(StiffnessRule::Span, StiffnessRule::Bars);
+  SolverSettings s;
+  s.localDamping = 0.7;
+  for (double t : {kH, 2 * kH}) {
+    INFO("thickness " << t << ", bars: " << (p.stiffnessRule == StiffnessRule::Bars));
+    const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, t), 0.25e-3, 0.6e-3);
+    World world(bundle, p, s);
+    const double z0 = world.bodies().position[1].z();
+    for (int step = 0; step < 4000; ++step) world.step();
+    const double mg = world.bodies().mass[1] * 9.81;
+    REQUIRE(world.contactForces()[1].z() == Approx(mg).epsilon(1e-3));
+    const double kn = p.stiffnessRule == StiffnessRule::Bars ? p.youngsModulus / (t / 2) : p.normalStiffness();
+    REQUIRE(z0 - world.bodies().position[1].z() == Approx(mg / (kn * kA * kA)).epsilon(0.02));
+    REQUIRE(world.pairs().size() == 1);
+    REQUIRE(world.normalStiffness(world.pairs()[0]) == Approx(kn).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("bar rule on the paper's slab: E / a between free blocks, 2 E / a against a support, E / (h / 2) under the indenter") {
+  ContactParameters p;
+  p.stiffnessRule = StiffnessRule::Bars;
+  p.spanLength = 30e-3;
+  p.spanInterfaces = 4;
+  World world(test::smallSlab(5, 0.5e-3, 1.2e-3), p, SolverSettings{});
+  SphereObstacle indenter;
+  indenter.center = world.bodies().position[12] + Eigen::Vector3d(0, 0, kH / 2 + 2.4e-3);  // 0.1 mm into its top
+  indenter.radius = 2.5e-3;
+  indenter.stiffnessFactor = 2.0;
+  world.addSphere(indenter);
+  world.step();
+  int between = 0, against = 0, sphere = 0;
+  for (const PairContacts& pair : world.pairs()) {
+    const double k = world.normalStiffness(pair);
+    if (pair.b < 0) {
+      REQUIRE(k == Approx(2.0 * p.youngsModulus / (kH / 2)).epsilon(1e-6));  // the indenter's factor counts
+      ++sphere;
+      continue;
+    }
+    const double d = (world.bodies().position[pair.a] - world.bodies().position[pair.b]).norm();
+    if (d > 1.01 * kA) continue;  // diagonal neighbours
+    const bool support = world.isSupport(pair.a) || world.isSupport(pair.b);
+    REQUIRE(k == Approx(p.youngsModulus / (support ? kA / 2 : kA)).epsilon(1e-6));
+    ++(support ? against : between);
+  }
+  REQUIRE(between == 12);  // the 3 x 3 free blocks' 12 shared faces
+  REQUIRE(against == 12);  // and their 12 faces against the ring
+  REQUIRE(sphere == 1);
+}
