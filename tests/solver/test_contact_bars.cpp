@@ -67,7 +67,7 @@ TEST_CASE("bar rule: symmetric in a and b, split by the bodies' extents, and pro
   }
 }
 
-TEST_CASE("bar rule: a block resting on a support settles at m g w / (E A), w its bar; the span rule's at m g / (k_n A)") {
+TEST_CASE("bar rule: a block resting on a support settles at m g w / (E A) with w its bar, and at m g / (k_n A) under the span rule") {
   // Boxes of thickness t on a fixed box of thickness kH: centroids (t + kH) / 2 apart, the free
   // box's share t / (t + kH), so w = t / 2, whatever the support's thickness.
   ContactParameters p;
