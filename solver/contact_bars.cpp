@@ -6,19 +6,22 @@
 
 namespace tessera {
 
-ContactBars::ContactBars(std::vector<std::vector<Eigen::Vector3d>> vertices, std::vector<int> shape,
+ContactBars::ContactBars(const std::vector<TriangleMesh>& meshes, std::vector<int> shape,
                          std::vector<Eigen::Vector3d> position, std::vector<Eigen::Quaterniond> orientation,
                          std::vector<char> fixed)
-    : vertices_(std::move(vertices)), shape_(std::move(shape)), position_(std::move(position)),
-      orientation_(std::move(orientation)), fixed_(std::move(fixed)) {
-  for (std::size_t i = 0; i < shape_.size(); ++i) {
+    : shape_(std::move(shape)), position_(std::move(position)), orientation_(std::move(orientation)),
+      fixed_(std::move(fixed)) {
+  for (const TriangleMesh& mesh : meshes) {
+    vertices_.push_back(mesh.vertices);
     double least = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 3; ++k)
-      for (double sign : {-1.0, 1.0}) {
-        const Eigen::Vector3d axis = orientation_[i] * (sign * Eigen::Vector3d::Unit(k));
-        least = std::min(least, support(static_cast<int>(i), axis));
-      }
-    shortest_.push_back(least);
+    for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
+      const Eigen::Vector3d n = triangleAreaVector(mesh, t);
+      if (!(n.norm() > 0)) continue;
+      double s = -std::numeric_limits<double>::infinity();
+      for (const Eigen::Vector3d& x : mesh.vertices) s = std::max(s, n.dot(x));
+      least = std::min(least, s / n.norm());
+    }
+    shortestOfShape_.push_back(least);
   }
 }
 
@@ -34,18 +37,18 @@ double ContactBars::betweenBodies(int a, int b) const {
   const double length = d.norm();
   // Two fixed bodies never meet in a run (the broad phase pairs none); two at one centroid have
   // no line between them: both count their shortest bars.
-  if ((fixed_[a] && fixed_[b]) || !(length > 0)) return shortest_[a] + shortest_[b];
+  if ((fixed_[a] && fixed_[b]) || !(length > 0)) return shortest(a) + shortest(b);
   const Eigen::Vector3d n = d / length;
   const double sa = std::max(support(a, n), 0.0), sb = std::max(support(b, -n), 0.0);
   const double sum = sa + sb > 0 ? sa + sb : 2.0;  // each half when neither reaches towards the other
   const double shareA = sa + sb > 0 ? sa : 1.0, shareB = sa + sb > 0 ? sb : 1.0;
-  const double wa = fixed_[a] ? 0.0 : std::max(length * shareA / sum, shortest_[a]);
-  const double wb = fixed_[b] ? 0.0 : std::max(length * shareB / sum, shortest_[b]);
+  const double wa = fixed_[a] ? 0.0 : std::max(length * shareA / sum, shortest(a));
+  const double wb = fixed_[b] ? 0.0 : std::max(length * shareB / sum, shortest(b));
   return wa + wb;  // written alike for a and b: the same for (b, a)
 }
 
 double ContactBars::againstObstacle(int a, const Eigen::Vector3d& towards) const {
-  return std::max(support(a, towards), shortest_[a]);  // a fixed body too: the obstacle is rigid
+  return std::max(support(a, towards), shortest(a));  // a fixed body too: the obstacle is rigid
 }
 
 }  // namespace tessera

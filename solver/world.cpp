@@ -83,10 +83,9 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   for (const Shape& s : bundle.shapes) shapes_.push_back(makeShapeModel(s, settings.exactConvexLevelSets, settings.exactMeshLevelSets));
   state_.bodies = makeRigidBodies(bundle, settings.density);
   {
-    std::vector<std::vector<Eigen::Vector3d>> vertices;
-    for (const Shape& s : bundle.shapes) vertices.push_back(s.mesh.vertices);
-    bars_ = ContactBars(std::move(vertices), state_.bodies.shape, state_.bodies.position, state_.bodies.orientation,
-                        state_.bodies.fixed);
+    std::vector<TriangleMesh> meshes;
+    for (const Shape& s : bundle.shapes) meshes.push_back(s.mesh);
+    bars_ = ContactBars(meshes, state_.bodies.shape, state_.bodies.position, state_.bodies.orientation, state_.bodies.fixed);
   }
 
   double omega = 0.0, thinnest = std::numeric_limits<double>::infinity();

@@ -4,7 +4,7 @@
 # model of the same bundle (run_case.py: gmsh + CalculiX), then the table and the overlaid curves
 # (compare.py).
 # Usage: bench/validation/run.sh [OUT]          (default OUT: out/validation)
-# Env:   CASES (default "square3 square5 hex5 tet5"), MU (0.23), NU (0.2), E (4.2e9 Pa),
+# Env:   CASES (default "square3 square5 hex5 tet3"; tet5 too), MU (0.23), NU (0.2), E (4.2e9 Pa),
 #        DEFLECTION (the FE runs' last deflection, a fraction of h: 0.8; 0.15 gives K alone, in
 #        a fifth of the time), INCREMENTS (20),
 #        FE_OPTIONS (extra run_case.py flags, e.g. "--element-size 0.2"), TESSERA (build/tools/tessera)
@@ -28,17 +28,17 @@ bundle() {  # CASE DIR: the slab of each case, in the paper's block size (mm); s
       case_options=(--element-size 0.4) ;;  # nine free blocks
     hex5) "$tessera" tile --tiling hex --grid 5x5 --pitch 10 --thickness 3.18 --angle 5 --unit mm -o "$2" --replace
       case_options=(--element-size 0.4) ;;
-    tet5)  # Dyskin's tetrahedral blocks, truncated: a 10 mm mid-section square, faces at 35.26 deg
-           # (a regular tetrahedron's), 13.5 mm thick (the whole tetrahedron: 14.14), a 0.45 mm top ridge
+    tet3 | tet5)  # Dyskin's tetrahedral blocks, truncated: a 10 mm mid-section square, faces at
+      # 35.26 deg (a regular tetrahedron's), 13.5 mm thick (the whole tetrahedron: 14.14), a 0.45 mm top ridge
       "$tessera" block planar --size 10 --thickness 13.5 --angle 35.26 --unit mm -o "$2.obj"
-      "$tessera" tile --block "$2.obj" --unit mm --grid 5x5 --pitch 10 -o "$2" --replace
+      "$tessera" tile --block "$2.obj" --unit mm --grid "${1#tet}x${1#tet}" --pitch 10 -o "$2" --replace
       case_options=(--element-size 0.1) ;;  # 1.35 mm, as 0.4 h is on the 3.18 mm blocks
-    *) echo "run.sh: unknown case $1 (square3, square5, hex5, tet5)" >&2; exit 2 ;;
+    *) echo "run.sh: unknown case $1 (square3, square5, hex5, tet3, tet5)" >&2; exit 2 ;;
   esac
 }
 
 mkdir -p "$out"
-cases=(${CASES:-square3 square5 hex5 tet5})
+cases=(${CASES:-square3 square5 hex5 tet3})
 for c in "${cases[@]}"; do
   dir="$out/$c"
   rm -rf "$dir"/tessera_* "$dir/fe"  # regenerated whole

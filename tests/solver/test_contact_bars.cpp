@@ -24,7 +24,7 @@ ContactBars row(int n, double a, double h) {
     position.emplace_back(i * a, 0.0, 0.0);
     fixed.push_back(i == 0 || i == n - 1);
   }
-  return ContactBars({makeBox(a, a, h).vertices}, std::vector<int>(n, 0), position,
+  return ContactBars({makeBox(a, a, h)}, std::vector<int>(n, 0), position,
                      std::vector<Eigen::Quaterniond>(n, Eigen::Quaterniond::Identity()), fixed);
 }
 
@@ -49,6 +49,17 @@ TEST_CASE("bar rule: half a block's width each side, none for a support, and a r
   }
 }
 
+TEST_CASE("bar rule: the shortest bar is the distance to the nearest face plane, h/2 for a flat block, (a/2) cos(theta) for a steep one") {
+  // The paper's block (faces at 5 deg, 3.18 mm thick) and a near-tetrahedron of the same family
+  // (faces at 35.26 deg, 13.5 mm thick: its side planes are nearer than its top).
+  const double steep = 35.26 * M_PI / 180;
+  const ContactBars bars({makePlanarBlock(kA, kH, 5 * M_PI / 180), makePlanarBlock(kA, 13.5e-3, steep)}, {0, 1},
+                         {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 0.1)},
+                         {Eigen::Quaterniond::Identity(), Eigen::Quaterniond::Identity()}, {0, 0});
+  REQUIRE(bars.shortest(0) == Approx(kH / 2).epsilon(1e-9));
+  REQUIRE(bars.shortest(1) == Approx(kA / 2 * std::cos(steep)).epsilon(1e-9));
+}
+
 TEST_CASE("bar rule: symmetric in a and b, split by the bodies' extents, and proportional to the geometry's scale") {
   // A box on top of a box twice as tall, both free, turned about z: bars h and h/2 along z,
   // centroids 1.5 h apart, split 2:1.
@@ -56,11 +67,11 @@ TEST_CASE("bar rule: symmetric in a and b, split by the bodies' extents, and pro
   for (double scale : {1e-3, 1.0, 1e3}) {
     INFO("scale " << scale);
     const double h = kH * scale;
-    const ContactBars bars({makeBox(kA * scale, kA * scale, 2 * h).vertices, makeBox(kA * scale, kA * scale, h).vertices},
+    const ContactBars bars({makeBox(kA * scale, kA * scale, 2 * h), makeBox(kA * scale, kA * scale, h)},
                            {0, 1}, {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 1.5 * h)}, {turn, turn}, {0, 0});
     REQUIRE(bars.betweenBodies(0, 1) == Approx(1.5 * h).epsilon(1e-12));
     REQUIRE(bars.betweenBodies(1, 0) == bars.betweenBodies(0, 1));
-    const ContactBars lowerFixed({makeBox(kA * scale, kA * scale, 2 * h).vertices, makeBox(kA * scale, kA * scale, h).vertices},
+    const ContactBars lowerFixed({makeBox(kA * scale, kA * scale, 2 * h), makeBox(kA * scale, kA * scale, h)},
                                 {0, 1}, {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 1.5 * h)}, {turn, turn}, {1, 0});
     REQUIRE(lowerFixed.betweenBodies(0, 1) == Approx(0.5 * h).epsilon(1e-12));  // the upper box's share: 1/3
     REQUIRE(lowerFixed.betweenBodies(1, 0) == lowerFixed.betweenBodies(0, 1));
