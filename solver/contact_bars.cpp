@@ -39,11 +39,10 @@ double ContactBars::betweenBodies(int a, int b) const {
   // no line between them: both count their shortest bars.
   if ((fixed_[a] && fixed_[b]) || !(length > 0)) return shortest(a) + shortest(b);
   const Eigen::Vector3d n = d / length;
-  const double sa = std::max(support(a, n), 0.0), sb = std::max(support(b, -n), 0.0);
-  const double sum = sa + sb > 0 ? sa + sb : 2.0;  // each half when neither reaches towards the other
-  const double shareA = sa + sb > 0 ? sa : 1.0, shareB = sa + sb > 0 ? sb : 1.0;
-  const double wa = fixed_[a] ? 0.0 : std::max(length * shareA / sum, shortest(a));
-  const double wb = fixed_[b] ? 0.0 : std::max(length * shareB / sum, shortest(b));
+  double sa = std::max(support(a, n), 0.0), sb = std::max(support(b, -n), 0.0);
+  if (!(sa + sb > 0)) sa = sb = 1.0;  // neither reaches towards the other: half each
+  const double wa = fixed_[a] ? 0.0 : std::max(length * sa / (sa + sb), shortest(a));
+  const double wb = fixed_[b] ? 0.0 : std::max(length * sb / (sa + sb), shortest(b));
   return wa + wb;  // written alike for a and b: the same for (b, a)
 }
 

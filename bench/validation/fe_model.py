@@ -380,29 +380,26 @@ def run_ccx(path: Path, threads: int = 2) -> str:
     return " / ".join(line.strip() for line in output.strip().splitlines()[-4:] if line.strip())
 
 
-def read_totals(dat: Path) -> list[tuple[float, np.ndarray]]:
-    """(step time, total reaction force N on the pressed set) per converged increment of a .dat file."""
-    out = []
-    text = dat.read_text().splitlines()
-    for k, line in enumerate(text):
-        m = re.search(r"total force.*time\s+([-+0-9.Ee]+)", line)
-        if m:
-            values = next(l for l in text[k + 1:] if l.strip()).split()
-            out.append((float(m.group(1)), np.array([float(x) for x in values[-3:]])))
-    return out
-
-
-def read_mean_displacements(dat: Path) -> list[tuple[float, np.ndarray]]:
-    """(step time, mean displacement mm of the WATCH nodes) per converged increment of a .dat file."""
-    out, rows, time = [], [], None
-    for line in dat.read_text().splitlines() + [" end"]:
+def read_dat(dat: Path) -> list[tuple[str, str, float, np.ndarray]]:
+    """The printed blocks of a CalculiX .dat file, one per *NODE PRINT per converged increment:
+    (what, e.g. "total force (fx,fy,fz)", node set, step time, rows as written: a node's rows
+    begin with its number, a total's do not)."""
+    blocks = []
+    for line in dat.read_text().splitlines():
         m = re.search(r"^\s*(\S.*?) for set (\S+) and time\s+(\S+)", line)
-        if m or line == " end":
-            if time is not None and rows:
-                out.append((time, np.mean(rows, axis=0)))
-            rows, time = [], None
-            if m and m.group(1).startswith("displacements") and m.group(2) == "WATCH":
-                time = float(m.group(3))
-        elif time is not None and line.strip():
-            rows.append([float(x) for x in line.split()[1:4]])
-    return out
+        if m:
+            blocks.append((m.group(1), m.group(2), float(m.group(3)), []))
+        elif blocks and line.strip():
+            blocks[-1][3].append([float(x) for x in line.split()])
+    return [(what, name, time, np.array(rows)) for what, name, time, rows in blocks]
+
+
+def totals(blocks) -> list[tuple[float, np.ndarray]]:
+    """(step time, total reaction force N on the pressed set) per converged increment (read_dat's blocks)."""
+    return [(time, rows[0]) for what, _, time, rows in blocks if what.startswith("total force")]
+
+
+def mean_displacements(blocks) -> dict[float, np.ndarray]:
+    """Step time -> mean displacement mm of the WATCH nodes, per converged increment (read_dat's blocks)."""
+    return {time: rows[:, 1:4].mean(axis=0) for what, name, time, rows in blocks
+            if what.startswith("displacements") and name == "WATCH"}

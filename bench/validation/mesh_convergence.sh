@@ -18,16 +18,15 @@ echo "|---|---|---|---|---|---|"
 for size in ${SIZES:-0.6 0.4 0.3 0.2}; do
   "$python" "$here/bench/validation/run_case.py" "$out/bundle" -o "$out/size_$size" --element-size "$size" \
     --deflection "${DEFLECTION:-0.15}" --increments "${INCREMENTS:-6}" --penalty "${PENALTY:-50}" > "$out/size_$size.log"
-  "$python" - "$out/size_$size" "$size" <<'EOF'
+  "$python" - "$out/size_$size" "$size" "$here/bench/validation" <<'EOF'
 import json, sys
 import numpy as np
 folder, size = sys.argv[1], sys.argv[2]
+sys.path.insert(0, sys.argv[3])
+from compare import slope
 c = np.genfromtxt(f"{folder}/curve.csv", delimiter=",", names=True)
 s = json.load(open(f"{folder}/summary.json"))
-m = c["block_displacement_mm"] <= 0.4
-k_b = np.polyfit(c["block_displacement_mm"][m], c["load_N"][m], 1)[0]
-m = c["delta_mm"] <= 0.4
-k = np.polyfit(c["delta_mm"][m], c["load_N"][m], 1)[0]
+k_b, k = slope(c["block_displacement_mm"], c["load_N"], 0.4), slope(c["delta_mm"], c["load_N"], 0.4)
 print(f"| {size} | {s['nodes']} | {k_b:.0f} | {k:.0f} | {c['load_N'][-1]:.1f} | {s['total_seconds']:.0f} |")
 EOF
 done

@@ -63,11 +63,12 @@ def main() -> int:
                    watch=mesh.node_ids(loaded, np.ones(len(mesh.meshes[loaded].nodes), bool)))
     meshed = time.time() - start
     stopped = fe.run_ccx(inp, args.threads)
-    totals = fe.read_totals(out / "slab.dat") if (out / "slab.dat").exists() else []
+    printed = fe.read_dat(out / "slab.dat") if (out / "slab.dat").exists() else []
+    totals = fe.totals(printed)
     if not totals:
         print(f"run_case: ccx solved no increment ({out / 'slab.log'}): {stopped}", file=sys.stderr)
         return 1
-    mean = dict(fe.read_mean_displacements(out / "slab.dat"))
+    mean = fe.mean_displacements(printed)
     curve = [(0.0, 0.0, 0.0)] + [(t / model.increments * args.deflection * h, -force[2], -mean[t][2])
                                  for t, force in totals]
     (out / "curve.csv").write_text("delta_mm,load_N,block_displacement_mm\n" +

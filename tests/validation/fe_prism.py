@@ -39,7 +39,7 @@ def prism(work: Path) -> None:
     fe.write_input(work / "prism.inp", mesh, model, held, pressed)
     stopped = fe.run_ccx(work / "prism.inp")
     assert not stopped, f"ccx stopped: {stopped}"
-    time, force = fe.read_totals(work / "prism.dat")[-1]
+    time, force = fe.totals(fe.read_dat(work / "prism.dat"))[-1]
     exact = a * a * delta / (2 * h / model.youngs_modulus + 1 / model.contact_slope())
     error = -force[2] / exact - 1
     print(f"prism: F = {-force[2]:.6g} N at t = {time}, closed form {exact:.6g} N, error {error:.2e}")
