@@ -118,9 +118,8 @@ py::dict bundleOf(const std::string& path) {
   return d;
 }
 
-}  // namespace
-
-void bindSlabs(py::module_& m) {
+// prep: one block mesh into a bundle.
+void bindPrep(py::module_& m) {
   m.def(
       "prep",
       [](const std::string& mesh, const std::string& unit, const std::string& output, const std::string& name,
@@ -147,6 +146,10 @@ void bindSlabs(py::module_& m) {
       "A block mesh (STL/OBJ, its length unit given) validated and prepared as a shape, added to the bundle "
       "in `output` (as `tessera prep`); voxel and node spacing in m, edge_spacing the node spacing along sharp edges "
       "as a fraction of it (1: uniform). Returns its volume (m^3), area (m^2), nodes.");
+}
+
+// tile, tile_layout, tile_tiling: the three ways `tessera tile` makes a slab.
+void bindTiles(py::module_& m) {
   m.def(
       "tile",
       [](const std::string& block, const std::string& unit, const std::string& output, std::pair<int, int> grid,
@@ -213,6 +216,10 @@ void bindSlabs(py::module_& m) {
       "A slab bundle generated from a tiling (as `tessera tile --tiling`, docs/tiling.md): 'square', 'hex', 'triangle', "
       "'rhombille', 'voronoi' or a polygon mesh file (in m); pitch, thickness and radius in m, angle in degrees; "
       "surface 'plane', 'sphere' or 'cylinder'. Returns a summary.");
+}
+
+// check and read_bundle: what a bundle holds and whether it stands.
+void bindBundleQueries(py::module_& m) {
   m.def(
       "check",
       [](const std::string& path, double friction) {
@@ -239,6 +246,14 @@ void bindSlabs(py::module_& m) {
       "The same keys as `tessera check --json`.");
   m.def("read_bundle", &bundleOf, py::arg("path"),
         "A bundle's bodies: names, shape, position (n, 3) m, orientation (n, 4) (w, x, y, z), fixed; its span.");
+}
+
+}  // namespace
+
+void bindSlabs(py::module_& m) {
+  bindPrep(m);
+  bindTiles(m);
+  bindBundleQueries(m);
 }
 
 }  // namespace tessera::python

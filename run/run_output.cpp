@@ -179,7 +179,7 @@ nlohmann::json summaryJson(const Scene& scene, const Bundle& bundle, const Conta
         {"span_length_mm", contact.spanLength * 1e3},
         {"span_interfaces", contact.spanInterfaces},
         {"contact_evaluation", contact.evaluation == ContactEvaluation::OneWay ? "one-way" : "two-way"},
-        {"stiffness_rule", contact.stiffnessRule == StiffnessRule::Bars ? "bars" : "span"}}},
+        {"stiffness_rule", stiffnessRuleName(contact.stiffnessRule)}}},
       {"shapes", shapes},
       {"run",
        {{"method", record.implicit ? "implicit" : "explicit"},

@@ -127,11 +127,13 @@ void readMaterialTable(const std::string& path, const toml::table& root, Scene& 
   material.number("tangential_stiffness", scene.contact.tangentialStiffnessAbsolute, 0, 1e20,
                   "N/m^3; 0 = tangential_ratio x k_n");
   material.number("normal_viscosity", scene.contact.normalViscosity, 0, 1e12, "Pa s / m");
-  std::string rule = scene.contact.stiffnessRule == StiffnessRule::Bars ? "bars" : "span";
+  std::string rule = stiffnessRuleName(scene.contact.stiffnessRule);
   material.text("stiffness_rule", rule);
-  if (rule != "span" && rule != "bars")
-    throw InputError(path + ": material.stiffness_rule must be \"span\" or \"bars\", got \"" + rule + "\"");
-  scene.contact.stiffnessRule = rule == "bars" ? StiffnessRule::Bars : StiffnessRule::Span;
+  bool known = false;
+  for (StiffnessRule r : {StiffnessRule::Span, StiffnessRule::Bars, StiffnessRule::Sections})
+    if (rule == stiffnessRuleName(r)) scene.contact.stiffnessRule = r, known = true;
+  if (!known)
+    throw InputError(path + ": material.stiffness_rule must be \"span\", \"bars\" or \"sections\", got \"" + rule + "\"");
   if (scene.contact.tangentialStiffnessAbsolute > 0 && root["material"]["tangential_ratio"])
     throw InputError(path + ": give material.tangential_stiffness (N/m^3) or material.tangential_ratio (k_t / k_n), not both");
   material.finish();

@@ -12,8 +12,14 @@ enum class ContactEvaluation { TwoWay, OneWay };
 /// Which stiffness each contact gets (docs/physics.md, "Contact stiffness"): one k_n = E M / L for
 /// every contact (span: the paper's rule, from the slab's free span), or k_n = E / (w_a + w_b) per
 /// pair, w the length of the elastic bar from each body's centroid to the contact, 0 for a fixed
-/// body or an obstacle (bars: from the blocks' own geometry, for any assembly).
-enum class StiffnessRule { Span, Bars };
+/// body or an obstacle (bars: from the blocks' own geometry, for any assembly), or the bars
+/// weighted by each block's own sections (sections; ContactBars).
+enum class StiffnessRule { Span, Bars, Sections };
+
+/// The scene's name of a rule: "span", "bars", "sections".
+inline const char* stiffnessRuleName(StiffnessRule rule) {
+  return rule == StiffnessRule::Bars ? "bars" : rule == StiffnessRule::Sections ? "sections" : "span";
+}
 
 /// The contact law's parameters (docs/physics.md). Defaults: the paper's material and slab.
 struct ContactParameters {

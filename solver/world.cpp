@@ -85,7 +85,8 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   {
     std::vector<TriangleMesh> meshes;
     for (const Shape& s : bundle.shapes) meshes.push_back(s.mesh);
-    bars_ = ContactBars(meshes, state_.bodies.shape, state_.bodies.position, state_.bodies.orientation, state_.bodies.fixed);
+    bars_ = ContactBars(meshes, state_.bodies.shape, state_.bodies.position, state_.bodies.orientation, state_.bodies.fixed,
+                        parameters.stiffnessRule == StiffnessRule::Sections);
   }
 
   double omega = 0.0, thinnest = std::numeric_limits<double>::infinity();
@@ -94,7 +95,7 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
     thinnest = std::min(thinnest, boundingBox(shape.mesh.vertices).sizes().minCoeff());
     if (state_.bodies.fixed[i]) continue;
     // The stiffest contact: k_n = E M / L (span), or E over the body's shortest bar (bars).
-    const double scale = parameters.stiffnessRule == StiffnessRule::Bars
+    const double scale = parameters.stiffnessRule != StiffnessRule::Span
                              ? parameters.youngsModulus / bars_.shortest(static_cast<int>(i)) / parameters.normalStiffness()
                              : 1.0;
     const auto [kn, kt] = pairStiffness(parameters, parameters.normalStiffness(),
@@ -315,7 +316,7 @@ void World::updatePairs() {
   state_.pairsValid = true;
 }
 
-// The pair's k_n over E M / L: 1 under the span rule; under the bar rule E / (w_a + w_b) over it
+// The pair's k_n over E M / L: 1 under the span rule; under the bar and section rules E / (w_a + w_b) over it
 // (ContactBars: the indenter comes down along -z, so it meets a body's top; a plane meets the
 // body's side facing it).
 double World::stiffnessScale(const PairContacts& pair) const {

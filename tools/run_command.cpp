@@ -154,8 +154,8 @@ void printRunHeader(const RunSession& session) {
   if (session.resumed())
     std::fprintf(stderr, "run: resuming %s at t = %.6g s (step %ld)\n", out.c_str(), world.time(), world.stepCount());
   char stiffness[96];
-  if (contact.stiffnessRule == StiffnessRule::Bars)
-    std::snprintf(stiffness, sizeof stiffness, "k_n = E / (w_a + w_b) per pair (bar rule)");
+  if (contact.stiffnessRule != StiffnessRule::Span)
+    std::snprintf(stiffness, sizeof stiffness, "k_n = E / (w_a + w_b) per pair (%s rule)", stiffnessRuleName(contact.stiffnessRule));
   else
     std::snprintf(stiffness, sizeof stiffness, "k_n = %.4g N/m^3", contact.normalStiffness());
   if (world.settings().method == SolverMethod::Implicit)

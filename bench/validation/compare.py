@@ -2,8 +2,8 @@
 """Tessera against the FE references: a table of K, P_max and delta(P_max), and one figure of
 overlaid curves per case.
 
-Usage: compare.py OUT CASE...   (OUT/CASE/tessera_span and tessera_bars: `tessera run` outputs
-                                 under each stiffness rule; OUT/CASE/fe: run_case.py's)
+Usage: compare.py OUT CASE...   (OUT/CASE/tessera_span, tessera_bars, tessera_sections: `tessera run`
+                                 outputs under each stiffness rule; OUT/CASE/fe: run_case.py's)
 Writes OUT/table.md and OUT/curves.png (one panel per case).
 
 Tessera's delta is the indenter's travel, which includes the sphere's own penetration into the
@@ -11,8 +11,12 @@ block; delta_b is the loaded block's displacement. The FE model's delta is its p
 displacement, which includes the block's local compression under the patch; its delta_b is the
 mean displacement of the loaded block's nodes. The two are compared on delta_b (the slab's
 response); K on delta is listed for both.
-K is fitted as Tessera fits it (docs/outputs.md): the least-squares slope over [0, w] before the
-peak, w the end of Tessera's own fit window.
+K is fitted as Tessera fits it (docs/outputs.md), the least-squares slope before the peak: on delta
+over [0, w], w the end of Tessera's own fit window; on delta_b, for both models, over [0, w_b],
+w_b the FE block's displacement when its patch has travelled w (one range of the slab's own
+displacement for both: Tessera's delta_b at its delta = w is smaller, by the indenter's
+penetration). Each fit includes the curve interpolated at its range's end (an FE run has few
+increments).
 """
 import json
 import sys
@@ -21,18 +25,26 @@ from pathlib import Path
 import numpy as np
 
 
-def slope(x: np.ndarray, y: np.ndarray, to: float) -> float:
-    """Least-squares slope of y(x) over x in [0, to], before y's peak."""
+def slope(x: np.ndarray, y: np.ndarray, to: float, with_end: bool = False) -> float:
+    """Least-squares slope of y(x) over x in [0, to], before y's peak; with_end: the curve
+    interpolated at `to` (between the samples on either side) is one more point."""
     before = np.arange(len(y)) <= np.argmax(y)
-    m = before & (x <= to * (1 + 1e-9))
-    return float(np.polyfit(x[m], y[m], 1)[0]) if m.sum() >= 2 else float("nan")
+    xs, ys = x[before], y[before]
+    m = xs <= to * (1 + 1e-9)
+    px, py = list(xs[m]), list(ys[m])
+    beyond = np.flatnonzero(xs > to * (1 + 1e-9))
+    if with_end and beyond.size and beyond[0] > 0:
+        k = beyond[0]
+        px.append(to)
+        py.append(ys[k - 1] + (ys[k] - ys[k - 1]) * (to - xs[k - 1]) / (xs[k] - xs[k - 1]))
+    return float(np.polyfit(px, py, 1)[0]) if len(px) >= 2 else float("nan")
 
 
 def difference(fe: float, tessera: float) -> str:
     return f"{100 * (tessera / fe - 1):+.0f} %"
 
 
-RULES = ("span", "bars")
+RULES = ("span", "bars", "sections")
 
 
 def main() -> int:
@@ -59,12 +71,14 @@ def main() -> int:
         ax.plot(f["block_displacement_mm"], f["load_N"], "k-", lw=2, label="FE (CalculiX): block's mean displacement")
         ax.plot(f["delta_mm"], f["load_N"], "k:", lw=1.5, label="FE: patch displacement")
         reach, curves = f["delta_mm"].max(), []
-        for colour, rule in zip(("C0", "C1"), RULES):
+        for colour, rule in zip(("C0", "C1", "C2"), RULES):
             t = np.genfromtxt(out / case / f"tessera_{rule}" / "curve.csv", delimiter=",", names=True)
             ts = json.loads((out / case / f"tessera_{rule}" / "summary.json").read_text())["response"]
             window = ts["stiffness_fit_window_mm"][1]
-            k_fe, k_fe_patch = slope(f["block_displacement_mm"], f["load_N"], window), slope(f["delta_mm"], f["load_N"], window)
-            k_t, k_t_travel = slope(t["block_displacement_mm"], t["load_N"], window), ts["stiffness_N_per_mm"]
+            window_b = float(np.interp(window, f["delta_mm"], f["block_displacement_mm"]))
+            k_fe = slope(f["block_displacement_mm"], f["load_N"], window_b, with_end=True)
+            k_fe_patch = slope(f["delta_mm"], f["load_N"], window, with_end=True)
+            k_t, k_t_travel = slope(t["block_displacement_mm"], t["load_N"], window_b, with_end=True), ts["stiffness_N_per_mm"]
             p_t, d_t = ts["peak_load_N"], ts["at_peak"]["block_displacement_mm"]
             # Against a bound (the FE run ended before its peak) a difference says nothing.
             p_diff = f" ({difference(p_fe, p_t)})" if not bound else ""

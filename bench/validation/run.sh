@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The FE references of docs/validation.md, regenerated: for each case, the slab's bundle (tessera
-# tile), Tessera's runs at its default preset under the span and the bar stiffness rules, the FE
+# tile), Tessera's runs at its default preset under the span, bar and section stiffness rules, the FE
 # model of the same bundle (run_case.py: gmsh + CalculiX), then the table and the overlaid curves
 # (compare.py).
 # Usage: bench/validation/run.sh [OUT]          (default OUT: out/validation)
@@ -44,7 +44,7 @@ for c in "${cases[@]}"; do
   rm -rf "$dir"/tessera_* "$dir/fe"  # regenerated whole
   mkdir -p "$dir"
   bundle "$c" "$dir/bundle" > "$dir/tile.log" 2>&1
-  for rule in span bars; do  # the default scene at this case's material, under each stiffness rule
+  for rule in span bars sections; do  # the default scene at this case's material, under each stiffness rule
     sed -e "s/^youngs_modulus = .*/youngs_modulus = $young/" \
         -e "s/^friction = .*/friction = $mu\nstiffness_rule = \"$rule\"/" \
       "$here/assets/scenes/default.toml" > "$dir/scene_$rule.toml"

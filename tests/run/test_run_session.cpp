@@ -61,7 +61,7 @@ void requireSameCurve(const std::vector<CurveSample>& a, const std::vector<Curve
 
 TEST_CASE("checkpoint round trip: a run stopped mid-loading and resumed in process ends bit-identical, either method, either stiffness rule") {
   const std::string method = GENERATE(std::string("explicit"), std::string("implicit"));
-  const std::string rule = GENERATE(std::string("span"), std::string("bars"));  // bars: found again from the start poses
+  const std::string rule = GENERATE(std::string("span"), std::string("bars"), std::string("sections"));  // bars, sections: found again from the start poses
   INFO("method " << method << ", stiffness rule " << rule);
   SmallTest t(3, 0.6e-3, "method = \"" + method + "\"", "", "stiffness_rule = \"" + rule + "\"\n");
   auto whole = RunSession::start(t.request(), {});
