@@ -4,7 +4,7 @@
 # model of the same bundle (run_case.py: gmsh + CalculiX), then the table and the overlaid curves
 # (compare.py).
 # Usage: bench/validation/run.sh [OUT]          (default OUT: out/validation)
-# Env:   CASES (default "square3 square5 hex5 tet3"; tet5 too), MU (0.23), NU (0.2), E (4.2e9 Pa),
+# Env:   CASES (default "square3 square5 hex5 tet3"; tet5 and tall3 too), MU (0.23), NU (0.2), E (4.2e9 Pa),
 #        DEFLECTION (the FE runs' last deflection, a fraction of h: 0.8; 0.15 gives K alone, in
 #        a fifth of the time), INCREMENTS (20),
 #        FE_OPTIONS (extra run_case.py flags, e.g. "--element-size 0.2"), TESSERA (build/tools/tessera)
@@ -33,7 +33,13 @@ bundle() {  # CASE DIR: the slab of each case, in the paper's block size (mm); s
       "$tessera" block planar --size 10 --thickness 13.5 --angle 35.26 --unit mm -o "$2.obj"
       "$tessera" tile --block "$2.obj" --unit mm --grid "${1#tet}x${1#tet}" --pitch 10 -o "$2" --replace
       case_options=(--element-size 0.1) ;;  # 1.35 mm, as 0.4 h is on the 3.18 mm blocks
-    *) echo "run.sh: unknown case $1 (square3, square5, hex5, tet3, tet5)" >&2; exit 2 ;;
+    tall3)  # square3 with its loaded block twice as tall upwards: its faces keep their overlap
+      "$tessera" tile --block "$block" --unit mm --grid 3x3 --pitch 10 -o "$2.base" --replace
+      "$tessera" export "$2.base" -o "$2.export"
+      "$python" "$here/bench/validation/tall_block.py" "$2.export/layout.json" "$2.layout.json"
+      "$tessera" tile --layout "$2.layout.json" -o "$2" --replace
+      case_options=(--element-size 0.15) ;;  # of the tall block's 2 h: 0.3 of the neighbours' h
+    *) echo "run.sh: unknown case $1 (square3, square5, hex5, tet3, tet5, tall3)" >&2; exit 2 ;;
   esac
 }
 
