@@ -190,14 +190,16 @@ py::dict contactsOf(const World& world) {
   return d;
 }
 
+// The response parameters as Python sees them (Simulation.response): summary.json's "response"
+// names without their unit suffixes, in SI units.
 py::dict responseOf(const ResponseParameters& r) {
   py::dict d;
   d["peak_load"] = r.peakLoad;
   d["delta_at_peak"] = r.deltaAtPeak;
   d["stiffness"] = r.stiffness;
   d["failure_deflection"] = r.failureDeflection >= 0 ? py::object(py::float_(r.failureDeflection)) : py::object(py::none());
-  d["energy"] = r.energy;
-  d["energy_to_end"] = r.energyToEnd;
+  d["loading_energy"] = r.energy;
+  d["loading_energy_to_end"] = r.energyToEnd;
   d["ultimate_deflection"] = r.ultimateDeflection;
   d["failure_mode"] = r.failureMode;
   d["quasi_static_ratio"] = r.quasiStaticRatio;
@@ -218,19 +220,14 @@ py::dict indenterOf(const Simulation& s) {
   return d;
 }
 
-// The energy budget as Python sees it (Simulation.energy).
+// The energy budget as Python sees it (Simulation.energy): the curve's energy columns, by the
+// curve's names.
 py::dict energyOf(const Simulation& s) {
-  const EnergyBudget e = s.session().world().energy();
+  CurveSample now;
+  setEnergies(now, s.session().world().energy());
   py::dict d;
-  d["kinetic"] = e.kinetic;
-  d["elastic"] = e.elastic;
-  d["gravity_work"] = e.gravityWork;
-  d["external_work"] = e.obstacleWork;
-  d["friction"] = e.friction;
-  d["damping"] = e.damping;
-  d["retired_kinetic"] = e.retiredKinetic;
-  d["projection"] = e.projection;
-  d["residual"] = e.residual();
+  for (const CurveColumn& c : curveColumns())
+    if (std::string(c.unit) == "J") d[c.name] = now.*c.field;
   return d;
 }
 

@@ -16,6 +16,18 @@
 
 namespace tessera {
 
+void setEnergies(CurveSample& s, const EnergyBudget& e) {
+  s.kinetic = e.kinetic;
+  s.obstacleWork = e.obstacleWork;
+  s.elastic = e.elastic;
+  s.friction = e.friction;
+  s.damping = e.damping;
+  s.gravityWork = e.gravityWork;
+  s.retiredKinetic = e.retiredKinetic;
+  s.projection = e.projection;
+  s.residual = e.residual();
+}
+
 namespace {
 
 Snapshot snapshotOf(const World& world, int sphere, double delta, double load) {
@@ -221,7 +233,6 @@ private:
   // A curve sample at the state now; out_ gets the bodies out.
   void sample(double delta, double load) {
     out_ = updateFallen(world_, scene_, record_, state_, delta);
-    const EnergyBudget e = world_.energy();
     const ContactCounts c = countContacts(world_, record_.target);
     CurveSample s;
     s.time = world_.time() - state_.loadStart;
@@ -234,15 +245,7 @@ private:
     s.slidingContacts = static_cast<double>(c.blocksSliding);
     s.loadedContacts = static_cast<double>(c.loaded);
     s.loadedSliding = static_cast<double>(c.loadedSliding);
-    s.kinetic = e.kinetic;
-    s.obstacleWork = e.obstacleWork;
-    s.elastic = e.elastic;
-    s.friction = e.friction;
-    s.damping = e.damping;
-    s.gravityWork = e.gravityWork;
-    s.retiredKinetic = e.retiredKinetic;
-    s.projection = e.projection;
-    s.residual = e.residual();
+    setEnergies(s, world_.energy());
     s.indenterSpeed = -world_.sphere(state_.sphere).velocity.z();
     record_.curve.push_back(s);
   }

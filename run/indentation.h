@@ -34,6 +34,10 @@ struct CurveSample {
   double indenterSpeed = 0;       ///< m/s, the indenter's downward speed at the sample
 };
 
+/// A sample's energy fields from a World's budget: the one mapping of the budget's quantities to
+/// the curve's energy columns (curveColumns(), unit J), which Python's Simulation.energy reads too.
+void setEnergies(CurveSample& sample, const EnergyBudget& energy);
+
 /// The contact of one pair at a snapshot (a force-chain link).
 struct ForceLink {
   int a = -1, b = -1;            ///< bodies; b < 0: the indenter

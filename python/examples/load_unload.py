@@ -49,7 +49,7 @@ def main(bundle, out, cli_run=None):
           f"reloaded to {delta[-1] * 1e3:.3f} mm at {load[-1]:.2f} N")
     work = curve["external_work"]
     print(f"work: {work[lift - 1] * 1e3:.3f} mJ in, {(work[lift - 1] - work[reload - 1]) * 1e3:.3f} mJ given back "
-          f"on lifting; energy residual {sim.energy['residual'] / work.max():.2e} of the work")
+          f"on lifting; energy residual {sim.energy['energy_residual'] / work.max():.2e} of the work")
 
     os.makedirs(out, exist_ok=True)
     np.savetxt(os.path.join(out, "cycle.csv"), np.column_stack([delta * 1e3, load]), delimiter=",",
