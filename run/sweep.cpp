@@ -336,7 +336,44 @@ bool sweepCaseComplete(const std::string& runDir) {
   }
 }
 
-// The table of response parameters of every complete case in the folder (sweep.csv, sweep.h5).
+namespace {
+
+// Missing (no failure): NaN in the table, empty in the CSV.
+double number(const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); }
+
+// One numeric column of the sweep tables (after the case's keys): its name, summary.json's where
+// it is one of its response parameters, and its value from a case's summary.json.
+struct SweepColumn {
+  const char* name;
+  double (*value)(const nlohmann::json& summary);
+};
+
+const std::vector<SweepColumn>& sweepColumns() {
+  static const std::vector<SweepColumn> columns{
+      {"peak_load_N", [](const nlohmann::json& j) { return number(j["response"]["peak_load_N"]); }},
+      {"delta_at_peak_mm", [](const nlohmann::json& j) { return number(j["response"]["delta_at_peak_mm"]); }},
+      {"stiffness_N_per_mm", [](const nlohmann::json& j) { return number(j["response"]["stiffness_N_per_mm"]); }},
+      {"loading_energy_mJ", [](const nlohmann::json& j) { return number(j["response"]["loading_energy_mJ"]); }},
+      {"loading_energy_to_end_mJ", [](const nlohmann::json& j) { return number(j["response"]["loading_energy_to_end_mJ"]); }},
+      {"failure_deflection_mm", [](const nlohmann::json& j) { return number(j["response"]["failure_deflection_mm"]); }},
+      {"block_displacement_at_failure_mm",
+       [](const nlohmann::json& j) { return number(j["response"]["block_displacement_at_failure_mm"]); }},
+      {"load_drops", [](const nlohmann::json& j) { return static_cast<double>(j["response"]["load_drops"].size()); }},
+      {"energy_residual_fraction",
+       [](const nlohmann::json& j) {
+         const nlohmann::json& e = j["response"]["energy"];
+         const double work = e["work_mJ"];
+         return work > 0 ? e["residual_mJ"].get<double>() / work : 0.0;
+       }},
+      {"wall_seconds", [](const nlohmann::json& j) { return number(j["run"]["wall_seconds"]); }},
+  };
+  return columns;
+}
+
+}  // namespace
+
+// The table of response parameters of every complete case in the folder (sweep.csv, sweep.h5):
+// the case's keys, sweepColumns(), then its failure mode, stop reason and the bodies out.
 int writeSweepTables(const std::string& folder) {
   const fs::path dir(folder);
   // One writer at a time: each reads every case and writes the whole table, so a later writer
@@ -344,11 +381,12 @@ int writeSweepTables(const std::string& folder) {
   const FileLock lock((dir / ".tables.lock").string());
   const nlohmann::json manifest = nlohmann::json::parse(readTextFile(dir / "sweep.json"));
   const std::vector<std::string> keys = manifest.at("keys");
+  std::vector<std::string> names;
+  for (const SweepColumn& c : sweepColumns()) names.push_back(c.name);
   std::string csv = "case";
-  for (const std::string& key : keys) csv += "," + key;
-  csv += ",peak_load_N,delta_at_peak_mm,stiffness_N_per_mm,loading_energy_mJ,loading_energy_to_end_mJ,"
-         "failure_deflection_mm,block_displacement_at_failure_mm,load_drops,energy_residual_fraction,failure_mode,"
-         "stop_reason,fallen,wall_seconds\n";
+  for (const std::string& name : keys) csv += "," + name;
+  for (const std::string& name : names) csv += "," + name;
+  csv += ",failure_mode,stop_reason,fallen\n";
   std::vector<std::vector<double>> rowsValues, rowsTable;
   std::vector<std::string> caseNames, modes, reasons;
   for (const auto& entry : manifest["cases"]) {
@@ -356,39 +394,27 @@ int writeSweepTables(const std::string& folder) {
     if (!sweepCaseComplete(run.string())) continue;  // an interrupted or failed case is never tabled or plotted
     const nlohmann::json j = nlohmann::json::parse(readTextFile(run / "summary.json"));
     const std::vector<double> caseValues = entry["values"];
-    const auto& r = j["response"];
+    std::vector<double> values;
+    for (const SweepColumn& c : sweepColumns()) values.push_back(c.value(j));
     std::ostringstream line;
     line << entry["directory"].get<std::string>();
     for (double v : caseValues) line << "," << v;
-    // Missing (no failure): NaN in the table, empty in the CSV.
-    const auto number = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
-    const double work = r["energy"]["work_mJ"];
-    const std::vector<double> values{r["peak_load_N"], r["delta_at_peak_mm"], r["stiffness_N_per_mm"], r["loading_energy_mJ"],
-                                     r["loading_energy_to_end_mJ"], number(r["failure_deflection_mm"]),
-                                     number(r["block_displacement_at_failure_mm"]), static_cast<double>(r["load_drops"].size()),
-                                     work > 0 ? r["energy"]["residual_mJ"].get<double>() / work : 0.0,
-                                     j["run"]["wall_seconds"].get<double>()};
-    for (std::size_t k = 0; k + 1 < values.size(); ++k) {
+    for (double v : values) {
       line << ",";
-      if (!std::isnan(values[k])) line << values[k];
+      if (!std::isnan(v)) line << v;
     }
     std::string fallen;
-    for (const auto& f : r["fallen"]) fallen += (fallen.empty() ? "" : " ") + f["name"].get<std::string>();
-    line << "," << r["failure_mode"].get<std::string>() << "," << j["stop_reason"].get<std::string>() << "," << fallen << ","
-         << j["run"]["wall_seconds"].get<double>() << "\n";
+    for (const auto& f : j["response"]["fallen"]) fallen += (fallen.empty() ? "" : " ") + f["name"].get<std::string>();
+    line << "," << j["response"]["failure_mode"].get<std::string>() << "," << j["stop_reason"].get<std::string>() << "," << fallen << "\n";
     csv += line.str();
     rowsValues.push_back(caseValues);
     rowsTable.push_back(values);
     caseNames.push_back(entry["directory"]);
     reasons.push_back(j["stop_reason"]);
-    modes.push_back(r["failure_mode"]);
+    modes.push_back(j["response"]["failure_mode"]);
   }
   writeTextFileSafely(dir / "sweep.csv", csv);
-  writeSweepTable((dir / "sweep.h5").string(), keys, rowsValues,
-                  {"peak_load_N", "delta_at_peak_mm", "stiffness_N_per_mm", "loading_energy_mJ", "loading_energy_to_end_mJ",
-                   "failure_deflection_mm", "block_displacement_at_failure_mm", "load_drops", "energy_residual_fraction",
-                   "wall_seconds"},
-                  rowsTable, caseNames, modes, reasons);
+  writeSweepTable((dir / "sweep.h5").string(), keys, rowsValues, names, rowsTable, caseNames, modes, reasons);
   return static_cast<int>(caseNames.size());
 }
 
