@@ -303,7 +303,11 @@ void bindSimulation(py::module_& m) {
       .def_property_readonly("fixed", [](const Simulation& s) {
         const auto& f = s.session().world().bodies().fixed;
         return column(std::vector<int>(f.begin(), f.end()));
-      })
+      }, "1 for a support (fixed in the bundle), per body")
+      .def_property_readonly("retired", [](const Simulation& s) {
+        const auto& r = s.session().world().bodies().retired;
+        return column(std::vector<int>(r.begin(), r.end()));
+      }, "1 for a body taken out of the computation (fallen clear), per body")
       .def_property_readonly("positions", [](const Simulation& s) { return vectors(s.session().world().bodies().position); },
                              "(n, 3) centroid positions, m")
       .def_property_readonly("orientations",

@@ -89,7 +89,7 @@ ContactCounts countContacts(const World& world, int loaded) {
 bool restingBodies(const World& world, const std::vector<char>& fallen, double speed) {
   const RigidBodies& b = world.bodies();
   for (std::size_t i = 0; i < b.size(); ++i) {
-    if (b.fixed[i] || fallen[i]) continue;
+    if (!b.moves(i) || fallen[i]) continue;
     const double reach = 0.5 * world.bodyBox(static_cast<int>(i), 0.0).sizes().norm();
     if (b.velocity[i].norm() + b.angularVelocity(i).norm() * reach > speed) return false;
   }

@@ -188,7 +188,7 @@ void serializeWorld(const Archive& io, WorldState& w) {
   io.field("velocity", w.bodies.velocity);
   io.field("angular_momentum", w.bodies.angularMomentum);
   io.field("fixed", w.bodies.fixed);
-  io.field("retired", w.retired);
+  io.field("retired", w.bodies.retired);
   SphereTable spheres = Archive::reading ? SphereTable{} : tableOf(w.spheres);
   io.field("sphere_centre", spheres.centre);
   io.field("sphere_velocity", spheres.velocity);
@@ -406,6 +406,9 @@ void readCheckpoint(const std::string& path, WorldState& world, IndentationState
     const std::vector<char> fixedInBundle = world.bodies.fixed;
     readWorld(w.get(), world);
     if (world.bodies.position.size() != bodies) throw std::runtime_error("it holds a different number of bodies than the bundle");
+    // The supports are the bundle's (a checkpoint written before retired bodies had their own
+    // flag marks them fixed too).
+    if (world.bodies.fixed.size() == bodies) world.bodies.fixed = fixedInBundle;
     Handle r = h5::openGroup(f.get(), "run");
     readRecord(r.get(), state, record, bodies);
     if (state.sphere < -1 || state.sphere >= static_cast<int>(world.spheres.size()) || (state.phase > 0 && state.sphere < 0))

@@ -221,7 +221,7 @@ private:
     const RigidBodies& b = world_.bodies();
     const std::vector<Eigen::Vector3d>& built = world_.startPositions();
     for (int i = 0; i < static_cast<int>(b.size()); ++i)
-      if (!b.fixed[i] && built[i].z() - b.position[i].z() > scene_.protocol.fallenClearance * world_.bodySize(i))
+      if (b.moves(i) && built[i].z() - b.position[i].z() > scene_.protocol.fallenClearance * world_.bodySize(i))
         ++record_.sunkWhileSettling;
     if (record_.sunkWhileSettling > 0 && hooks_.warning)
       hooks_.warning(std::to_string(record_.sunkWhileSettling) + " free bodies sank by more than " +

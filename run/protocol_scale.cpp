@@ -23,7 +23,7 @@ double settleThreshold(const World& world, const ProtocolSettings& protocol) {
   const double g = gravityScale(world);
   double scale = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
-    if (!b.fixed[i]) scale += b.mass[i] * g * world.bodySize(static_cast<int>(i));
+    if (b.moves(i)) scale += b.mass[i] * g * world.bodySize(static_cast<int>(i));
   return protocol.settleKineticRatio * scale;
 }
 
@@ -31,7 +31,7 @@ double settleTimeLimit(const World& world, const ProtocolSettings& protocol) {
   if (protocol.settleMaxTime > 0) return protocol.settleMaxTime;
   std::vector<double> sizes;
   for (int i = 0; i < static_cast<int>(world.bodies().size()); ++i)
-    if (!world.bodies().fixed[i]) sizes.push_back(world.bodySize(i));
+    if (world.bodies().moves(i)) sizes.push_back(world.bodySize(i));
   if (sizes.empty()) return 0.0;
   std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
   const double t = sizes[sizes.size() / 2];

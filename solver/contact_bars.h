@@ -40,7 +40,7 @@ namespace tessera {
 class ContactBars {
 public:
   /// meshes: each shape's surface in its body frame (centroid at the origin); bodies: the start
-  /// poses, shapes and fixed flags (a body fixed later, when retired, keeps its bar); sections:
+  /// poses, shapes and fixed flags (a body retired later keeps its bar); sections:
   /// weight the bars by the blocks' sections.
   ContactBars(const std::vector<TriangleMesh>& meshes, std::vector<int> shape, std::vector<Eigen::Vector3d> position,
               std::vector<Eigen::Quaterniond> orientation, std::vector<char> fixed, bool sections = false);

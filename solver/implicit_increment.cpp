@@ -388,7 +388,7 @@ void World::implicitStep() {
   w.dof.assign(n, -1);
   w.freeBodies = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (!bodies.fixed[i]) w.dof[i] = w.freeBodies++;
+    if (bodies.moves(i)) w.dof[i] = w.freeBodies++;
   w.startBodies = bodies;
   w.start.position = bodies.position;
   w.start.orientation = bodies.orientation;
@@ -412,7 +412,7 @@ void World::implicitStep() {
     for (const ImplicitPairResult& r : w.results) elastic += r.tally.elastic;
     state_.initialEnergy = elastic;
     for (std::size_t i = 0; i < n; ++i) {
-      if (bodies.fixed[i]) continue;
+      if (!bodies.moves(i)) continue;
       state_.initialEnergy += bodies.kineticEnergy(i);
       state_.force[i] = w.residual.segment<3>(6 * w.dof[i]);
       state_.torque[i] = w.residual.segment<3>(6 * w.dof[i] + 3);

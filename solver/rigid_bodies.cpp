@@ -15,6 +15,7 @@ RigidBodies makeRigidBodies(const Bundle& bundle, double density) {
     b.mass.push_back(density * shape.mass.volume);
     b.inertia.push_back(density * shape.mass.principalMoments);
     b.fixed.push_back(body.fixed ? 1 : 0);
+    b.retired.push_back(0);
     b.shape.push_back(body.shape);
     b.name.push_back(body.name);
   }
@@ -80,7 +81,7 @@ void rotateFreely(RigidBodies& bodies, double dt) {
     std::size_t body[kLanes];
     int used = 0;
     for (; next < bodies.size() && used < kLanes; ++next)
-      if (!bodies.fixed[next]) body[used++] = next;
+      if (bodies.moves(next)) body[used++] = next;
     if (used == 0) return;
     RotationLanes b;
     for (int l = 0; l < kLanes; ++l) {

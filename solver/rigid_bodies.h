@@ -17,11 +17,14 @@ struct RigidBodies {
   std::vector<Eigen::Vector3d> angularMomentum;  ///< kg m^2/s, body frame
   std::vector<double> mass;                      ///< kg
   std::vector<Eigen::Vector3d> inertia;          ///< kg m^2, principal moments (body axes)
-  std::vector<char> fixed;                       ///< never integrated
+  std::vector<char> fixed;                       ///< a support: never integrated (from the bundle)
+  std::vector<char> retired;                     ///< taken out of the computation (World::retireBody): frozen, in no pair
   std::vector<int> shape;                        ///< index into the bundle's shapes
   std::vector<std::string> name;
 
   std::size_t size() const { return position.size(); }
+  /// Integrated: neither a support nor retired.
+  bool moves(std::size_t i) const { return !fixed[i] && !retired[i]; }
   /// omega in the world frame, rad/s.
   Eigen::Vector3d angularVelocity(std::size_t i) const {
     return orientation[i] * angularMomentum[i].cwiseQuotient(inertia[i]);
@@ -65,7 +68,7 @@ RigidBodies makeRigidBodies(const Bundle& bundle, double density);
 /// J. Chem. Phys. 107, 1997): H1(dt/2) H2(dt/2) H3(dt) H2(dt/2) H1(dt/2), where Hk turns the body
 /// about its axis k by the angle t Pi_k / I_k and the body-frame momentum Pi the other way.
 /// Symplectic and time-reversible; |Pi| and the world angular momentum q Pi are conserved exactly.
-/// Turns every body that is not fixed, eight at a time as arrays of their components (each body's
+/// Turns every body that moves, eight at a time as arrays of their components (each body's
 /// result the same as alone): the bodies' chains of dependent operations run side by side.
 void rotateFreely(RigidBodies& bodies, double dt);
 

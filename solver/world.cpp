@@ -125,7 +125,6 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   state_.dampingForce.assign(n, Eigen::Vector3d::Zero());
   state_.dampingTorque.assign(n, Eigen::Vector3d::Zero());
   state_.startPosition = state_.bodies.position;
-  state_.retired.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) bodyRadius_.push_back(shapes_[state_.bodies.shape[i]].radius);
   if (settings_.method == SolverMethod::Implicit) {
     const ImplicitSettings& s = settings_.implicit;
@@ -161,7 +160,7 @@ void World::checkState(const WorldState& s) const {
   requireEach(s.bodies.velocity, n, false, "velocities", finite);
   requireEach(s.bodies.angularMomentum, n, false, "angular momenta", finite);
   requireEach(s.bodies.fixed, n, false, "fixed flags", [](char) { return true; });
-  requireEach(s.retired, n, false, "retired flags", [](char) { return true; });
+  requireEach(s.bodies.retired, n, false, "retired flags", [](char) { return true; });
   for (const auto* v : {&s.force, &s.torque, &s.contactForce, &s.contactTorque, &s.dampingForce, &s.dampingTorque,
                         &s.startPosition})
     requireEach(*v, n, false, "per-body vectors", finite);
@@ -209,10 +208,9 @@ void World::restore(const WorldState& s) {
 }
 
 void World::retireBody(int i) {
-  if (state_.retired[i]) return;
+  if (state_.bodies.retired[i]) return;
   state_.retiredKinetic += state_.bodies.kineticEnergy(i);
-  state_.retired[i] = 1;
-  state_.bodies.fixed[i] = 1;
+  state_.bodies.retired[i] = 1;
   state_.bodies.velocity[i].setZero();
   state_.bodies.angularMomentum[i].setZero();
   state_.pairsValid = state_.forcesValid = false;
@@ -251,7 +249,7 @@ void World::updatePairs() {
   if (state_.pairsValid) {
     bool moved = false;
     for (std::size_t i = 0; i < state_.bodies.size() && !moved; ++i) {
-      if (state_.bodies.fixed[i]) continue;
+      if (!state_.bodies.moves(i)) continue;
       const double turn = turnChord(state_.bodies.orientation[i], state_.builtOrientation[i]) * shapes_[state_.bodies.shape[i]].radius;
       moved = (state_.bodies.position[i] - state_.builtPosition[i]).norm() + turn > 0.4 * margin;
     }
@@ -262,7 +260,7 @@ void World::updatePairs() {
 
   std::vector<Eigen::AlignedBox3d> boxes;
   for (std::size_t i = 0; i < state_.bodies.size(); ++i)
-    boxes.push_back(state_.retired[i] ? Eigen::AlignedBox3d()  // empty: intersects nothing
+    boxes.push_back(state_.bodies.retired[i] ? Eigen::AlignedBox3d()  // empty: intersects nothing
                                 : worldBox(shapes_[state_.bodies.shape[i]].box, state_.bodies.orientation[i], state_.bodies.position[i], margin));
   std::vector<std::pair<int, int>> wanted = sweepPairs(boxes, state_.bodies.fixed);
   const int sphereCount = static_cast<int>(state_.spheres.size());
@@ -275,7 +273,7 @@ void World::updatePairs() {
   }
   for (int k = 0; k < static_cast<int>(state_.planes.size()); ++k)
     for (int i = 0; i < static_cast<int>(state_.bodies.size()); ++i)
-      if (!state_.bodies.fixed[i] && !state_.retired[i]) wanted.emplace_back(i, -1 - sphereCount - k);
+      if (state_.bodies.moves(i)) wanted.emplace_back(i, -1 - sphereCount - k);
   std::sort(wanted.begin(), wanted.end());
 
   // Keep the state of pairs that stay candidates (both lists sorted by (a, b)).
@@ -378,7 +376,7 @@ void World::evaluateForces(double springStep) {
     const Eigen::Vector3d f = state_.contactForce[i] + state_.bodies.mass[i] * settings_.gravity;
     const Eigen::Vector3d& t = state_.contactTorque[i];
     Eigen::Vector3d fd = Eigen::Vector3d::Zero(), td = Eigen::Vector3d::Zero();
-    if (!state_.bodies.fixed[i]) {
+    if (state_.bodies.moves(i)) {
       const Eigen::Vector3d v = state_.bodies.velocity[i], w = state_.bodies.angularVelocity(i);
       if (c > 0) {
         fd -= c * state_.bodies.mass[i] * v;
@@ -425,7 +423,7 @@ void World::explicitStep() {
     state_.damping -= h * (state_.dampingForce[i].dot(0.5 * (v0 + state_.bodies.velocity[i])) + state_.dampingTorque[i].dot(omega));
   };
   for (std::size_t i = 0; i < state_.bodies.size(); ++i) {
-    if (state_.bodies.fixed[i]) continue;
+    if (!state_.bodies.moves(i)) continue;
     kick(i);
     state_.bodies.position[i] += dt_ * state_.bodies.velocity[i];
   }
@@ -437,7 +435,7 @@ void World::explicitStep() {
   }
   evaluateForces(dt_);
   for (std::size_t i = 0; i < state_.bodies.size(); ++i)
-    if (!state_.bodies.fixed[i]) kick(i);
+    if (state_.bodies.moves(i)) kick(i);
   state_.time += dt_;
   ++state_.steps;
   checkStability();
@@ -448,7 +446,7 @@ EnergyBudget World::energy() const {
   for (std::size_t i = 0; i < state_.bodies.size(); ++i) {
     // Every body: a retired one keeps the gravity work done on it until it was frozen.
     e.gravityWork += state_.bodies.mass[i] * settings_.gravity.dot(state_.bodies.position[i] - state_.startPosition[i]);
-    if (!state_.bodies.fixed[i]) e.kinetic += state_.bodies.kineticEnergy(i);
+    if (state_.bodies.moves(i)) e.kinetic += state_.bodies.kineticEnergy(i);
   }
   for (const PairContacts& p : state_.pairs) e.elastic += p.tally.elastic;
   e.obstacleWork = state_.obstacleWork;
@@ -471,7 +469,7 @@ void World::checkStability() {
     return format("t = %.6g s (step ", state_.time) + std::to_string(state_.steps) + "), body '" + state_.bodies.name[i] + "'";
   };
   for (std::size_t i = 0; i < state_.bodies.size(); ++i) {
-    if (state_.bodies.fixed[i]) continue;
+    if (!state_.bodies.moves(i)) continue;
     if (!state_.bodies.position[i].allFinite() || !state_.bodies.velocity[i].allFinite() || !state_.bodies.angularMomentum[i].allFinite())
       throw SolverInstability(where(i) + ": non-finite position or velocity; the time step " + format("%.3g s", dt_) +
                               " is probably too large (automatic: " + format("%.3g s)", automaticDt_));
@@ -509,7 +507,7 @@ void World::checkStability() {
   if (e.kinetic > settings_.energyGrowthLimit * supplied) {
     std::size_t worst = 0;
     for (std::size_t i = 0; i < state_.bodies.size(); ++i)
-      if (!state_.bodies.fixed[i] && state_.bodies.kineticEnergy(i) > state_.bodies.kineticEnergy(worst)) worst = i;
+      if (state_.bodies.moves(i) && state_.bodies.kineticEnergy(i) > state_.bodies.kineticEnergy(worst)) worst = i;
     throw SolverInstability(where(worst) + ": kinetic energy " + format("%.4g J", e.kinetic) + " exceeds " +
                             format("%.3g x the energy supplied (%.4g J)", settings_.energyGrowthLimit, supplied) +
                             "; the time step " + format("%.3g s", dt_) + " is probably too large (automatic: " +

@@ -54,7 +54,6 @@ struct ImplicitCounts {
 /// Everything a World changes as it runs: saved in checkpoints, restored to resume bit-identically.
 struct WorldState {
   RigidBodies bodies;
-  std::vector<char> retired;
   std::vector<SphereObstacle> spheres;
   std::vector<PlaneObstacle> planes;
   std::vector<PairContacts> pairs;  ///< with their springs and last forces
@@ -117,9 +116,9 @@ public:
   /// Takes a body out of the computation (a block that has fallen clear): it is frozen where it
   /// is, no longer integrated and no longer in any pair; its kinetic energy is booked as carried off.
   void retireBody(int i);
-  bool isRetired(int i) const { return state_.retired[i] != 0; }
-  /// A support of the assembly: fixed from the start (not retired).
-  bool isSupport(int i) const { return state_.bodies.fixed[i] && !state_.retired[i]; }
+  bool isRetired(int i) const { return state_.bodies.retired[i] != 0; }
+  /// A support of the assembly: fixed from the start.
+  bool isSupport(int i) const { return state_.bodies.fixed[i] != 0; }
   /// World-aligned box around body i's shape (ShapeModel::box), enlarged by `margin` (m).
   Eigen::AlignedBox3d bodyBox(int i, double margin) const;
   /// Each body's position when the World was made, m.
