@@ -163,7 +163,15 @@ struct Writer {
   void field(const char* name, std::vector<std::int32_t>& v) const { h5::writeDataset(g, name, v, {count(v.size())}); }
   void field(const char* name, double& x) const { h5::writeAttribute(g, name, x); }
   void field(const char* name, long& x) const { h5::writeAttribute(g, name, std::int64_t{x}); }
+  void field(const char* name, int& x) const { h5::writeAttribute(g, name, std::int64_t{x}); }
   void field(const char* name, bool& x) const { h5::writeAttribute(g, name, std::int64_t{x}); }
+  void field(const char* name, std::string& x) const { h5::writeAttribute(g, name, x); }
+  void field(const char* name, std::vector<CurveSample>& v) const { writeCurve(h5::createGroup(g, name).get(), v); }
+  void field(const char* name, std::vector<Snapshot>& v) const {
+    const std::vector<std::string> names(v.empty() ? 0 : v.front().position.size());  // not kept: the bundle has them
+    writeSnapshots(h5::createGroup(g, name).get(), v, names);
+  }
+  void field(const char* name, std::vector<FallenBody>& v) const { writeFallen(h5::createGroup(g, name).get(), v); }
 };
 
 struct Reader {
@@ -176,7 +184,13 @@ struct Reader {
   void field(const char* name, std::vector<std::int32_t>& v) const { v = h5::readDataset<std::int32_t>(g, name); }
   void field(const char* name, double& x) const { x = h5::readDoubleAttribute(g, name); }
   void field(const char* name, long& x) const { x = static_cast<long>(h5::readIntAttribute(g, name)); }
+  void field(const char* name, int& x) const { x = static_cast<int>(h5::readIntAttribute(g, name)); }
   void field(const char* name, bool& x) const { x = h5::readIntAttribute(g, name) != 0; }
+  void field(const char* name, std::string& x) const { x = h5::readStringAttribute(g, name); }
+  void field(const char* name, std::vector<CurveSample>& v) const { v = readCurve(h5::openGroup(g, name).get()); }
+  void field(const char* name, std::vector<Snapshot>& v) const { v = readSnapshots(h5::openGroup(g, name).get(), bodies); }
+  void field(const char* name, std::vector<FallenBody>& v) const { v = readFallen(h5::openGroup(g, name).get()); }
+  std::size_t bodies = 0;  ///< the bundle's, which a snapshot's arrays must match
 };
 
 // Every field of a WorldState the checkpoint keeps, once, for both directions. (Masses, inertia,
@@ -246,39 +260,50 @@ void writeWorld(hid_t g, const WorldState& w) {
 
 void readWorld(hid_t g, WorldState& w) { serializeWorld(Reader{g}, w); }
 
-void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r) {
-  h5::writeAttribute(g, "phase", std::int64_t{s.phase});
-  h5::writeAttribute(g, "sphere", std::int64_t{s.sphere});
-  h5::writeAttribute(g, "load_start", s.loadStart);
-  h5::writeAttribute(g, "contact_travel", s.contactTravel);
-  h5::writeAttribute(g, "peak", s.peak);
-  h5::writeAttribute(g, "next_sample", s.nextSample);
-  h5::writeAttribute(g, "next_snapshot", s.nextSnapshot);
-  h5::writeAttribute(g, "quiet_from", s.quietFrom);
-  h5::writeAttribute(g, "travel_base", s.travelBase);
-  h5::writeAttribute(g, "path_base", s.pathBase);
-  h5::writeAttribute(g, "speed_since", s.speedSince);
-  h5::writeAttribute(g, "contact_path", s.contactPath);
-  h5::writeAttribute(g, "rate_adapted", std::int64_t{s.rateAdapted});
-  writeVectors(g, "settled_position", s.settledPosition);
-  writeDoubles(g, "out_at", s.outAt);
+// Every field of the protocol's state and record the checkpoint keeps, once, for both directions
+// (the stop reason by its name).
+template <class Archive>
+void serializeRecord(const Archive& io, IndentationState& s, IndentationRecord& r) {
+  io.field("phase", s.phase);
+  io.field("sphere", s.sphere);
+  io.field("load_start", s.loadStart);
+  io.field("contact_travel", s.contactTravel);
+  io.field("peak", s.peak);
+  io.field("next_sample", s.nextSample);
+  io.field("next_snapshot", s.nextSnapshot);
+  io.field("quiet_from", s.quietFrom);
+  io.field("travel_base", s.travelBase);
+  io.field("path_base", s.pathBase);
+  io.field("speed_since", s.speedSince);
+  io.field("contact_path", s.contactPath);
+  io.field("rate_adapted", s.rateAdapted);
+  io.field("settled_position", s.settledPosition);
+  io.field("out_at", s.outAt);
+  io.field("settle_time", r.settleTime);
+  io.field("settle_steps", r.settleSteps);
+  io.field("settled", r.settled);
+  io.field("sunk_while_settling", r.sunkWhileSettling);
+  io.field("target", r.target);
+  io.field("target_name", r.targetName);
+  io.field("thickness", r.thickness);
+  io.field("delta_max", r.deltaMax);
+  std::string reason = Archive::reading ? std::string() : std::string(stopReasonName(r.stopReason));
+  io.field("stop_reason", reason);
+  if (Archive::reading) {
+    const std::optional<StopReason> parsed = parseStopReason(reason);
+    if (!parsed) throw std::runtime_error("protocol state: a stop reason the protocol does not give");
+    r.stopReason = *parsed;
+  }
+  io.field("steps", r.steps);
+  io.field("time_step", r.timeStep);
+  io.field("wall_seconds", r.wallSeconds);
+  io.field("curve", r.curve);
+  io.field("snapshots", r.snapshots);
+  io.field("fallen", r.fallen);
+}
 
-  h5::writeAttribute(g, "settle_time", r.settleTime);
-  h5::writeAttribute(g, "settle_steps", std::int64_t{r.settleSteps});
-  h5::writeAttribute(g, "settled", std::int64_t{r.settled});
-  h5::writeAttribute(g, "sunk_while_settling", std::int64_t{r.sunkWhileSettling});
-  h5::writeAttribute(g, "target", std::int64_t{r.target});
-  h5::writeAttribute(g, "target_name", r.targetName);
-  h5::writeAttribute(g, "thickness", r.thickness);
-  h5::writeAttribute(g, "delta_max", r.deltaMax);
-  h5::writeAttribute(g, "stop_reason", std::string(stopReasonName(r.stopReason)));
-  h5::writeAttribute(g, "steps", std::int64_t{r.steps});
-  h5::writeAttribute(g, "time_step", r.timeStep);
-  h5::writeAttribute(g, "wall_seconds", r.wallSeconds);
-  writeCurve(h5::createGroup(g, "curve").get(), r.curve);
-  std::vector<std::string> names(r.snapshots.empty() ? 0 : r.snapshots.front().position.size());  // not kept: the bundle has them
-  writeSnapshots(h5::createGroup(g, "snapshots").get(), r.snapshots, names);
-  writeFallen(h5::createGroup(g, "fallen").get(), r.fallen);
+void writeRecord(hid_t g, const IndentationState& s, const IndentationRecord& r) {
+  serializeRecord(Writer{g}, const_cast<IndentationState&>(s), const_cast<IndentationRecord&>(r));  // a Writer only reads the fields
 }
 
 // The protocol state's numbers, each against what the protocol can have made of it: a damaged
@@ -304,45 +329,15 @@ void checkProtocolValues(const IndentationState& s, const IndentationRecord& r) 
 }
 
 void readRecord(hid_t g, IndentationState& s, IndentationRecord& r, std::size_t bodies) {
-  s.phase = static_cast<int>(h5::readIntAttribute(g, "phase"));
-  s.sphere = static_cast<int>(h5::readIntAttribute(g, "sphere"));
-  s.loadStart = h5::readDoubleAttribute(g, "load_start");
-  s.contactTravel = h5::readDoubleAttribute(g, "contact_travel");
-  s.peak = h5::readDoubleAttribute(g, "peak");
-  s.nextSample = h5::readDoubleAttribute(g, "next_sample");
-  s.nextSnapshot = h5::readDoubleAttribute(g, "next_snapshot");
-  s.quietFrom = h5::readDoubleAttribute(g, "quiet_from");
-  s.travelBase = h5::readDoubleAttribute(g, "travel_base");
-  s.pathBase = h5::readDoubleAttribute(g, "path_base");
-  s.speedSince = h5::readDoubleAttribute(g, "speed_since");
-  s.contactPath = h5::readDoubleAttribute(g, "contact_path");
-  s.rateAdapted = h5::readIntAttribute(g, "rate_adapted") != 0;
-  s.settledPosition = readVectors(g, "settled_position");
-  s.outAt = h5::readDataset<double>(g, "out_at");
+  Reader reader{g};
+  reader.bodies = bodies;
+  serializeRecord(reader, s, r);
   if ((s.phase > 0 && s.settledPosition.size() != bodies) || s.outAt.size() != s.settledPosition.size())
     throw std::runtime_error("settled positions for a different number of bodies");
-
-  r.settleTime = h5::readDoubleAttribute(g, "settle_time");
-  r.settleSteps = h5::readIntAttribute(g, "settle_steps");
-  r.settled = h5::readIntAttribute(g, "settled") != 0;
-  r.sunkWhileSettling = static_cast<int>(h5::readIntAttribute(g, "sunk_while_settling"));
-  r.target = static_cast<int>(h5::readIntAttribute(g, "target"));
-  r.targetName = h5::readStringAttribute(g, "target_name");
-  r.thickness = h5::readDoubleAttribute(g, "thickness");
-  r.deltaMax = h5::readDoubleAttribute(g, "delta_max");
-  const std::optional<StopReason> reason = parseStopReason(h5::readStringAttribute(g, "stop_reason"));
-  if (!reason) throw std::runtime_error("protocol state: a stop reason the protocol does not give");
-  r.stopReason = *reason;
-  r.steps = h5::readIntAttribute(g, "steps");
-  r.timeStep = h5::readDoubleAttribute(g, "time_step");
-  r.wallSeconds = h5::readDoubleAttribute(g, "wall_seconds");
-  r.curve = readCurve(h5::openGroup(g, "curve").get());
   if (s.phase < 0 || s.phase > 2 || r.target < -1 || r.target >= static_cast<int>(bodies) || (s.phase > 0 && r.target < 0) ||
       (s.phase > 0 && s.sphere < 0))
     throw std::runtime_error("protocol state out of range");
   checkProtocolValues(s, r);
-  r.snapshots = readSnapshots(h5::openGroup(g, "snapshots").get(), bodies);
-  r.fallen = readFallen(h5::openGroup(g, "fallen").get());
 }
 
 }  // namespace
