@@ -14,7 +14,7 @@ jobs=${JOBS:-$(nproc)}
 "$here/scripts/setup.sh" --with-sanitizers > /dev/null  # clang's runtimes if missing (and the main build)
 
 cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O2 -g" \
-  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DTESSERA_SANITIZE=ON -DTESSERA_FUZZ=ON \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DTESSERA_SANITIZE=ON -DTESSERA_FUZZ=ON -DTESSERA_PORTABLE=ON \
   -DTESSERA_BUILD_BENCH=OFF > /dev/null
 cmake --build "$build_dir" -j "$jobs"  # the solver's unit tests are left out of this build (tests/CMakeLists.txt)
 

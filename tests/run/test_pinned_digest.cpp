@@ -20,7 +20,9 @@ namespace {
 
 // The CPU version the dispatcher of TESSERA_CPU_VERSIONS picks here, as GCC names it.
 std::string cpuVersion() {
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#if defined(TESSERA_PORTABLE)
+  return "portable";
+#elif defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
   __builtin_cpu_init();
   if (__builtin_cpu_supports("x86-64-v4")) return "x86-64-v4";
   if (__builtin_cpu_supports("x86-64-v3")) return "x86-64-v3";
