@@ -46,7 +46,7 @@ Snapshot snapshotOf(const World& world, int sphere, double delta, double load) {
 // After settling: choose the target, measure its thickness, place the indenter just above its top.
 void startLoading(World& world, const Bundle& bundle, const Scene& scene, IndentationRecord& record,
                   IndentationState& state) {
-  RigidBodies& bodies = world.bodies();
+  const RigidBodies& bodies = world.bodies();
   const LoadPoint load = chooseLoadPoint(bundle, scene.indenter);
   record.target = load.body;
   const Eigen::Vector2d at = bodies.position[record.target].head<2>() + load.offset;

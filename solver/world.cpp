@@ -207,6 +207,41 @@ void World::restore(const WorldState& s) {
   }
 }
 
+namespace {
+
+void requireMoving(const RigidBodies& bodies, int i, const char* what) {
+  if (i < 0 || i >= static_cast<int>(bodies.size()) || !bodies.moves(i))
+    throw std::invalid_argument(std::string(what) + ": body " + std::to_string(i) + " is not a free body of this World");
+}
+
+}  // namespace
+
+void World::setPose(int i, const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation) {
+  requireMoving(state_.bodies, i, "setPose");
+  if (!position.allFinite() || !orientation.coeffs().allFinite() || std::abs(orientation.norm() - 1) > 1e-9)
+    throw std::invalid_argument("setPose: a position that is not finite or an orientation that is not a unit quaternion");
+  // After the first step the books are open: the energy the jump stores in the contacts (or
+  // releases) is booked as supplied, from the forces evaluated at once at the new pose.
+  const double stored = state_.steps > 0 ? energy().elastic : 0.0;
+  state_.bodies.position[i] = position;
+  state_.bodies.orientation[i] = orientation;
+  state_.pairsValid = state_.forcesValid = false;
+  if (state_.steps == 0) return;
+  evaluateForces(0.0);
+  state_.initialEnergy += energy().elastic - stored;
+}
+
+void World::setVelocity(int i, const Eigen::Vector3d& velocity, const Eigen::Vector3d& angularMomentum) {
+  requireMoving(state_.bodies, i, "setVelocity");
+  if (!velocity.allFinite() || !angularMomentum.allFinite())
+    throw std::invalid_argument("setVelocity: a velocity or angular momentum that is not finite");
+  const double kinetic = state_.bodies.kineticEnergy(i);
+  state_.bodies.velocity[i] = velocity;
+  state_.bodies.angularMomentum[i] = angularMomentum;
+  state_.forcesValid = false;
+  if (state_.steps > 0) state_.initialEnergy += state_.bodies.kineticEnergy(i) - kinetic;  // supplied, as setPose books
+}
+
 void World::retireBody(int i) {
   if (state_.bodies.retired[i]) return;
   state_.retiredKinetic += state_.bodies.kineticEnergy(i);

@@ -83,9 +83,18 @@ public:
   SphereObstacle& sphere(int k) { return state_.spheres[k]; }
   const SphereObstacle& sphere(int k) const { return state_.spheres[k]; }
 
-  /// Body state; change velocities or poses freely between steps.
-  RigidBodies& bodies() { return state_.bodies; }
+  /// Body state, read-only: change it through setPose and setVelocity.
   const RigidBodies& bodies() const { return state_.bodies; }
+  /// Body i's pose between steps (m; unit quaternion, body -> world). Its pairs are found afresh
+  /// and the forces evaluated again (no spring is loaded by the jump); the energy the jump stores
+  /// in the contacts, or releases, is booked as supplied (EnergyBudget::initial).
+  /// std::invalid_argument for a body that does not move (a support, a retired body) or a value
+  /// that is not finite.
+  void setPose(int i, const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation);
+  /// Body i's velocity (m/s) and angular momentum (kg m^2/s, body frame) between steps; the forces
+  /// (viscous terms depend on them) are evaluated again at the next step, and the change of kinetic
+  /// energy is booked as supplied. Throws as setPose.
+  void setVelocity(int i, const Eigen::Vector3d& velocity, const Eigen::Vector3d& angularMomentum);
 
   double time() const { return state_.time; }
   long stepCount() const { return state_.steps; }

@@ -42,7 +42,7 @@ TEST_CASE("failure rules: a block that lost every block contact falls, and is re
   const FallenRule rule;
   // Lift it off by half the clearance: no contact, dropped from a higher "settled" place, but still
   // within clearance x h of the base: fallen, not yet retired.
-  s.world.bodies().position[1].z() += 0.5 * rule.clearance * kH;
+  s.world.setPose(1, s.world.bodies().position[1] + Eigen::Vector3d(0, 0, 0.5 * rule.clearance * kH), s.world.bodies().orientation[1]);
   std::vector<Eigen::Vector3d> high = s.settled;
   high[1].z() += kH;
   s.world.step();
@@ -54,8 +54,8 @@ TEST_CASE("failure rules: a block that lost every block contact falls, and is re
   // Without the drop it has not fallen (it was lifted, not fallen).
   REQUIRE_FALSE(hasFallen(s.world, 1, supported, s.world.bodies().position[1], rule));
   // Far to the side: clear of every box, retired; retiring books its kinetic energy.
-  s.world.bodies().position[1].x() += 2 * kA;
-  s.world.bodies().velocity[1] = Eigen::Vector3d(0, 0, -0.1);
+  s.world.setPose(1, s.world.bodies().position[1] + Eigen::Vector3d(2 * kA, 0, 0), s.world.bodies().orientation[1]);
+  s.world.setVelocity(1, Eigen::Vector3d(0, 0, -0.1), Eigen::Vector3d::Zero());
   s.world.step();
   touching = touchingBlocks(s.world);
   supported = supportedBodies(s.world);

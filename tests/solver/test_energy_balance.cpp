@@ -22,7 +22,7 @@ TEST_CASE("energy: a block sliding to rest on a fixed block dissipates its kinet
   SolverSettings s;  // no damping
   World world(bundle, p, s);
   const double v0 = 0.02;  // m/s along x, from the start (the initial energy counts it)
-  world.bodies().velocity[1] = Eigen::Vector3d(v0, 0, 0);
+  world.setVelocity(1, Eigen::Vector3d(v0, 0, 0), Eigen::Vector3d::Zero());
   const double x0 = world.bodies().position[1].x(), m = world.bodies().mass[1];
   for (int i = 0; i < 200000 && world.bodies().velocity[1].x() > 1e-6 * v0; ++i) world.step();
   const EnergyBudget after = world.energy();

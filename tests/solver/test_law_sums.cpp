@@ -40,17 +40,16 @@ TEST_CASE("the explicit pair sums and the implicit pair evaluation agree on a pr
   // then slid and turned for a while, so that the springs are loaded: some stick, some slide.
   const bool sideBySide = GENERATE(false, true);
   INFO((sideBySide ? "side by side" : "stacked"));
-  RigidBodies& b = world.bodies();
-  if (sideBySide) {
-    b.position[1] = b.position[0] + Eigen::Vector3d(kA - 20e-6, 0.3e-3, 0.05e-3);
-    b.orientation[1] = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ())) * b.orientation[0];
-  } else {
-    b.position[1] += Eigen::Vector3d(0.7e-3, -0.4e-3, -0.03e-3);
-  }
-  b.orientation[1] = Eigen::Quaterniond(Eigen::AngleAxisd(0.004, Eigen::Vector3d(1, 0.3, 0).normalized())) * b.orientation[1];
+  const RigidBodies& b = world.bodies();
+  const Eigen::Quaterniond tilt(Eigen::AngleAxisd(0.004, Eigen::Vector3d(1, 0.3, 0).normalized()));
+  if (sideBySide)
+    world.setPose(1, b.position[0] + Eigen::Vector3d(kA - 20e-6, 0.3e-3, 0.05e-3),
+                  tilt * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ())) * b.orientation[0]);
+  else
+    world.setPose(1, b.position[1] + Eigen::Vector3d(0.7e-3, -0.4e-3, -0.03e-3), tilt * b.orientation[1]);
   for (int i = 0; i < 40; ++i) {
-    b.velocity[1] = sideBySide ? Eigen::Vector3d(0.0, 0.05, 0.2) : Eigen::Vector3d(0.02, 0.01, 0.0);
-    b.angularMomentum[1] = b.inertia[1].cwiseProduct(Eigen::Vector3d(0, 0, 0.5));
+    world.setVelocity(1, sideBySide ? Eigen::Vector3d(0.0, 0.05, 0.2) : Eigen::Vector3d(0.02, 0.01, 0.0),
+                      b.inertia[1].cwiseProduct(Eigen::Vector3d(0, 0, 0.5)));
     world.step();
   }
   const WorldState state = world.state();

@@ -17,11 +17,10 @@ const double kA = 10e-3, kH = 3.18e-3;
 // The upper block pressed into the lower one off-centre and tilted, so that both sides' nodes
 // (a's in b and b's in a) touch; one step evaluated. `upper` is 1, or 0 with the free body first.
 const PairContacts& pressedPair(World& world, int upper) {
-  RigidBodies& b = world.bodies();
-  b.position[upper] += Eigen::Vector3d(0.7e-3, -0.4e-3, -0.03e-3);
-  b.orientation[upper] = Eigen::Quaterniond(Eigen::AngleAxisd(0.004, Eigen::Vector3d(1, 0.3, 0).normalized())) *
-                         b.orientation[upper];
-  b.angularMomentum[upper] = Eigen::Vector3d(2e-9, -1e-9, 3e-9);
+  const RigidBodies& b = world.bodies();
+  world.setPose(upper, b.position[upper] + Eigen::Vector3d(0.7e-3, -0.4e-3, -0.03e-3),
+                Eigen::Quaterniond(Eigen::AngleAxisd(0.004, Eigen::Vector3d(1, 0.3, 0).normalized())) * b.orientation[upper]);
+  world.setVelocity(upper, b.velocity[upper], Eigen::Vector3d(2e-9, -1e-9, 3e-9));
   world.step();
   for (const PairContacts& p : world.pairs())
     if (p.b >= 0) return p;
@@ -113,9 +112,8 @@ TEST_CASE("viscous damping: a free spinning, moving block slows as exp(-c t), an
   s.gravity = Eigen::Vector3d::Zero();
   s.viscousDamping = 40.0;  // 1/s
   World world(bundle, ContactParameters{}, s);
-  RigidBodies& b = world.bodies();
-  b.velocity[1] = Eigen::Vector3d(0.01, -0.02, 0.005);
-  b.angularMomentum[1] = b.inertia[1].cwiseProduct(Eigen::Vector3d(0, 0, 3.0));  // about a principal axis
+  const RigidBodies& b = world.bodies();
+  world.setVelocity(1, Eigen::Vector3d(0.01, -0.02, 0.005), b.inertia[1].cwiseProduct(Eigen::Vector3d(0, 0, 3.0)));  // about a principal axis
   const double v0 = b.velocity[1].norm(), w0 = b.angularVelocity(1).norm(), e0 = b.kineticEnergy(1);
   const int steps = static_cast<int>(0.02 / world.timeStep());
   for (int i = 0; i < steps; ++i) world.step();

@@ -170,7 +170,9 @@ for _ in $(seq 600); do [ -f "$work/cancel/case_003/run/checkpoint.h5" ] && brea
 [ -f "$work/cancel/case_003/run/checkpoint.h5" ] || { echo "case_003 never checkpointed"; show_logs; exit 1; }
 scancel --batch --signal=TERM "${job}_3"
 echo "[${SECONDS} s] signalled the batch shell of ${job}_3"
-for _ in $(seq 200); do [ "$(count "$work/cancel" interrupted)" -eq 2 ] && break; sleep 0.2; done
+# Until the two are interrupted and the requeued one has started again (on a loaded machine Slurm
+# can take a minute to start it: 40 s once was not enough under a parallel build).
+for _ in $(seq 600); do [ "$(count "$work/cancel" interrupted)" -eq 2 ] && break; sleep 0.2; done
 "$tessera" sweep "$work/cancel" --status | tee "$work/status.log"
 for n in 1 3; do
   grep -q "case_00$n *interrupted *slurm ${job}_$n" "$work/status.log" ||
