@@ -94,7 +94,8 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
     const Shape& shape = bundle.shapes[state_.bodies.shape[i]];
     thinnest = std::min(thinnest, boundingBox(shape.mesh.vertices).sizes().minCoeff());
     if (state_.bodies.fixed[i]) continue;
-    // The stiffest contact: k_n = E M / L (span), or E over the body's shortest bar (bars).
+    // The stiffest contact: k_n = E M / L (span), or E over the body's shortest bar (bars; under
+    // the section rule that bar times the body's least section factor, ContactBars::shortest).
     const double scale = parameters.stiffnessRule != StiffnessRule::Span
                              ? parameters.youngsModulus / bars_.shortest(static_cast<int>(i)) / parameters.normalStiffness()
                              : 1.0;
