@@ -201,7 +201,7 @@ void bindTiles(py::module_& m) {
         options.thickness = thickness;
         if (!(angle >= 0 && angle < 90)) throw InputError("angle must be the faces' tilt in degrees, in [0, 90)");
         options.angle = angle * M_PI / 180;
-        options.surface = baseSurface(surface, radius);
+        options.surface = baseSurface(surface, radius, 1.0);
         options.fixPerimeter = fixPerimeter;
         checkBundleOutput(output, replace);
         PrepLog log;
@@ -215,7 +215,7 @@ void bindTiles(py::module_& m) {
       py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false,
       "A slab bundle generated from a tiling (as `tessera tile --tiling`, docs/tiling.md): 'square', 'hex', 'triangle', "
       "'rhombille', 'voronoi' or a polygon mesh file (in m); pitch, thickness and radius in m, angle in degrees; "
-      "surface 'plane', 'sphere' or 'cylinder'. Returns a summary.");
+      "surface 'plane', 'sphere', 'cylinder' or a mesh file of a height field (in m). Returns a summary.");
 }
 
 // check and read_bundle: what a bundle holds and whether it stands.

@@ -76,7 +76,7 @@ Bundle slabFromTiling(const TileArguments& a, PrepLog& log) {
   options.thickness = *a.thickness * m;
   if (!(a.angle >= 0 && a.angle < 90)) throw InputError("--angle " + std::to_string(a.angle) + ": give the faces' tilt in degrees, in [0, 90)");
   options.angle = a.angle * M_PI / 180;
-  options.surface = baseSurface(a.surface, a.radius * m);
+  options.surface = baseSurface(a.surface, a.radius * m, m);
   if (a.fix != "perimeter" && a.fix != "none") throw InputError("--fix '" + a.fix + "': use perimeter or none");
   options.fixPerimeter = a.fix == "perimeter";
   if (options.tilingFile.empty() && static_cast<long>(options.tiling.columns) * options.tiling.rows * (a.tiling == "rhombille" ? 3 : 1) > a.maxBodies)
@@ -160,7 +160,9 @@ void addTileCommand(CLI::App& app) {
   cmd->add_option("--thickness", args->thickness, "With --tiling: the blocks' thickness, in --unit");
   cmd->add_option("--angle", args->angle, "With --tiling: the tilt of the blocks' side faces, degrees")->capture_default_str();
   cmd->add_option("--seed", args->seed, "With --tiling voronoi: the seed of the random sites")->capture_default_str();
-  cmd->add_option("--surface", args->surface, "With --tiling: lay the tiles on a plane, a sphere (a dome) or a cylinder along x (a barrel vault)")
+  cmd->add_option("--surface", args->surface,
+                  "With --tiling: lay the tiles on a plane, a sphere (a dome), a cylinder along x (a barrel vault), or the surface of "
+                  "a mesh FILE (STL, OBJ, PLY in --unit: a height field over the plan, as a design tool exports a roof)")
       ->capture_default_str();
   cmd->add_option("--radius", args->radius, "With --surface sphere or cylinder: its radius, in --unit");
   cmd->add_option("--unit", args->unit, "Length unit of the mesh and of every length given: m, cm, mm, um, in, ft");

@@ -7,6 +7,8 @@
 #include "geometry/mesh_validation.h"
 #include "geometry/tilted_blocks.h"
 #include "io/input_error.h"
+#include "tests/fixtures/analytic_meshes.h"
+#include "tests/fixtures/temp_dir.h"
 
 #include <catch2/catch.hpp>
 
@@ -192,4 +194,59 @@ TEST_CASE("tilted blocks on a sphere and a cylinder: a dome and a vault without 
             REQUIRE(sharedVolume(g.meshes[t], g.meshes[u], 10 * pitch) <= 1e-6 * pitch * pitch * h);
       }
     }
+}
+
+namespace {
+
+// An OBJ of the height field z(x, y) on an n x n grid of squares (two triangles each) over
+// [-half, half]^2, its triangles facing up (or down).
+std::string heightFieldObj(int n, double half, double (*z)(double, double), bool down = false) {
+  std::string text;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = -half + 2 * half * i / n, y = -half + 2 * half * j / n;
+      text += "v " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z(x, y)) + "\n";
+    }
+  const auto at = [n](int i, int j) { return std::to_string(j * (n + 1) + i + 1); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const std::string a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      text += down ? "f " + a + " " + c + " " + b + "\nf " + a + " " + d + " " + c + "\n"
+                   : "f " + a + " " + b + " " + c + "\nf " + a + " " + c + " " + d + "\n";
+    }
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("tilted blocks on a mesh surface: a flat mesh gives the plane's blocks, a fine spherical cap the sphere's, without overlap") {
+  const double pitch = 0.01, h = 0.00318, theta = 5 * M_PI / 180;
+  test::TempDir dir;
+  test::writeFile(dir / "flat.obj", heightFieldObj(2, 0.05, [](double, double) { return 0.0; }));
+  const GeneratedBlocks plane = generate("hex", pitch, h, theta), flat = generate("hex", pitch, h, theta, baseSurface(dir / "flat.obj", 0, 1.0));
+  for (std::size_t t = 0; t < plane.meshes.size(); ++t) {
+    REQUIRE(flat.meshes[t].vertices.size() == plane.meshes[t].vertices.size());
+    for (std::size_t v = 0; v < plane.meshes[t].vertices.size(); ++v)
+      REQUIRE((flat.meshes[t].vertices[v] - plane.meshes[t].vertices[v]).norm() < 1e-12 * pitch);
+  }
+  // A cap of the 0.6 m sphere on a 0.625 mm grid (its chords' sag 8e-8 m): the sphere's blocks to
+  // 1e-3 of their volume, the file in millimetres and facing down (turned up on reading).
+  test::writeFile(dir / "cap.obj", heightFieldObj(160, 50, [](double x, double y) { return std::sqrt(600.0 * 600 - x * x - y * y) - 600; }, true));
+  const BaseSurface cap = baseSurface(dir / "cap.obj", 0, 1e-3);
+  REQUIRE(cap.normal(cap.point({0.02, -0.01})).z() > 0);
+  const GeneratedBlocks sphere = generate("hex", pitch, h, theta, baseSurface("sphere", 0.6));
+  const GeneratedBlocks meshed = generate("hex", pitch, h, theta, cap);
+  for (std::size_t t = 0; t < sphere.meshes.size(); ++t) {
+    REQUIRE(signedVolume(meshed.meshes[t]) == Approx(signedVolume(sphere.meshes[t])).epsilon(1e-3));
+    for (std::size_t u = t + 1; u < meshed.meshes.size(); ++u)
+      if ((polygonCentroid(meshed.tiling.tiles[t]) - polygonCentroid(meshed.tiling.tiles[u])).norm() < 2 * pitch)
+        REQUIRE(sharedVolume(meshed.meshes[t], meshed.meshes[u], 10 * pitch) <= 1e-6 * pitch * pitch * h);
+  }
+  // Not a height field, too small, not a file.
+  test::writeFile(dir / "closed.obj", "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n"
+                                      "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n");
+  REQUIRE_THROWS_WITH(baseSurface(dir / "closed.obj", 0, 1.0), Catch::Contains("not a height field"));
+  test::writeFile(dir / "small.obj", heightFieldObj(2, 0.01, [](double, double) { return 0.0; }));
+  REQUIRE_THROWS_WITH(generate("hex", pitch, h, theta, baseSurface(dir / "small.obj", 0, 1.0)), Catch::Contains("beyond the surface"));
+  REQUIRE_THROWS_WITH(baseSurface(dir / "missing.obj", 0, 1.0), Catch::Contains("mesh file of the surface"));
 }
