@@ -36,6 +36,9 @@ struct BaseSurface {
   Eigen::Vector3d normal(const Eigen::Vector3d& x) const;
 };
 
+/// "plane", "sphere" or "cylinder": a built-in surface (anything else names a file).
+inline bool isSurfaceKind(const std::string& name) { return name == "plane" || name == "sphere" || name == "cylinder"; }
+
 /// "plane", "sphere" or "cylinder" with its radius (m), or a mesh file (STL, OBJ, PLY) of a
 /// height field in `metresPerUnit` units; InputError for a radius that is not positive (sphere,
 /// cylinder), a name that is neither a surface nor a file, and a mesh that is not a height field

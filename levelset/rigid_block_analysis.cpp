@@ -75,8 +75,28 @@ struct LinearProgram {
     glp_load_matrix(get(), static_cast<int>(rows.size()), ia.data(), ja.data(), ar.data());
   }
 
+  bool interior = false;  // the last solve was the interior-point method's
+  double primal(int column) const { return interior ? glp_ipt_col_prim(get(), column) : glp_get_col_prim(get(), column); }
+
+  // The interior-point method (glp_interior: a primal-dual path-following method on the normal
+  // equations, sparse Cholesky), for the equilibrium programs: any feasible point will do, and on
+  // a 15 x 15 slab (3 198 rows, 19 656 columns) it took 0.3-0.4 s where the dual simplex took
+  // 7 s. Where it stops short (numerical trouble, an undecided status) the simplex method decides.
+  bool solveInterior() {
+    glp_term_out(GLP_OFF);
+    glp_iptcp parameters;
+    glp_init_iptcp(&parameters);
+    parameters.msg_lev = GLP_MSG_OFF;
+    const int code = glp_interior(get(), &parameters);
+    interior = true;
+    if (code == GLP_ENOFEAS || (code == 0 && glp_ipt_status(get()) == GLP_NOFEAS)) return false;
+    if (code == 0 && glp_ipt_status(get()) == GLP_OPT) return true;
+    return solve();
+  }
+
   // True when the simplex method finds an optimum; false when the problem has no feasible point.
   bool solve() {
+    interior = false;
     glp_term_out(GLP_OFF);
     glp_smcp parameters;
     glp_init_smcp(&parameters);
@@ -256,16 +276,16 @@ public:
       }
       glp_set_mat_row(lp_.get(), equations_ + c + 1, kSides + 1, index.data(), value.data());
     }
-    return count_ > 0 && lp_.solve();
+    return count_ > 0 && lp_.solveInterior();
   }
 
   /// The friction the last feasible solution uses: max over corners of sum_k f_k / f_n (<= mu).
   double frictionUsed() const {
     double used = 0;
     for (int c = 0; c < count_; ++c) {
-      const double normal = std::max(glp_get_col_prim(lp_.get(), column(c, 0) + 1), 1e-300);
+      const double normal = std::max(lp_.primal(column(c, 0) + 1), 1e-300);
       double tangential = 0;
-      for (int j = 1; j <= kSides; ++j) tangential += glp_get_col_prim(lp_.get(), column(c, j) + 1);
+      for (int j = 1; j <= kSides; ++j) tangential += lp_.primal(column(c, j) + 1);
       if (tangential > 1e-12 * normal) used = std::max(used, tangential / normal);
     }
     return used;

@@ -3,6 +3,7 @@
 
 #include "io/input_error.h"
 #include "io/text_file.h"
+#include "geometry/base_surface.h"
 #include "geometry/plane_tiling.h"
 #include "levelset/shape.h"
 
@@ -299,6 +300,8 @@ void readGeometryTable(const std::string& path, const toml::table& root, Scene& 
     throw InputError(path + ": geometry.family must be planar, wave, box or osteomorphic (or left out for a tiling), got \"" + g.family + "\"");
   if (!isTilingKind(g.tiling) && fs::path(g.tiling).is_relative())
     g.tiling = (fs::path(path).parent_path() / g.tiling).string();  // a tiling file, beside the scene
+  if (!isSurfaceKind(g.surface) && fs::path(g.surface).is_relative())
+    g.surface = (fs::path(path).parent_path() / g.surface).string();  // a surface file, beside the scene
   scene.geometry = g;
 }
 
@@ -352,6 +355,9 @@ std::string sceneWithOverrides(const std::string& path, const std::vector<std::p
   if (base.geometry && !isTilingKind(base.geometry->tiling))  // a tiling file, absolute
     if (toml::table* g = root["geometry"].as_table(); g && g->contains("tiling"))
       g->insert_or_assign("tiling", fs::absolute(base.geometry->tiling).lexically_normal().string());
+  if (base.geometry)  // a surface file, absolute
+    if (toml::table* g = root["geometry"].as_table(); g && g->contains("surface") && !isSurfaceKind(base.geometry->surface))
+      g->insert_or_assign("surface", fs::absolute(base.geometry->surface).lexically_normal().string());
   for (const auto& [key, value] : overrides) {
     const auto dot = key.find('.');
     if (dot == std::string::npos) throw InputError("scene key '" + key + "': give it as table.key, e.g. material.friction");
