@@ -30,7 +30,7 @@ std::optional<std::pair<int, Eigen::Vector3d>> triangleOver(const TriangleMesh& 
 std::pair<int, Eigen::Vector3d> requireTriangleOver(const BaseSurface& s, const Eigen::Vector2d& plan) {
   const auto found = triangleOver(s.mesh->mesh, plan);
   if (!found)
-    throw InputError("the tiling reaches beyond the surface " + s.name + " (no triangle under a tile's corner at x = " +
+    throw InputError("the tiling reaches beyond the surface " + s.name + " (no triangle under the tiling's point at x = " +
                      std::to_string(plan.x()) + " m, y = " + std::to_string(plan.y()) +
                      " m); give a smaller --grid or a surface that covers the tiling in plan");
   return *found;

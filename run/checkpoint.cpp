@@ -18,7 +18,10 @@ using h5::Handle;
 namespace {
 
 constexpr const char* kFormat = "tessera-checkpoint";
-constexpr std::int64_t kVersion = 7;
+// 8: `fixed` marks the supports only (a retired body was marked fixed too in 7, which a version-7
+// reader would need to keep it still). Version 7 files are read: their supports are the bundle's.
+constexpr std::int64_t kVersion = 8;
+constexpr std::int64_t kOldestVersion = 7;
 
 hsize_t count(std::size_t n) { return static_cast<hsize_t>(n); }
 
@@ -370,9 +373,10 @@ CheckpointSource readCheckpointSource(const std::string& path) {
     Handle f = h5::openFileReadOnly(path);
     if (h5::readStringAttribute(f.get(), "format") != kFormat) throw InputError(path + ": not a Tessera checkpoint");
     const auto version = h5::readIntAttribute(f.get(), "format_version");
-    if (version != kVersion)
+    if (version < kOldestVersion || version > kVersion)
       throw InputError(path + ": checkpoint format version " + std::to_string(version) + " is not supported (this " +
-                       generatorVersion() + " reads version " + std::to_string(kVersion) + "; run it again from the scene)");
+                       generatorVersion() + " reads versions " + std::to_string(kOldestVersion) + " to " + std::to_string(kVersion) +
+                       "; run it again from the scene)");
     CheckpointSource s;
     s.scene = h5::readStringAttribute(f.get(), "scene");
     s.sceneText = h5::readStringAttribute(f.get(), "scene_text");

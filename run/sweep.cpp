@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <map>
 #include <sstream>
@@ -344,29 +345,25 @@ double number(const nlohmann::json& v) { return v.is_number() ? v.get<double>() 
 // One numeric column of the sweep tables (after the case's keys): its name, summary.json's where
 // it is one of its response parameters, and its value from a case's summary.json.
 struct SweepColumn {
-  const char* name;
-  double (*value)(const nlohmann::json& summary);
+  std::string name;
+  std::function<double(const nlohmann::json& summary)> value;
 };
 
 const std::vector<SweepColumn>& sweepColumns() {
-  static const std::vector<SweepColumn> columns{
-      {"peak_load_N", [](const nlohmann::json& j) { return number(j["response"]["peak_load_N"]); }},
-      {"delta_at_peak_mm", [](const nlohmann::json& j) { return number(j["response"]["delta_at_peak_mm"]); }},
-      {"stiffness_N_per_mm", [](const nlohmann::json& j) { return number(j["response"]["stiffness_N_per_mm"]); }},
-      {"loading_energy_mJ", [](const nlohmann::json& j) { return number(j["response"]["loading_energy_mJ"]); }},
-      {"loading_energy_to_end_mJ", [](const nlohmann::json& j) { return number(j["response"]["loading_energy_to_end_mJ"]); }},
-      {"failure_deflection_mm", [](const nlohmann::json& j) { return number(j["response"]["failure_deflection_mm"]); }},
-      {"block_displacement_at_failure_mm",
-       [](const nlohmann::json& j) { return number(j["response"]["block_displacement_at_failure_mm"]); }},
-      {"load_drops", [](const nlohmann::json& j) { return static_cast<double>(j["response"]["load_drops"].size()); }},
-      {"energy_residual_fraction",
-       [](const nlohmann::json& j) {
-         const nlohmann::json& e = j["response"]["energy"];
-         const double work = e["work_mJ"];
-         return work > 0 ? e["residual_mJ"].get<double>() / work : 0.0;
-       }},
-      {"wall_seconds", [](const nlohmann::json& j) { return number(j["run"]["wall_seconds"]); }},
-  };
+  static const std::vector<SweepColumn> columns = [] {
+    std::vector<SweepColumn> c;
+    for (const char* name : {"peak_load_N", "delta_at_peak_mm", "stiffness_N_per_mm", "loading_energy_mJ", "loading_energy_to_end_mJ",
+                             "failure_deflection_mm", "block_displacement_at_failure_mm"})
+      c.push_back({name, [name](const nlohmann::json& j) { return number(j["response"][name]); }});
+    c.push_back({"load_drops", [](const nlohmann::json& j) { return static_cast<double>(j["response"]["load_drops"].size()); }});
+    c.push_back({"energy_residual_fraction", [](const nlohmann::json& j) {
+                   const nlohmann::json& e = j["response"]["energy"];
+                   const double work = e["work_mJ"];
+                   return work > 0 ? e["residual_mJ"].get<double>() / work : 0.0;
+                 }});
+    c.push_back({"wall_seconds", [](const nlohmann::json& j) { return number(j["run"]["wall_seconds"]); }});
+    return c;
+  }();
   return columns;
 }
 

@@ -68,7 +68,7 @@ double ContactBars::unboundedFactor(int shape, const Eigen::Vector3d& local) con
   Eigen::Vector3d facing = Eigen::Vector3d::Zero();  // the summed area vectors of the faces turned towards `local`
   for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
     const Eigen::Vector3d v = 0.5 * triangleAreaVector(mesh, t);
-    if (v.dot(local) > std::sqrt(0.5) * v.norm()) facing += v;
+    if (v.dot(local) > kFacingCosine * v.norm()) facing += v;
   }
   const double contactArea = facing.norm();
   if (!(contactArea > 0)) return 1.0;

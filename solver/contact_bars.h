@@ -31,7 +31,8 @@ namespace tessera {
 ///     w' = f w,   f = (A_c / s) int_0^s dy / A(y)                      (a bar's series compliance)
 /// with y along the block's facing normal m from its centroid to its support s along m, A(y) its
 /// section by the plane m . x = y (sectionArea), and m, A_c the direction and length of the
-/// summed area vectors of the faces turned towards the contact (within 45 degrees of it). A prism
+/// summed area vectors of the faces turned towards the contact (within 40 degrees of it: a
+/// diagonal neighbour of vertical-faced blocks, at 45 degrees to both faces, has none). A prism
 /// has f = 1 (the bar rule); a hexagonal block, twice as wide at its centre as at a face, f = ln 2;
 /// a block whose face is wider than its inside (a tetrahedral block's side), f > 1. The integral is the midpoint rule over
 /// kSectionSamples slices; sections below a tenth of A_c count as a tenth (a curved face's tip, where
@@ -47,6 +48,7 @@ public:
   ContactBars() = default;
 
   static constexpr int kSectionSamples = 32;
+  static constexpr double kFacingCosine = 0.766044443118978;  ///< cos 40 degrees
   static constexpr int kBoundFaces = 64;  ///< the largest faces whose normals bound f below
 
   /// m, w_a + w_b of two bodies.

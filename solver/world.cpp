@@ -221,15 +221,20 @@ void World::setPose(int i, const Eigen::Vector3d& position, const Eigen::Quatern
   requireMoving(state_.bodies, i, "setPose");
   if (!position.allFinite() || !orientation.coeffs().allFinite() || std::abs(orientation.norm() - 1) > 1e-9)
     throw std::invalid_argument("setPose: a position that is not finite or an orientation that is not a unit quaternion");
-  // After the first step the books are open: the energy the jump stores in the contacts (or
-  // releases) is booked as supplied, from the forces evaluated at once at the new pose.
-  const double stored = state_.steps > 0 ? energy().elastic : 0.0;
+  // Before the first step the body is simply built there (gravity's work counts from here);
+  // after it the books are open: whatever the jump changes in them (the energy stored in the
+  // contacts, gravity's work) is booked as supplied, from the forces evaluated at once at the new
+  // pose, so that the residual does not move.
+  const double residual = state_.steps > 0 ? energy().residual() : 0.0;
   state_.bodies.position[i] = position;
   state_.bodies.orientation[i] = orientation;
   state_.pairsValid = state_.forcesValid = false;
-  if (state_.steps == 0) return;
+  if (state_.steps == 0) {
+    state_.startPosition[i] = position;
+    return;
+  }
   evaluateForces(0.0);
-  state_.initialEnergy += energy().elastic - stored;
+  state_.initialEnergy += residual - energy().residual();
 }
 
 void World::setVelocity(int i, const Eigen::Vector3d& velocity, const Eigen::Vector3d& angularMomentum) {

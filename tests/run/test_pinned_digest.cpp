@@ -32,11 +32,17 @@ std::string cpuVersion() {
 #endif
 }
 
+// The compiler and whether it optimised (GCC fuses multiply-adds only when it does).
 std::string compiler() {
+#if defined(__OPTIMIZE__)
+  const std::string optimised;
+#else
+  const std::string optimised = " unoptimised";
+#endif
 #if defined(__clang__)
-  return std::string("clang ") + __clang_version__;
+  return std::string("clang ") + __clang_version__ + optimised;
 #elif defined(__GNUC__)
-  return std::string("gcc ") + __VERSION__;
+  return std::string("gcc ") + __VERSION__ + optimised;
 #else
   return "";
 #endif
