@@ -19,13 +19,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The recipe as text, every value exact: equal texts, equal bundles.
+// The recipe as text, every value exact, and the contents of its tiling or surface file (an
+// edited file is another recipe): equal texts, equal bundles.
 std::string recipeText(const GeometryRecipe& g) {
   std::ostringstream out;
   out.precision(17);
   out << "tiling " << g.tiling << "\npitch " << g.pitch << "\ngrid " << g.columns << " " << g.rows << "\nthickness " << g.thickness
       << "\nangle " << g.angle << "\nsurface " << g.surface << "\nradius " << g.radius << "\nfix " << g.fixPerimeter << "\nseed "
       << g.seed << "\nfamily " << g.family << "\nsize " << g.size << "\namplitude " << g.amplitude << "\n";
+  if (g.family.empty() && !isTilingKind(g.tiling)) out << "tiling file " << fileDigest(g.tiling) << "\n";
+  if (g.family.empty() && !isSurfaceKind(g.surface)) out << "surface file " << fileDigest(g.surface) << "\n";
   return out.str();
 }
 

@@ -126,6 +126,25 @@ TEST_CASE("a scene can carry its geometry: [geometry] in place of bundle, built 
   small.angle = 10;
   REQUIRE(geometryBundle(small, dir / "cache", log) != first);
   REQUIRE(heard.size() == 2);
+  // A tiling from a file: the same file finds its bundle, an edited one (the same path) builds anew.
+  const auto squares = [](double pitch) {  // a 3 x 3 grid of squares as an OBJ of quads, in m
+    std::string obj;
+    for (int j = 0; j <= 3; ++j)
+      for (int i = 0; i <= 3; ++i) obj += "v " + std::to_string(i * pitch) + " " + std::to_string(j * pitch) + " 0\n";
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) {
+        const auto at = [](int x, int y) { return std::to_string(y * 4 + x + 1); };
+        obj += "f " + at(i, j) + " " + at(i + 1, j) + " " + at(i + 1, j + 1) + " " + at(i, j + 1) + "\n";
+      }
+    return obj;
+  };
+  test::writeFile(dir / "tiles.obj", squares(0.01));
+  GeometryRecipe fromFile = small;
+  fromFile.tiling = dir / "tiles.obj";
+  const std::string tiled = geometryBundle(fromFile, dir / "cache", log);
+  REQUIRE(geometryBundle(fromFile, dir / "cache", log) == tiled);
+  test::writeFile(dir / "tiles.obj", squares(0.012));
+  REQUIRE(geometryBundle(fromFile, dir / "cache", log) != tiled);
   // A block family on the square grid: the wave block, one shape for the checkerboard.
   GeometryRecipe wave;
   wave.family = "wave";
