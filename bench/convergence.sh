@@ -7,11 +7,14 @@
 # Usage: bench/convergence.sh [OUT_DIR]   (default out/convergence; about 5 min on 2 cores;
 #        re-running skips finished cases). Draws docs/convergence.png and prints the table.
 # CONTACT_EVALUATION=one-way charts the node spacing (uniform, graded, the reference) under one-way
-# contact evaluation (docs/physics.md) into out/convergence_one_way and docs/convergence_one_way.png.
+# contact evaluation (docs/physics.md) into out/convergence_one_way and docs/convergence_one_way.png;
+# CONTACT_AREA=blended likewise with blended contact areas (out/convergence_blended,
+# docs/convergence_blended.png).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 evaluation=${CONTACT_EVALUATION:-two-way}
-suffix=$([ "$evaluation" = two-way ] || echo "_${evaluation//-/_}")
+area=${CONTACT_AREA:-nearest}
+suffix=$([ "$evaluation" = two-way ] || echo "_${evaluation//-/_}")$([ "$area" = nearest ] || echo "_$area")
 out=${1:-"$here/out/convergence$suffix"}
 tessera="$here/build/tools/tessera"
 slab="$here/out/default_slab"
@@ -22,6 +25,7 @@ mkdir -p "$out"
 
 # The default scene with its bundle made absolute, and the same with grid level sets everywhere.
 solver=$([ "$evaluation" = two-way ] || echo "contact_evaluation = \"$evaluation\"")
+solver+=$([ "$area" = nearest ] || printf '\ncontact_area = "%s"' "$area")
 sed "s#^bundle = .*#bundle = \"$slab\"#" "$here/assets/scenes/default.toml" > "$out/base.toml"
 { cat "$out/base.toml"; printf '\n[solver]\nexact_convex_level_sets = false\nexact_mesh_level_sets = false\n%s\n' "$solver"; } \
   > "$out/grid.toml"
@@ -34,7 +38,7 @@ sweep base graded --set resolution.node_spacing=$spacings --set resolution.edge_
 # The reference: 0.15 mm uniform nodes (14 700 per block), on both cores.
 "$tessera" sweep "$out/base.toml" -o "$out/fine" --jobs 1 --threads 2 --set resolution.node_spacing=0.15e-3 \
   --set resolution.edge_spacing_fraction=1.0
-if [ "$evaluation" != two-way ]; then
+if [ -n "$suffix" ]; then
   /usr/bin/python3 "$here/bench/plot_convergence.py" "$out" "$here/docs/convergence$suffix.png"
   exit 0
 fi

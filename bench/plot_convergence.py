@@ -31,13 +31,16 @@ def label(s):
     return text
 
 
-def contact_evaluation(out):
-    """The [solver] contact_evaluation of the chart's base scene (two-way unless it sets one)."""
+def contact_formulation(out):
+    """The [solver] contact_evaluation and contact_area of the chart's base scene (two-way and
+    nearest unless it sets them)."""
+    found = {"contact_evaluation": "two-way", "contact_area": "nearest"}
     with open(os.path.join(out, "base.toml")) as f:
         for line in f:
-            if line.strip().startswith("contact_evaluation"):
-                return line.split("=", 1)[1].strip().strip('"')
-    return "two-way"
+            key = line.split("=", 1)[0].strip()
+            if key in found:
+                found[key] = line.split("=", 1)[1].strip().strip('"')
+    return "%s, %s area" % (found["contact_evaluation"], found["contact_area"])
 
 
 def read_cases(out):
@@ -89,8 +92,8 @@ def main():
     ax.set_ylim(floor * 0.8, 100)
     ax.set_xlabel("wall time of the run, s (1 thread; the reference: 2 threads; 2-core machine)")
     ax.set_ylabel("largest error of P_max, K, W vs the reference, %")
-    ax.set_title("Default indentation test, %s contact evaluation: error against cost (reference %s, drawn at %.1f %%)" %
-                 (contact_evaluation(out), reference["label"], floor), fontsize=9)
+    ax.set_title("Default indentation test (%s): error against cost (reference %s, drawn at %.1f %%)" %
+                 (contact_formulation(out), reference["label"], floor), fontsize=9)
     ax.legend(fontsize=8, loc="upper right")
     fig.tight_layout()
     fig.savefig(png, dpi=130)

@@ -179,6 +179,7 @@ nlohmann::json summaryJson(const Scene& scene, const Bundle& bundle, const Conta
         {"span_length_mm", contact.spanLength * 1e3},
         {"span_interfaces", contact.spanInterfaces},
         {"contact_evaluation", contact.evaluation == ContactEvaluation::OneWay ? "one-way" : "two-way"},
+        {"contact_area", contact.area == ContactArea::Nearest ? "nearest" : "blended"},
         {"stiffness_rule", stiffnessRuleName(contact.stiffnessRule)}}},
       {"shapes", shapes},
       {"run",

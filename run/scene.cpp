@@ -222,6 +222,11 @@ void readSolverTable(const std::string& path, const toml::table& root, Scene& sc
   if (evaluation != "two-way" && evaluation != "one-way")
     throw InputError(path + ": solver.contact_evaluation must be \"two-way\" or \"one-way\", got \"" + evaluation + "\"");
   scene.contact.evaluation = evaluation == "one-way" ? ContactEvaluation::OneWay : ContactEvaluation::TwoWay;
+  std::string area = scene.contact.area == ContactArea::Nearest ? "nearest" : "blended";
+  solver.text("contact_area", area);
+  if (area != "blended" && area != "nearest")
+    throw InputError(path + ": solver.contact_area must be \"blended\" or \"nearest\", got \"" + area + "\"");
+  scene.contact.area = area == "nearest" ? ContactArea::Nearest : ContactArea::Blended;
   ImplicitSettings& implicit = scene.solver.implicit;
   solver.number("implicit_tolerance", implicit.tolerance, 1e-14, 1e-2, "of the force scale");
   solver.integer("implicit_max_iterations", implicit.maxIterations, 1, 1000);

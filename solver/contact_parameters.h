@@ -9,6 +9,14 @@ namespace tessera {
 /// LAMMPS ls/dem and Kawamoto et al. 2016; equal volumes: a's nodes).
 enum class ContactEvaluation { TwoWay, OneWay };
 
+/// A node's effective area inside a convex body (exact planes; docs/physics.md, "Contact area"):
+/// its area projected on the nearest face's plane, which jumps where the nearest face switches
+/// at an edge with the node inside (nearest: the stored energy changes there without work), or
+/// blended over the faces near the nearest one, continuous, with the force of its potential
+/// (blended, solver/blended_area.h). Other level sets (meshes, grids, obstacles) take the nearest
+/// surface point's normal either way.
+enum class ContactArea { Blended, Nearest };
+
 /// Which stiffness each contact gets (docs/physics.md, "Contact stiffness"): one k_n = E M / L for
 /// every contact (span: the paper's rule, from the slab's free span), or k_n = E / (w_a + w_b) per
 /// pair, w the length of the elastic bar from each body's centroid to the contact, 0 for a fixed
@@ -36,6 +44,7 @@ struct ContactParameters {
   double perNodeStiffness = 0.0;
   ContactEvaluation evaluation = ContactEvaluation::TwoWay;  ///< scene: solver.contact_evaluation
   StiffnessRule stiffnessRule = StiffnessRule::Span;          ///< scene: material.stiffness_rule
+  ContactArea area = ContactArea::Nearest;                    ///< scene: solver.contact_area
 
   /// The share of its area each node of side `side` of a body pair (a, b) carries (side 0: a's
   /// nodes in b; side 1: b's in a), given the bodies' volumes: 0.5 two-way; one-way 1 for the

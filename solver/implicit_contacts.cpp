@@ -1,6 +1,8 @@
 #include "solver/implicit_contacts.h"
 
+#include "solver/blended_area.h"
 #include "solver/node_contact_law.h"
+#include "solver/planes_in_frame.h"
 
 #include <algorithm>
 #include <cmath>
@@ -82,9 +84,11 @@ public:
   // the other side's level set there (1/m: a sphere's 1 / |x - c|; 0 for planes) with the
   // gradient of the effective area it gives, d a / d(rel) (m; 0 for planes), and the area's
   // change with the node's body turning against the other side, d a / d(theta_M - theta_O) (m^2).
+  // blended: the area is blended (blended_area.h) with the gradient areaGradient, and the contact
+  // carries its potential's force -1/2 k_n d^2 grad a.
   void add(std::uint32_t key, const Eigen::Vector3d& p, const Eigen::Vector3d& n, double depth, double area,
            const Eigen::Vector3d& rel, double sign, double curvature, const Eigen::Vector3d& areaGradient,
-           const Eigen::Vector3d& areaTurn) {
+           const Eigen::Vector3d& areaTurn, bool blended) {
     // The committed spring, area and energy of this node contact (none: a new contact, area -1).
     Eigen::Vector3d spring = Eigen::Vector3d::Zero();
     double areaBefore = -1.0, energyBefore = 0.0;
@@ -104,7 +108,8 @@ public:
     const Eigen::Vector3d trial(ux, uy, uz);
     const SpringUpdate<double> update = capSpring(rateLaw_, depth, area, rate, turnedDotTrial, ux, uy, uz);
     const ContactForce<double> f = contactForce(rateLaw_, n.x(), n.y(), n.z(), depth, area, rate, ux, uy, uz);
-    const Eigen::Vector3d force(f.fx, f.fy, f.fz);
+    const double pull = blended ? -0.5 * rateLaw_.perAreaNormal * depth * depth : 0.0;
+    const Eigen::Vector3d force = Eigen::Vector3d(f.fx, f.fy, f.fz) + pull * areaGradient;
 
     // K = -df / d(rel) (docs/physics.md, "Implicit method"):
     //   normal     (k_n a + eta_n a / dt) n n^T                       while f_n > 0
@@ -167,6 +172,13 @@ public:
         wf << perArea, r.cross(perArea);
         wa << areaGradient, r.cross(areaGradient) + areaTurn;
         out_.stiffness.noalias() -= wf * wa.transpose();
+        // The potential's force -1/2 k_n d^2 grad a changes with the depth: K += -k_n d grad a n^T
+        // (its change with grad a, 1/2 k_n d^2 times the area's second derivatives, left out).
+        if (blended) {
+          Eigen::Matrix<double, 6, 1> wg;
+          wg << areaGradient, r.cross(areaGradient);
+          out_.stiffness.noalias() -= (rateLaw_.perAreaNormal * depth) * wg * wn.transpose();
+        }
       }
       isotropic_ += isotropic;
       isotropicLever_ += isotropic * r;
@@ -191,10 +203,14 @@ public:
     // (ContactTally::projection), the area's change times the energy per area, which the explicit
     // step takes at the step's end and an increment as the mean of its start and end (the
     // trapezoidal rule: an increment's change is not small).
-    const double perArea = 0.5 * rateLaw_.perAreaNormal * depth * depth + 0.5 * rateLaw_.perAreaTangent * (ux * ux + uy * uy + uz * uz);
-    const double perAreaBefore = areaBefore > 0 && rateLaw_.perNodeNormal == 0 ? energyBefore / areaBefore : perArea;
-    double removed = areaBefore > 0 ? 0.5 * (perAreaBefore + perArea) * (areaBefore - area) : 0.0;
-    if (areaBefore == 0) removed = -f.stored;
+    // A blended area's normal energy changes by its potential's work: only the spring's is booked.
+    const double leak = blended ? 0.0 : 1.0;
+    const double perArea = leak * 0.5 * rateLaw_.perAreaNormal * depth * depth + 0.5 * rateLaw_.perAreaTangent * (ux * ux + uy * uy + uz * uz);
+    const double perAreaBefore = !(areaBefore > 0) || rateLaw_.perNodeNormal != 0 ? perArea
+                                 : blended ? 0.5 * rateLaw_.perAreaTangent * spring.squaredNorm()
+                                           : energyBefore / areaBefore;
+    double removed = areaBefore >= 0 ? 0.5 * (perAreaBefore + perArea) * (areaBefore - area) : 0.0;
+    if (areaBefore == 0 && !blended) removed = -f.stored;
     if (!(area > 0)) removed = energyBefore;
     out_.tally.projection += removed;
     out_.contacts.push_back({key, Eigen::Vector3d(ux, uy, uz), f.stored, area});
@@ -233,11 +249,13 @@ private:
 
 // The nodes of one side of a pair tested against the other side O's level set, phi(y, normal)
 // with y in O's frame (normal: O's frame, set when phi < 0): the side's listed candidates, or when
-// they are not listed every node in `region` (M's frame), listing those within the band.
+// they are not listed every node in `region` (M's frame), listing those within the band. `blend`:
+// O's planes (its frame), whose blended areas the nodes take (blendedArea); null: the projection
+// on the contact plane.
 template <class LevelSet>
 void visitSide(Accumulator& acc, const ShapeModel& sm, const SidePoses& s, const Eigen::AlignedBox3d& region, std::uint32_t side,
                double areaShare, ImplicitCandidates& candidates, bool listing, double band, LevelSet&& levelSet,
-               double sphereRadius = 0.0) {
+               const PlanesInFrame* blend = nullptr, double sphereRadius = 0.0) {
   const double sign = side == 0 ? 1.0 : -1.0;
   const auto visit = [&](std::uint32_t rank) {
     const Eigen::Vector3d& x = sm.nodes.position[rank];
@@ -247,12 +265,20 @@ void visitSide(Accumulator& acc, const ShapeModel& sm, const SidePoses& s, const
     if (listing && phi < band) candidates.keys.push_back(side << 31 | rank);
     if (!(phi < 0)) return;
     const Eigen::Vector3d n = s.RO * normal, ni = s.RM * sm.nodes.normal[rank];
-    const double area = facingArea(areaShare * sm.nodes.area[rank], -ni.dot(n));
+    double area = facingArea(areaShare * sm.nodes.area[rank], -ni.dot(n));
+    Eigen::Vector3d blendGradient = Eigen::Vector3d::Zero();  // d a / d(rel), world
+    if (blend != nullptr) {
+      const Eigen::Vector3d a = sm.nodes.area[rank] * (s.toO * sm.nodes.normal[rank]);
+      const BlendedArea<double> b =
+          blendedArea(*blend, y.x(), y.y(), y.z(), phi, normal.x(), normal.y(), normal.z(), a.x(), a.y(), a.z(), areaShare);
+      area = b.area;
+      blendGradient = s.RO * Eigen::Vector3d(b.slopeX, b.slopeY, b.slopeZ) / -phi;
+    }
     const Eigen::Vector3d rel = s.relMatrix * x + s.relShift;
     // Inside a sphere n = (x - c) / |x - c| turns as dn = kappa (I - n n^T) d(rel), kappa = 1 / |x - c|,
     // and the area a = A (-n_i . n) with it: d a / d(rel) = -A kappa (I - n n^T) n_i.
     // Turning the node's body by dtheta against the other side turns n_i against n: d a = -A (n_i x n) . dtheta.
-    Eigen::Vector3d areaGradient = Eigen::Vector3d::Zero(), areaTurn = Eigen::Vector3d::Zero();
+    Eigen::Vector3d areaGradient = blendGradient, areaTurn = Eigen::Vector3d::Zero();
     const double curvature = sphereRadius > 0 ? 1.0 / (sphereRadius + phi) : 0.0;
     if (area > 0) {
       const double A = areaShare * sm.nodes.area[rank];
@@ -262,7 +288,7 @@ void visitSide(Accumulator& acc, const ShapeModel& sm, const SidePoses& s, const
       if (turn.squaredNorm() > 1e-4) areaTurn = -A * turn;
       if (curvature > 0) areaGradient = -A * curvature * (ni - n * n.dot(ni));
     }
-    acc.add(side << 31 | rank, s.RM * x + s.cM, n, -phi, area, rel, sign, curvature, areaGradient, areaTurn);
+    acc.add(side << 31 | rank, s.RM * x + s.cM, n, -phi, area, rel, sign, curvature, areaGradient, areaTurn, blend != nullptr);
   };
   if (listing) {
     sm.nodes.forEachNodeIn(region, [&](int rank) { visit(static_cast<std::uint32_t>(rank)); });
@@ -340,6 +366,8 @@ void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, 
       Eigen::AlignedBox3d region = boxInNodeFrame(so.box, s);
       region.min().array() -= band;
       region.max().array() += band;
+      const bool blended = !so.planes.empty() && scene.parameters.area == ContactArea::Blended;
+      const PlanesInFrame planes(blended ? so.planes : std::vector<FacePlane>{}, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
       visitSide(acc, sm, s, region, side, share, candidates, listing, band, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
         if (so.planes.empty()) return so.meshLevelSet(y, normal);
         // The exact level set of a convex polyhedron: max_f (n_f . y - d_f), the first plane of
@@ -353,7 +381,7 @@ void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, 
           }
         }
         return phi;
-      });
+      }, blended ? &planes : nullptr);
     }
     acc.finish();
     return;
@@ -369,7 +397,7 @@ void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, 
       const double distance = y.norm();
       normal = distance > 0 ? Eigen::Vector3d(y / distance) : Eigen::Vector3d::UnitZ();
       return distance - sphere.radius;
-    }, sphere.radius);
+    }, nullptr, sphere.radius);
     acc.finish();
     return;
   }

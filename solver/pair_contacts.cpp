@@ -1,9 +1,10 @@
 #include "solver/pair_contacts.h"
 
-#include "geometry/convex_planes.h"
+#include "solver/blended_area.h"
 #include "solver/contact_law.h"
 #include "solver/cpu_versions.h"
 #include "solver/node_contact_law.h"
+#include "solver/planes_in_frame.h"
 
 #include <algorithm>
 #include <array>
@@ -60,6 +61,7 @@ struct PairBatch {
   int changed = -1;
   std::vector<std::uint32_t> key;
   std::vector<ContactReal> rx, ry, rz, nx, ny, nz, depth, area;
+  std::vector<ContactReal> slopeX, slopeY, slopeZ;  // m^2, d grad a (world; 0 but for a blended area, blended_area.h)
   std::vector<ContactReal> normalSpeed, turned;  // the law's: each contact's v_n and t . s (trialSpring)
 
   /// Room for n contacts (values unset).
@@ -67,7 +69,7 @@ struct PairBatch {
     if (static_cast<int>(key.size()) >= n) return;
     const std::size_t size = static_cast<std::size_t>(n + n / 2);
     key.resize(size);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &normalSpeed, &turned}) v->resize(size);
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &slopeX, &slopeY, &slopeZ, &normalSpeed, &turned}) v->resize(size);
   }
   /// A new contact at the end (values unset); its index.
   int append() {
@@ -79,7 +81,7 @@ struct PairBatch {
     constexpr int block = static_cast<int>(NodeContacts::kLawBlock);
     reserve(from + block);
     std::fill_n(key.data() + from, block, 0u);
-    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &normalSpeed, &turned})
+    for (auto* v : {&rx, &ry, &rz, &nx, &ny, &nz, &depth, &area, &slopeX, &slopeY, &slopeZ, &normalSpeed, &turned})
       std::fill_n(v->data() + from, block, ContactReal(0));
   }
 };
@@ -88,8 +90,11 @@ struct PairBatch {
 // the terms of the relative velocity at a node,
 //   v_M - v_O + w_M x (x - c_M) - w_O x (x - c_O) = v0 + (w_M - w_O) x r,
 // with the lever r = x - c_a and v0 = v_M - v_O + w_O x (c_O - c_a) - w_M x (c_M - c_a).
+// blendedArea: the side's nodes have blended areas, whose normal energy changes by the potential's
+// work (not booked as projection).
 struct SideMotion {
   Eigen::Vector3d shift = Eigen::Vector3d::Zero(), v0 = Eigen::Vector3d::Zero(), spin = Eigen::Vector3d::Zero();
+  bool blendedArea = false;
 };
 
 // Points moved into another frame, x' = R x + t, n at once (SIMD).
@@ -146,45 +151,6 @@ void gridSamples(const DenseSdf& sdf, int n, const double* __restrict x, const d
   }
 }
 
-// The face planes of a convex body expressed in another body's frame (x_O = R x_M + t), in hot
-// arrays: phi(p) = max_f (n_f . p - d_f), the exact level set of a convex polyhedron (1-Lipschitz),
-// evaluated without transforming p.
-struct PlanesInFrame {
-  static constexpr int kMax = kMaxConvexPlanes;
-  static_assert(kMax <= 64, "the kept planes are bits of a 64-bit mask");
-  std::array<double, kMax> nx, ny, nz, offset;  // M's frame
-  int count = 0;
-
-  // R, t: the other body's frame from M's. Only the planes of `kept` (bit f: plane f), in their
-  // order.
-  PlanesInFrame(const std::vector<FacePlane>& planes, const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
-                std::uint64_t kept = ~0ull) {
-    const int all = static_cast<int>(planes.size());  // <= kMax: makeShapeModel refuses more
-    for (int f = 0; f < all; ++f) {
-      if (!(kept >> f & 1)) continue;
-      const Eigen::Vector3d n = R.transpose() * planes[f].normal;
-      nx[count] = n.x();
-      ny[count] = n.y();
-      nz[count] = n.z();
-      offset[count] = planes[f].offset - planes[f].normal.dot(t);
-      ++count;
-    }
-  }
-  double value(int f, const Eigen::Vector3d& p) const { return nx[f] * p.x() + ny[f] * p.y() + nz[f] * p.z() - offset[f]; }
-  double phi(const Eigen::Vector3d& p, int& best) const {
-    best = 0;
-    double highest = value(0, p);
-    for (int f = 1; f < count; ++f) {
-      const double v = value(f, p);
-      if (v > highest) {
-        highest = v;
-        best = f;
-      }
-    }
-    return highest;
-  }
-};
-
 // Four doubles side by side (GCC's vector extension): one AVX2 register, two SSE2 ones; the same
 // operations in every lane. (Eight, two AVX2 registers, compile the selects below to scalar code.)
 using Lanes = double __attribute__((vector_size(32)));
@@ -213,15 +179,17 @@ SideCandidates candidatesOf(PairContacts& pair, std::uint32_t side) {
 // max_f v_f, and until then each candidate moves less than band / sqrt(3) relative to the other
 // side (ContactScene::candidateBand), which changes every v_f, and phi, by less than that. A plane
 // more than 2 band below phi at every candidate stays below it; without it, phi and the best
-// plane (the first of largest value) are the same, to the bit.
-std::uint64_t planesNear(const SideCandidates& c, const PlanesInFrame& all, double band) {
+// plane (the first of largest value) are the same, to the bit. With blended areas (blendedArea,
+// width c: plane f takes part while v_f >= (1 + c) phi) a plane below (1 + c) phi - (2 + c) band at
+// every candidate stays out of every blend (a superset of the planes kept without: phi < band).
+std::uint64_t planesNear(const SideCandidates& c, const PlanesInFrame& all, double band, double blendWidth) {
   std::uint64_t kept = 0;
   for (int i = 0; i < c.n; ++i) {
     const Eigen::Vector3d p(c.x[i], c.y[i], c.z[i]);
     int best;
     const double phi = all.phi(p, best);
     for (int f = 0; f < all.count; ++f)
-      if (all.value(f, p) >= phi - 2 * band) kept |= 1ull << f;
+      if (all.value(f, p) >= (1 + blendWidth) * phi - (2 + blendWidth) * band) kept |= 1ull << f;
   }
   return kept;
 }
@@ -237,11 +205,12 @@ __attribute__((always_inline)) inline void facingSharedArea(Lanes& area, const L
 struct BatchSlice {
   std::uint32_t* __restrict key;
   ContactReal *__restrict rx, *__restrict ry, *__restrict rz, *__restrict nx, *__restrict ny, *__restrict nz,
-      *__restrict depth, *__restrict area;
+      *__restrict depth, *__restrict area, *__restrict slopeX, *__restrict slopeY, *__restrict slopeZ;
   BatchSlice(PairBatch& b, int start)
       : key(b.key.data() + start), rx(b.rx.data() + start), ry(b.ry.data() + start), rz(b.rz.data() + start),
         nx(b.nx.data() + start), ny(b.ny.data() + start), nz(b.nz.data() + start), depth(b.depth.data() + start),
-        area(b.area.data() + start) {}
+        area(b.area.data() + start), slopeX(b.slopeX.data() + start), slopeY(b.slopeY.data() + start),
+        slopeZ(b.slopeZ.data() + start) {}
 };
 
 // Lane compaction without branches: for the mask of a block of four lanes (bit j: lane j is kept),
@@ -314,7 +283,7 @@ __attribute__((always_inline)) inline int laneBits(const LaneMask& m) {
 
 // Four node contacts (or none, lane by lane) as the listings compute them.
 struct ContactLanes {
-  Lanes rx, ry, rz, nx, ny, nz, depth, area;
+  Lanes rx, ry, rz, nx, ny, nz, depth, area, slopeX{}, slopeY{}, slopeZ{};
   Keys key;
 };
 
@@ -329,6 +298,9 @@ __attribute__((always_inline)) inline void eachQuantity(const ContactLanes& bloc
   store(block.nz, out.nz);
   store(block.depth, out.depth);
   store(block.area, out.area);
+  store(block.slopeX, out.slopeX);
+  store(block.slopeY, out.slopeY);
+  store(block.slopeZ, out.slopeZ);
 }
 
 // The lanes of `mask` (laneBits) of a block of contacts, rounded to ContactReal, packed to the
@@ -366,7 +338,8 @@ __attribute__((always_inline)) inline int storeKept(const ContactLanes& block, i
 // for the candidates inside (phi < 0), packed to the front of the lanes without branches
 // (storeKept): key, lever r = RM p + (c_M - c_a), the best plane's world normal RM n, depth -phi,
 // and area: `share` of the node's, projected on the contact plane, -n_i . n (taken in M's frame),
-// clipped at 0 (facingSharedArea). The batch needs room for four entries past the last candidate.
+// clipped at 0 (facingSharedArea), or blended over the planes near the nearest (side.blendedArea:
+// blendedArea, with its slope). The batch needs room for four entries past the last candidate.
 TESSERA_CPU_VERSIONS
 int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& planes, const SideMotion& side,
                    const Eigen::Matrix3d& RM, double share, PairBatch& batch) {
@@ -383,9 +356,12 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
     lanes.load(z, CandidateLanes::Z, i);
     Lanes value = planes.nx[0] * x + planes.ny[0] * y + planes.nz[0] * z - planes.offset[0];
     Lanes nnx = Lanes{} + planes.nx[0], nny = Lanes{} + planes.ny[0], nnz = Lanes{} + planes.nz[0];
+    Lanes second = Lanes{} - std::numeric_limits<double>::infinity();  // the second largest value
     for (int f = 1; f < planes.count; ++f) {
       const Lanes v = planes.nx[f] * x + planes.ny[f] * y + planes.nz[f] * z - planes.offset[f];
       const LaneMask higher = v > value;
+      const Lanes lower = higher ? value : v;
+      second = lower > second ? lower : second;
       value = higher ? v : value;
       nnx = higher ? planes.nx[f] : nnx;
       nny = higher ? planes.ny[f] : nny;
@@ -405,7 +381,19 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
     b.depth = -value;
     Lanes ax, ay, az;
     lanes.loadAreaNormals(ax, ay, az, i);
-    facingSharedArea(b.area, -(ax * nnx + ay * nny + az * nnz), share);
+    // Blended where a lane's second plane is within c d of its nearest (t < 1: blendedArea; a
+    // little wider, for its rounding); elsewhere the blend is the nearest plane's projection, and
+    // 0 slope, which the plain path gives.
+    const bool nearSwitch = side.blendedArea && laneBits((value < 0) & (second >= (1 + 1.001 * kAreaBlendWidth) * value)) != 0;
+    if (nearSwitch) {
+      const BlendedArea<Lanes> blend = blendedArea(planes, x, y, z, value, nnx, nny, nnz, ax, ay, az, share);
+      b.area = blend.area;
+      b.slopeX = r00 * blend.slopeX + r01 * blend.slopeY + r02 * blend.slopeZ;
+      b.slopeY = r10 * blend.slopeX + r11 * blend.slopeY + r12 * blend.slopeZ;
+      b.slopeZ = r20 * blend.slopeX + r21 * blend.slopeY + r22 * blend.slopeZ;
+    } else {
+      facingSharedArea(b.area, -(ax * nnx + ay * nny + az * nnz), share);
+    }
     lanes.loadKeys(b.key, i);
     count = storeKept(b, mask, out, count);
   }
@@ -514,14 +502,19 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
   const Real ax1 = real(sides[1].v0.x()), ay1 = real(sides[1].v0.y()), az1 = real(sides[1].v0.z());
   const Real sx0 = real(sides[0].spin.x()), sy0 = real(sides[0].spin.y()), sz0 = real(sides[0].spin.z());
   const Real sx1 = real(sides[1].spin.x()), sy1 = real(sides[1].spin.y()), sz1 = real(sides[1].spin.z());
+  // Each side's share of the normal energy a change of area changes without work: 0 for blended
+  // areas, whose potential's force does that work.
+  const Real leak0 = sides[0].blendedArea ? Real(0) : Real(1), leak1 = sides[1].blendedArea ? Real(0) : Real(1);
   b.padFrom(count);
   const int n = static_cast<int>(NodeContacts::padded(static_cast<std::size_t>(count)));
   Real fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nfx = 0, nfy = 0, nfz = 0, wx = 0, wy = 0, wz = 0;
+  Real px = 0, py = 0, pz = 0, qx = 0, qy = 0, qz = 0;  // the blended areas' potential force and its moment
   Real weight = 0, elastic = 0, friction = 0, viscous = 0, sliding = 0, projection = 0, deepest = 0;
   const std::uint32_t* __restrict key = b.key.data();
   const Real *__restrict rx = b.rx.data(), *__restrict ry = b.ry.data(), *__restrict rz = b.rz.data(),
              *__restrict nx = b.nx.data(), *__restrict ny = b.ny.data(), *__restrict nz = b.nz.data(),
-             *__restrict depth = b.depth.data(), *__restrict area = b.area.data();
+             *__restrict depth = b.depth.data(), *__restrict area = b.area.data(),
+             *__restrict slopeX = b.slopeX.data(), *__restrict slopeY = b.slopeY.data(), *__restrict slopeZ = b.slopeZ.data();
   Real *__restrict ux = contacts.springX.data(), *__restrict uy = contacts.springY.data(),
        *__restrict uz = contacts.springZ.data(), *__restrict stored = contacts.energy.data(),
        *__restrict storedArea = contacts.area.data(), *__restrict normalSpeed = b.normalSpeed.data(),
@@ -553,7 +546,7 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
     const Real reached = area[i] > 0 ? depth[i] : Real(0);
     deepest = reached > deepest ? reached : deepest;
   }
-#pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, elastic, projection)
+#pragma omp simd reduction(+ : fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz, px, py, pz, qx, qy, qz, elastic, projection)
   for (int i = 0; i < n; ++i) {
     const Real ai = area[i], a0 = storedArea[i], e0 = stored[i];
     const ContactForce<Real> f = contactForce(law, nx[i], ny[i], nz[i], depth[i], ai, normalSpeed[i], ux[i], uy[i], uz[i]);
@@ -561,8 +554,19 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
     storedArea[i] = ai;
     // Forces on a: +f for a node of a, -f for a node of b (side 1); a contact facing away (area 0)
     // has none.
-    const Real sign = Real(1) - Real(2) * static_cast<Real>(static_cast<std::int32_t>(key[i] >> 31));
+    const Real side = static_cast<Real>(static_cast<std::int32_t>(key[i] >> 31));
+    const Real sign = Real(1) - Real(2) * side;
     const Real gx = sign * f.fx, gy = sign * f.fy, gz = sign * f.fz, gn = sign * f.fn;
+    // A blended area's potential adds -1/2 k_n d^2 grad a = -1/2 k_n d (d grad a), summed apart
+    // (0 for other areas: their sums keep their bits).
+    const Real pull = sign * Real(-0.5) * law.perAreaNormal * depth[i];
+    const Real ex = pull * slopeX[i], ey = pull * slopeY[i], ez = pull * slopeZ[i];
+    px += ex;
+    py += ey;
+    pz += ez;
+    qx += ry[i] * ez - rz[i] * ey;
+    qy += rz[i] * ex - rx[i] * ez;
+    qz += rx[i] * ey - ry[i] * ex;
     fx += gx;
     fy += gy;
     fz += gz;
@@ -578,16 +582,19 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
     elastic += f.stored;
     // Stored energy is proportional to the area (with stiffnesses per area; per node it is not):
     // what the change of area alone removed, the energy per area times the area lost (a contact
-    // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it).
+    // coming back from a cut, area 0, brings all of its energy back; a cut takes all of it). A
+    // blended area's normal energy changes by its potential's work: only the spring's is booked
+    // (and a cut's, which a blended area reaches near 0).
     const Real u2 = ux[i] * ux[i] + uy[i] * uy[i] + uz[i] * uz[i];
-    const Real perArea = Real(0.5) * law.perAreaNormal * depth[i] * depth[i] + Real(0.5) * law.perAreaTangent * u2;
-    Real removed = a0 > 0 ? perArea * (a0 - ai) : Real(0);  // kept
-    removed = a0 == 0 ? -f.stored : removed;                // back from a cut
-    removed = ai > 0 ? removed : e0;                        // cut now
+    const Real leak = leak0 + (leak1 - leak0) * side;  // arithmetic, not a select: the loop stays in SIMD lanes
+    const Real perArea = leak * Real(0.5) * law.perAreaNormal * depth[i] * depth[i] + Real(0.5) * law.perAreaTangent * u2;
+    Real removed = a0 >= 0 ? perArea * (a0 - ai) : Real(0);  // kept (a new contact: -1)
+    removed = a0 == 0 ? leak * -f.stored + (Real(1) - leak) * removed : removed;  // back from a cut
+    removed = ai > 0 ? removed : e0;                          // cut now
     projection += removed;
   }
   PairSums sums;
-  const Real value[12] = {fx, fy, fz, mx, my, mz, nfx, nfy, nfz, wx, wy, wz};
+  const Real value[12] = {fx + px, fy + py, fz + pz, mx + qx, my + qy, mz + qz, nfx, nfy, nfz, wx, wy, wz};
   std::copy(value, value + 12, sums.value);
   sums.weight = weight;
   sums.elastic = elastic;
@@ -657,6 +664,7 @@ struct Accumulator {
     out.nz[0] = real(normal.z());
     out.depth[0] = real(depth);
     out.area[0] = real(facingArea(area, projection));
+    out.slopeX[0] = out.slopeY[0] = out.slopeZ[0] = 0;
   }
 
   // The pair's contacts as they were before this step, for the batch's keys: each one's spring,
@@ -943,6 +951,7 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
       region.max().array() += scene.candidateBand;
     }
     const SideMotion& motion = acc.beginSide(side, node, other);
+    const bool blend = scene.parameters.area == ContactArea::Blended;
     if (!so.planes.empty()) {
       // A convex other side: its planes moved into M's frame once, n' = toO^T n, d' = d - n . shift,
       // so that a candidate is tested as it is: phi = max_f (n'_f . p - d'_f).
@@ -957,8 +966,9 @@ void evaluateBodyPair(const ContactScene& scene, PairContacts& pair) {
           int best;
           return all.phi(sm.nodes.position[key & kRankMask], best);
         });
-        pair.planesKept[side] = planesNear(candidatesOf(pair, side), all, scene.candidateBand);
+        pair.planesKept[side] = planesNear(candidatesOf(pair, side), all, scene.candidateBand, blend ? kAreaBlendWidth : 0.0);
       }
+      acc.sides[side].blendedArea = blend;
       const PlanesInFrame planes(so.planes, toO, shift, pair.planesKept[side]);
       convexSideContacts(pair, side, planes, RM, motion, share, scratch.batch);
     } else {
