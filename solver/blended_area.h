@@ -35,11 +35,13 @@ struct BlendedArea {
 /// The blended area of nodes at p (x, y, z) inside a convex body given by `planes` (count, nx, ny,
 /// nz, offset: n_k . p - o_k, in p's frame), with phi = max_k (n_k . p - o_k) < 0 and (n1x, n1y,
 /// n1z) the first plane of largest value's normal; (ax, ay, az) each node's area times its outward
-/// normal and `share` the share of it the node carries. V: double, or a vector of doubles (lanes
-/// whose phi is not negative give values to be ignored, not NaN traps).
+/// normal and `share` the share of it the node carries; into `out`. V: double, or a vector of
+/// doubles (lanes whose phi is not negative give values to be ignored, not NaN traps; vectors by
+/// reference, which keeps the ABI of every CPU version the same).
 template <class V, class Planes>
-__attribute__((always_inline)) inline BlendedArea<V> blendedArea(const Planes& planes, V x, V y, V z, V phi, V n1x, V n1y, V n1z, V ax, V ay, V az,
-                                  double share) {
+__attribute__((always_inline)) inline void blendedArea(const Planes& planes, const V& x, const V& y, const V& z, const V& phi,
+                                                       const V& n1x, const V& n1y, const V& n1z, const V& ax, const V& ay,
+                                                       const V& az, double share, BlendedArea<V>& out) {
   constexpr double c = kAreaBlendWidth;
   const V zero{}, one = zero + 1.0;
   const V depth = -phi;
@@ -70,7 +72,10 @@ __attribute__((always_inline)) inline BlendedArea<V> blendedArea(const Planes& p
     gz += t < 1.0 ? sz : zero;
   }
   const V scale = share / weights;
-  return {share * mean, gx * scale, gy * scale, gz * scale};
+  out.area = share * mean;
+  out.slopeX = gx * scale;
+  out.slopeY = gy * scale;
+  out.slopeZ = gz * scale;
 }
 
 }  // namespace tessera

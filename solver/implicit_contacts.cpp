@@ -269,8 +269,8 @@ void visitSide(Accumulator& acc, const ShapeModel& sm, const SidePoses& s, const
     Eigen::Vector3d blendGradient = Eigen::Vector3d::Zero();  // d a / d(rel), world
     if (blend != nullptr) {
       const Eigen::Vector3d a = sm.nodes.area[rank] * (s.toO * sm.nodes.normal[rank]);
-      const BlendedArea<double> b =
-          blendedArea(*blend, y.x(), y.y(), y.z(), phi, normal.x(), normal.y(), normal.z(), a.x(), a.y(), a.z(), areaShare);
+      BlendedArea<double> b;
+      blendedArea(*blend, y.x(), y.y(), y.z(), phi, normal.x(), normal.y(), normal.z(), a.x(), a.y(), a.z(), areaShare, b);
       area = b.area;
       blendGradient = s.RO * Eigen::Vector3d(b.slopeX, b.slopeY, b.slopeZ) / -phi;
     }

@@ -386,7 +386,8 @@ int convexContacts(int start, const SideCandidates& c, const PlanesInFrame& plan
     // 0 slope, which the plain path gives.
     const bool nearSwitch = side.blendedArea && laneBits((value < 0) & (second >= (1 + 1.001 * kAreaBlendWidth) * value)) != 0;
     if (nearSwitch) {
-      const BlendedArea<Lanes> blend = blendedArea(planes, x, y, z, value, nnx, nny, nnz, ax, ay, az, share);
+      BlendedArea<Lanes> blend;
+      blendedArea(planes, x, y, z, value, nnx, nny, nnz, ax, ay, az, share, blend);
       b.area = blend.area;
       b.slopeX = r00 * blend.slopeX + r01 * blend.slopeY + r02 * blend.slopeZ;
       b.slopeY = r10 * blend.slopeX + r11 * blend.slopeY + r12 * blend.slopeZ;

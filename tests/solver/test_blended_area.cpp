@@ -31,8 +31,10 @@ PlanesInFrame boxPlanes() {
 BlendedArea<double> areaAt(const PlanesInFrame& planes, const Eigen::Vector3d& p, const Eigen::Vector3d& areaNormal) {
   int best;
   const double phi = planes.phi(p, best);
-  return blendedArea(planes, p.x(), p.y(), p.z(), phi, planes.nx[best], planes.ny[best], planes.nz[best], areaNormal.x(),
-                     areaNormal.y(), areaNormal.z(), 0.5);
+  BlendedArea<double> out;
+  blendedArea(planes, p.x(), p.y(), p.z(), phi, planes.nx[best], planes.ny[best], planes.nz[best], areaNormal.x(),
+              areaNormal.y(), areaNormal.z(), 0.5, out);
+  return out;
 }
 
 }  // namespace
