@@ -284,8 +284,9 @@ void visitSide(Accumulator& acc, const ShapeModel& sm, const SidePoses& s, const
       const double A = areaShare * sm.nodes.area[rank];
       // (Skipped below a hundredth of a radian between n_i and -n: a face on a face, where the
       // term is that fraction of a fraction d / r of the ones kept.)
-      const Eigen::Vector3d turn = ni.cross(n);
-      if (turn.squaredNorm() > 1e-4) areaTurn = -A * turn;
+      // (n_i x n in scalars: built as a vector and read back as one, it stalled on the store.)
+      const double tx = ni.y() * n.z() - ni.z() * n.y(), ty = ni.z() * n.x() - ni.x() * n.z(), tz = ni.x() * n.y() - ni.y() * n.x();
+      if (tx * tx + ty * ty + tz * tz > 1e-4) areaTurn = -A * Eigen::Vector3d(tx, ty, tz);
       if (curvature > 0) areaGradient = -A * curvature * (ni - n * n.dot(ni));
     }
     acc.add(side << 31 | rank, s.RM * x + s.cM, n, -phi, area, rel, sign, curvature, areaGradient, areaTurn, blend != nullptr);
@@ -371,15 +372,23 @@ void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, 
       visitSide(acc, sm, s, region, side, share, candidates, listing, band, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
         if (so.planes.empty()) return so.meshLevelSet(y, normal);
         // The exact level set of a convex polyhedron: max_f (n_f . y - d_f), the first plane of
-        // largest value giving the normal.
+        // largest value giving the normal. A node is tested only for being inside (phi < 0) or,
+        // while listing, within the band: a plane at or above that bound settles it (phi is then
+        // at least that plane's value), without the others.
+        // (The largest value and its plane by selects, not branches: which plane is nearest is
+        // no pattern a branch predictor learns.)
+        const double enough = listing ? band : 0.0;
         double phi = -std::numeric_limits<double>::infinity();
-        for (const FacePlane& f : so.planes) {
-          const double v = f.normal.dot(y) - f.offset;
-          if (v > phi) {
-            phi = v;
-            normal = f.normal;
-          }
+        std::size_t best = 0;
+        for (std::size_t k = 0; k < so.planes.size(); ++k) {
+          const FacePlane& f = so.planes[k];
+          const double v = f.normal.x() * y.x() + f.normal.y() * y.y() + f.normal.z() * y.z() - f.offset;
+          if (v >= enough) return v;
+          const bool higher = v > phi;
+          best = higher ? k : best;
+          phi = higher ? v : phi;
         }
+        normal = so.planes[best].normal;
         return phi;
       }, blended ? &planes : nullptr);
     }
