@@ -90,7 +90,7 @@ Eigen::Vector3d BaseSurface::normal(const Eigen::Vector3d& x) const {
   return fromCentre.normalized();
 }
 
-BaseSurface baseSurface(const std::string& name, double radius, double metresPerUnit) {
+BaseSurface baseSurface(const std::string& name, double radius, double metresPerUnit, const std::string& up) {
   BaseSurface s;
   if (name == "plane") return s;
   if (name == "sphere" || name == "cylinder") {
@@ -103,6 +103,7 @@ BaseSurface baseSurface(const std::string& name, double radius, double metresPer
     throw InputError("--surface '" + name + "': use plane, sphere or cylinder, or a mesh file of the surface (STL, OBJ, PLY)");
   MeshImportOptions options;
   options.metresPerUnit = metresPerUnit;
+  options.up = up;
   s.kind = BaseSurface::Kind::Mesh;
   s.name = name;
   s.mesh = std::make_shared<const SurfaceMesh>(heightField(importMesh(name, options).mesh, name));

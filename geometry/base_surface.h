@@ -43,6 +43,6 @@ inline bool isSurfaceKind(const std::string& name) { return name == "plane" || n
 /// height field in `metresPerUnit` units; InputError for a radius that is not positive (sphere,
 /// cylinder), a name that is neither a surface nor a file, and a mesh that is not a height field
 /// (a triangle standing vertical, or triangles facing up and down).
-BaseSurface baseSurface(const std::string& name, double radius, double metresPerUnit = 1.0);
+BaseSurface baseSurface(const std::string& name, double radius, double metresPerUnit = 1.0, const std::string& up = "z");
 
 }  // namespace tessera

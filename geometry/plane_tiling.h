@@ -45,10 +45,11 @@ struct EdgeNeighbour {
 std::vector<std::vector<EdgeNeighbour>> edgeNeighbours(const PlaneTiling& tiling, double tolerance);
 
 /// The tiles of a polygon mesh (OBJ, PLY, ... through assimp, polygons kept): each face one tile,
-/// its corners' (x, y) in `metresPerUnit` (the mesh lies in a plane z = constant), turned
-/// counter-clockwise. Named "t<face>". Throws InputError naming the face for a non-convex or
-/// degenerate polygon, and for a mesh that does not lie flat.
-PlaneTiling readTilingFile(const std::string& path, double metresPerUnit);
+/// its corners' (x, y) in `metresPerUnit` after the file's `up` axis is turned into +z
+/// (rotationToZUp; the mesh lies in a plane normal to it), turned counter-clockwise. Named
+/// "t<face>". Throws InputError naming the face for a non-convex or degenerate polygon, and for a
+/// mesh that does not lie flat.
+PlaneTiling readTilingFile(const std::string& path, double metresPerUnit, const std::string& up = "z");
 
 /// The part of a convex polygon where n . x <= d (one pass of Sutherland & Hodgman, CACM 17, 1974).
 std::vector<Eigen::Vector2d> clipPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& n, double d);

@@ -1,6 +1,7 @@
 // readTilingFile: a tiling drawn in a design tool, as a polygon mesh.
 #include "geometry/plane_tiling.h"
 
+#include "geometry/up_axis.h"
 #include "io/input_error.h"
 
 #include <assimp/Importer.hpp>
@@ -25,7 +26,8 @@ bool isConvex(const std::vector<Eigen::Vector2d>& p, double tolerance) {
 
 }  // namespace
 
-PlaneTiling readTilingFile(const std::string& path, double metresPerUnit) {
+PlaneTiling readTilingFile(const std::string& path, double metresPerUnit, const std::string& up) {
+  const Eigen::Matrix3d toZUp = rotationToZUp(up);
   if (!std::filesystem::is_regular_file(path))
     throw InputError(path + ": no such tiling file; give a polygon mesh (OBJ) of the tiles, or a built-in tiling name");
   Assimp::Importer importer;
@@ -44,10 +46,11 @@ PlaneTiling readTilingFile(const std::string& path, double metresPerUnit) {
       for (unsigned k = 0; k < face.mNumIndices; ++k) {
         if (face.mIndices[k] >= mesh->mNumVertices)
           throw InputError(path + ": face " + std::to_string(f) + " names a vertex that is not there; export the tiling again");
-        const aiVector3D& v = mesh->mVertices[face.mIndices[k]];
-        tile.emplace_back(v.x * metresPerUnit, v.y * metresPerUnit);
-        lowest = std::min(lowest, static_cast<double>(v.z) * metresPerUnit);
-        highest = std::max(highest, static_cast<double>(v.z) * metresPerUnit);
+        const aiVector3D& read = mesh->mVertices[face.mIndices[k]];
+        const Eigen::Vector3d v = toZUp * Eigen::Vector3d(read.x, read.y, read.z) * metresPerUnit;
+        tile.emplace_back(v.x(), v.y());
+        lowest = std::min(lowest, v.z());
+        highest = std::max(highest, v.z());
       }
       if (polygonArea(tile) < 0) std::reverse(tile.begin(), tile.end());
       tiling.names.push_back("t" + std::to_string(tiling.tiles.size()));
@@ -58,8 +61,8 @@ PlaneTiling readTilingFile(const std::string& path, double metresPerUnit) {
   for (const auto& tile : tiling.tiles)
     for (const Eigen::Vector2d& x : tile) size = std::max(size, x.norm());
   if (highest - lowest > 1e-6 * size)
-    throw InputError(path + ": the tiles do not lie in one plane z = constant (z spans " + std::to_string((highest - lowest) / metresPerUnit) +
-                     "); give a flat tiling in the xy-plane");
+    throw InputError(path + ": the tiles do not lie in one plane normal to the up axis " + up + " (they span " +
+                     std::to_string((highest - lowest) / metresPerUnit) + " along it); give a flat tiling, and --up for a y-up file");
   for (std::size_t t = 0; t < tiling.tiles.size(); ++t) {
     const double area = polygonArea(tiling.tiles[t]);
     if (!(area > 1e-12 * size * size))

@@ -10,7 +10,7 @@ namespace tessera {
 
 std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options) {
   const PlaneTiling tiling = options.tilingFile.empty() ? makeTiling(options.tiling)
-                                                        : readTilingFile(options.tilingFile, options.metresPerUnit);
+                                                        : readTilingFile(options.tilingFile, options.metresPerUnit, options.up);
   double size = 0;  // the tiling's extent
   for (const auto& tile : tiling.tiles)
     for (const Eigen::Vector2d& x : tile) size = std::max(size, x.norm());

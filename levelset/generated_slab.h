@@ -15,6 +15,7 @@ struct GeneratedSlabOptions {
   TilingOptions tiling;        ///< a built-in tiling, unless tilingFile is given
   std::string tilingFile;      ///< a polygon mesh of the tiles (in `unit`)
   double metresPerUnit = 1;    ///< of tilingFile
+  std::string up = "z";        ///< tilingFile's up axis, turned into +z (a surface mesh's: BaseSurface's own)
   double thickness = 0;        ///< m, h
   double angle = 0;            ///< radians, theta
   BaseSurface surface;         ///< the tiles lifted onto it (a dome, a barrel vault)

@@ -188,8 +188,9 @@ void bindTiles(py::module_& m) {
       "tile_tiling",
       [](const std::string& tiling, const std::string& output, double thickness, double angle, std::pair<int, int> grid,
          std::optional<double> pitch, const std::string& surface, double radius, unsigned seed, bool fixPerimeter,
-         std::optional<double> voxel, std::optional<double> spacing, double edgeSpacing, bool replace) {
+         std::optional<double> voxel, std::optional<double> spacing, double edgeSpacing, bool replace, const std::string& up) {
         GeneratedSlabOptions options;
+        options.up = up;
         if (isTilingKind(tiling)) {
           if (!pitch) throw InputError("tiling '" + tiling + "' needs pitch, the distance between neighbouring tile centres in m");
           if (grid.first < 1 || grid.second < 1 || static_cast<long>(grid.first) * grid.second > 10000)
@@ -201,7 +202,7 @@ void bindTiles(py::module_& m) {
         options.thickness = thickness;
         if (!(angle >= 0 && angle < 90)) throw InputError("angle must be the faces' tilt in degrees, in [0, 90)");
         options.angle = angle * M_PI / 180;
-        options.surface = baseSurface(surface, radius, 1.0);
+        options.surface = baseSurface(surface, radius, 1.0, up);
         options.fixPerimeter = fixPerimeter;
         checkBundleOutput(output, replace);
         PrepLog log;
@@ -212,7 +213,7 @@ void bindTiles(py::module_& m) {
       py::arg("tiling"), py::arg("output"), py::arg("thickness"), py::arg("angle") = 5.0, py::arg("grid") = std::pair<int, int>{7, 7},
       py::arg("pitch") = py::none(), py::arg("surface") = "plane", py::arg("radius") = 0.0, py::arg("seed") = 1u,
       py::arg("fix_perimeter") = true, py::arg("voxel") = py::none(), py::arg("spacing") = py::none(),
-      py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false,
+      py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false, py::arg("up") = "z",
       "A slab bundle generated from a tiling (as `tessera tile --tiling`, docs/tiling.md): 'square', 'hex', 'triangle', "
       "'rhombille', 'voronoi' or a polygon mesh file (in m); pitch, thickness and radius in m, angle in degrees; "
       "surface 'plane', 'sphere', 'cylinder' or a mesh file of a height field (in m). Returns a summary.");

@@ -26,7 +26,7 @@ std::string recipeText(const GeometryRecipe& g) {
   out.precision(17);
   out << "tiling " << g.tiling << "\npitch " << g.pitch << "\ngrid " << g.columns << " " << g.rows << "\nthickness " << g.thickness
       << "\nangle " << g.angle << "\nsurface " << g.surface << "\nradius " << g.radius << "\nfix " << g.fixPerimeter << "\nseed "
-      << g.seed << "\nfamily " << g.family << "\nsize " << g.size << "\namplitude " << g.amplitude << "\n";
+      << g.seed << "\nfamily " << g.family << "\nsize " << g.size << "\namplitude " << g.amplitude << "\nup " << g.up << "\n";
   if (g.family.empty() && !isTilingKind(g.tiling)) out << "tiling file " << fileDigest(g.tiling) << "\n";
   if (g.family.empty() && !isSurfaceKind(g.surface)) out << "surface file " << fileDigest(g.surface) << "\n";
   return out.str();
@@ -87,9 +87,10 @@ std::string geometryBundle(const GeometryRecipe& recipe, const std::string& cach
       options.tiling = {recipe.tiling, recipe.pitch, recipe.columns, recipe.rows, static_cast<unsigned>(recipe.seed)};
     else
       options.tilingFile = recipe.tiling;
+    options.up = recipe.up;
     options.thickness = recipe.thickness;
     options.angle = recipe.angle * M_PI / 180;
-    options.surface = baseSurface(recipe.surface, recipe.radius);
+    options.surface = baseSurface(recipe.surface, recipe.radius, 1.0, recipe.up);
     options.fixPerimeter = recipe.fixPerimeter;
     bundle = generatedSlab(options, "m", ShapeResolution{}, ShapeLimits{}, prep, report);
   }

@@ -290,6 +290,8 @@ void readGeometryTable(const std::string& path, const toml::table& root, Scene& 
   geometry.number("thickness", g.thickness, 1e-6, 100, "m");
   geometry.number("angle", g.angle, 0, 89.9, "degrees");
   geometry.text("surface", g.surface);
+  geometry.text("up", g.up);
+  if (g.up != "x" && g.up != "y" && g.up != "z") throw InputError(path + ": geometry.up must be \"x\", \"y\" or \"z\", got \"" + g.up + "\"");
   geometry.number("radius", g.radius, 0, 1e6, "m");
   std::string fix = "perimeter";
   geometry.text("fix", fix);

@@ -99,7 +99,8 @@ struct GeometryRecipe {
   int columns = 7, rows = 7;      ///< grid = [columns, rows]
   double thickness = 3.18e-3;     ///< m
   double angle = 5;               ///< degrees, the faces' tilt
-  std::string surface = "plane";  ///< plane, sphere, cylinder
+  std::string surface = "plane";  ///< plane, sphere, cylinder, or a surface mesh file (m)
+  std::string up = "z";           ///< the tiling and surface files' up axis, turned into +z
   double radius = 0;              ///< m (sphere, cylinder)
   bool fixPerimeter = true;       ///< fix = "perimeter" (or "none")
   int seed = 1;                   ///< voronoi

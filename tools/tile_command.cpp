@@ -72,11 +72,12 @@ Bundle slabFromTiling(const TileArguments& a, PrepLog& log) {
   } else {
     options.tilingFile = a.tiling;
     options.metresPerUnit = m;
+    options.up = a.up;
   }
   options.thickness = *a.thickness * m;
   if (!(a.angle >= 0 && a.angle < 90)) throw InputError("--angle " + std::to_string(a.angle) + ": give the faces' tilt in degrees, in [0, 90)");
   options.angle = a.angle * M_PI / 180;
-  options.surface = baseSurface(a.surface, a.radius * m, m);
+  options.surface = baseSurface(a.surface, a.radius * m, m, a.up);
   if (a.fix != "perimeter" && a.fix != "none") throw InputError("--fix '" + a.fix + "': use perimeter or none");
   options.fixPerimeter = a.fix == "perimeter";
   if (options.tilingFile.empty() && static_cast<long>(options.tiling.columns) * options.tiling.rows * (a.tiling == "rhombille" ? 3 : 1) > a.maxBodies)
@@ -166,7 +167,7 @@ void addTileCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--radius", args->radius, "With --surface sphere or cylinder: its radius, in --unit");
   cmd->add_option("--unit", args->unit, "Length unit of the mesh and of every length given: m, cm, mm, um, in, ft");
-  cmd->add_option("--up", args->up, "The meshes' up axis (x, y or z), turned into +z (the slab's thickness)")
+  cmd->add_option("--up", args->up, "The up axis (x, y or z) of the block mesh, layout, tiling file or surface file, turned into +z (the slab's thickness)")
       ->check(CLI::IsMember({"x", "y", "z"}))
       ->capture_default_str();
   cmd->add_option("--grid", args->grid, "Square tessellation: columns x rows")->capture_default_str();

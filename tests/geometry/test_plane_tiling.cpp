@@ -199,13 +199,13 @@ TEST_CASE("tilted blocks on a sphere and a cylinder: a dome and a vault without 
 namespace {
 
 // An OBJ of the height field z(x, y) on an n x n grid of squares (two triangles each) over
-// [-half, half]^2, its triangles facing up (or down).
-std::string heightFieldObj(int n, double half, double (*z)(double, double), bool down = false) {
+// [-half, half]^2, its triangles facing up (or down); yUp: written y-up, (x, z, -y).
+std::string heightFieldObj(int n, double half, double (*z)(double, double), bool down = false, bool yUp = false) {
   std::string text;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       const double x = -half + 2 * half * i / n, y = -half + 2 * half * j / n;
-      text += "v " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z(x, y)) + "\n";
+      text += "v " + std::to_string(x) + " " + (yUp ? std::to_string(z(x, y)) + " " + std::to_string(-y) : std::to_string(y) + " " + std::to_string(z(x, y))) + "\n";
     }
   const auto at = [n](int i, int j) { return std::to_string(j * (n + 1) + i + 1); };
   for (int j = 0; j < n; ++j)
@@ -234,6 +234,13 @@ TEST_CASE("tilted blocks on a mesh surface: a flat mesh gives the plane's blocks
   test::writeFile(dir / "cap.obj", heightFieldObj(160, 50, [](double x, double y) { return std::sqrt(600.0 * 600 - x * x - y * y) - 600; }, true));
   const BaseSurface cap = baseSurface(dir / "cap.obj", 0, 1e-3);
   REQUIRE(cap.normal(cap.point({0.02, -0.01})).z() > 0);
+  // The same cap written y-up and read with up = y: the same surface.
+  test::writeFile(dir / "cap_yup.obj", heightFieldObj(160, 50, [](double x, double y) { return std::sqrt(600.0 * 600 - x * x - y * y) - 600; }, true, true));
+  const BaseSurface capUp = baseSurface(dir / "cap_yup.obj", 0, 1e-3, "y");
+  for (const Eigen::Vector2d& at : {Eigen::Vector2d(0.02, -0.01), Eigen::Vector2d(-0.03, 0.025), Eigen::Vector2d(0, 0)}) {
+    REQUIRE((capUp.point(at) - cap.point(at)).norm() < 1e-12);
+    REQUIRE((capUp.normal(cap.point(at)) - cap.normal(cap.point(at))).norm() < 1e-9);
+  }
   const GeneratedBlocks sphere = generate("hex", pitch, h, theta, baseSurface("sphere", 0.6));
   const GeneratedBlocks meshed = generate("hex", pitch, h, theta, cap);
   for (std::size_t t = 0; t < sphere.meshes.size(); ++t) {

@@ -259,28 +259,37 @@ TEST_CASE("tile --tiling: a generated hex slab and its verdict, a tiling file, a
   REQUIRE(verdict["stable"] == true);
   REQUIRE(verdict["least_friction"] == 0.0);
   // The same four free hexagons drawn in a file (mm): a 4 x 4 grid of hexagons as polygons.
-  {
-    std::ofstream obj(dir / "tiles.obj");
-    int base = 1;
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) {
-        const double x = 10 * (c + 0.5 * (r % 2)), y = 10 * std::sqrt(3.0) / 2 * r;
-        for (int k = 0; k < 6; ++k) {
-          const double a = M_PI / 6 + k * M_PI / 3;
-          obj << "v " << x + 10 / std::sqrt(3.0) * std::cos(a) << " " << y + 10 / std::sqrt(3.0) * std::sin(a) << " 0\n";
+  // And drawn y-up, as many design tools export (x, z, -y): the same slab with --up y; read as
+  // z-up, it does not lie flat.
+  for (const bool yUp : {false, true}) {
+    const std::string name = yUp ? "tiles_yup.obj" : "tiles.obj";
+    {
+      std::ofstream obj(dir / name);
+      int base = 1;
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) {
+          const double x = 10 * (c + 0.5 * (r % 2)), y = 10 * std::sqrt(3.0) / 2 * r;
+          for (int k = 0; k < 6; ++k) {
+            const double a = M_PI / 6 + k * M_PI / 3, u = x + 10 / std::sqrt(3.0) * std::cos(a), v = y + 10 / std::sqrt(3.0) * std::sin(a);
+            obj << "v " << u << (yUp ? " 0 " + std::to_string(-v) : " " + std::to_string(v) + " 0") << "\n";
+          }
+          obj << "f";
+          for (int k = 0; k < 6; ++k) obj << " " << base + k;
+          obj << "\n";
+          base += 6;
         }
-        obj << "f";
-        for (int k = 0; k < 6; ++k) obj << " " << base + k;
-        obj << "\n";
-        base += 6;
-      }
+    }
+    const test::CliResult file = test::runTessera("tile --tiling " + quoted(dir / name) + (yUp ? " --up y" : "") +
+                                                  " --thickness 3.18 --angle 5 --unit mm -o " + quoted(dir / (name + ".slab")));
+    INFO(file.err);
+    REQUIRE(file.status == 0);
+    REQUIRE_THAT(file.out, Contains("16 bodies (12 fixed, 4 free)"));
+    REQUIRE_THAT(file.out, Contains("interlocked   yes"));
   }
-  const test::CliResult file =
-      test::runTessera("tile --tiling " + quoted(dir / "tiles.obj") + " --thickness 3.18 --angle 5 --unit mm -o " + quoted(dir / "file"));
-  INFO(file.err);
-  REQUIRE(file.status == 0);
-  REQUIRE_THAT(file.out, Contains("16 bodies (12 fixed, 4 free)"));
-  REQUIRE_THAT(file.out, Contains("interlocked   yes"));
+  const test::CliResult sideways = test::runTessera("tile --tiling " + quoted(dir / "tiles_yup.obj") +
+                                                    " --thickness 3.18 --angle 5 --unit mm -o " + quoted(dir / "sideways"));
+  REQUIRE(sideways.status == 2);
+  REQUIRE_THAT(sideways.err, Contains("--up for a y-up file"));
 
   const auto refused = [&](const std::string& args, const std::string& says) {
     const test::CliResult r = test::runTessera("tile " + args + " -o " + quoted(dir / "bad"));
