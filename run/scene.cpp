@@ -270,6 +270,15 @@ void readOutputTable(const std::string& path, const toml::table& root, Scene& sc
   output.finish();
 }
 
+// The [geometry] keys whose values name files (a tiling, a surface), by key: the recipe's own
+// strings, which a scene resolves beside itself.
+std::vector<std::pair<std::string, std::string*>> recipeFiles(GeometryRecipe& g) {
+  std::vector<std::pair<std::string, std::string*>> files;
+  if (!isTilingKind(g.tiling)) files.emplace_back("tiling", &g.tiling);
+  if (!isSurfaceKind(g.surface)) files.emplace_back("surface", &g.surface);
+  return files;
+}
+
 // [geometry]: a slab generated from a tiling, in place of `bundle`
 void readGeometryTable(const std::string& path, const toml::table& root, Scene& scene) {
   const toml::table* table = root["geometry"].as_table();
@@ -305,10 +314,8 @@ void readGeometryTable(const std::string& path, const toml::table& root, Scene& 
   const std::set<std::string> families{"", "planar", "wave", "box", "osteomorphic"};
   if (!families.count(g.family))
     throw InputError(path + ": geometry.family must be planar, wave, box or osteomorphic (or left out for a tiling), got \"" + g.family + "\"");
-  if (!isTilingKind(g.tiling) && fs::path(g.tiling).is_relative())
-    g.tiling = (fs::path(path).parent_path() / g.tiling).string();  // a tiling file, beside the scene
-  if (!isSurfaceKind(g.surface) && fs::path(g.surface).is_relative())
-    g.surface = (fs::path(path).parent_path() / g.surface).string();  // a surface file, beside the scene
+  for (const auto& [key, file] : recipeFiles(g))  // beside the scene
+    if (fs::path(*file).is_relative()) *file = (fs::path(path).parent_path() / *file).string();
   scene.geometry = g;
 }
 
@@ -359,12 +366,12 @@ std::string sceneWithOverrides(const std::string& path, const std::vector<std::p
   const std::string bundle = root["bundle"].value_or(std::string());
   if (!bundle.empty() && fs::path(bundle).is_relative())
     root.insert_or_assign("bundle", fs::absolute(fs::path(path).parent_path() / bundle).lexically_normal().string());
-  if (base.geometry && !isTilingKind(base.geometry->tiling))  // a tiling file, absolute
-    if (toml::table* g = root["geometry"].as_table(); g && g->contains("tiling"))
-      g->insert_or_assign("tiling", fs::absolute(base.geometry->tiling).lexically_normal().string());
-  if (base.geometry)  // a surface file, absolute
-    if (toml::table* g = root["geometry"].as_table(); g && g->contains("surface") && !isSurfaceKind(base.geometry->surface))
-      g->insert_or_assign("surface", fs::absolute(base.geometry->surface).lexically_normal().string());
+  if (base.geometry) {  // its files, absolute
+    GeometryRecipe recipe = *base.geometry;
+    for (const auto& [key, file] : recipeFiles(recipe))
+      if (toml::table* g = root["geometry"].as_table(); g && g->contains(key))
+        g->insert_or_assign(key, fs::absolute(*file).lexically_normal().string());
+  }
   for (const auto& [key, value] : overrides) {
     const auto dot = key.find('.');
     if (dot == std::string::npos) throw InputError("scene key '" + key + "': give it as table.key, e.g. material.friction");

@@ -172,8 +172,11 @@ public:
         wf << perArea, r.cross(perArea);
         wa << areaGradient, r.cross(areaGradient) + areaTurn;
         out_.stiffness.noalias() -= wf * wa.transpose();
-        // The potential's force -1/2 k_n d^2 grad a changes with the depth: K += -k_n d grad a n^T
-        // (its change with grad a, 1/2 k_n d^2 times the area's second derivatives, left out).
+        // The potential's force -1/2 k_n d^2 grad a changes with the depth: K += -k_n d grad a n^T.
+        // Its change with grad a, 1/2 k_n d^2 times the area's second derivatives, is left out: of
+        // the order k_n A / c^2 inside the blend's wedge (as large as the terms kept there, for the
+        // few nodes within c d of a second plane), so Newton converges more slowly where nodes
+        // cross an edge's bisector, not to another answer.
         if (blended) {
           Eigen::Matrix<double, 6, 1> wg;
           wg << areaGradient, r.cross(areaGradient);
@@ -203,14 +206,18 @@ public:
     // (ContactTally::projection), the area's change times the energy per area, which the explicit
     // step takes at the step's end and an increment as the mean of its start and end (the
     // trapezoidal rule: an increment's change is not small).
-    // A blended area's normal energy changes by its potential's work: only the spring's is booked.
-    const double leak = blended ? 0.0 : 1.0;
+    // A blended area's normal energy changes, as the node moves, by its potential's work: only the
+    // spring's is booked (with a per-node stiffness the normal energy does not scale with the area
+    // and has no such force: booked whole). What its change with the node's turn adds is booked
+    // nowhere (the residual's: docs/physics.md).
+    const bool potential = blended && rateLaw_.perNodeNormal == 0;
+    const double leak = potential ? 0.0 : 1.0;
     const double perArea = leak * 0.5 * rateLaw_.perAreaNormal * depth * depth + 0.5 * rateLaw_.perAreaTangent * (ux * ux + uy * uy + uz * uz);
     const double perAreaBefore = !(areaBefore > 0) || rateLaw_.perNodeNormal != 0 ? perArea
-                                 : blended ? 0.5 * rateLaw_.perAreaTangent * spring.squaredNorm()
+                                 : potential ? 0.5 * rateLaw_.perAreaTangent * spring.squaredNorm()
                                            : energyBefore / areaBefore;
     double removed = areaBefore >= 0 ? 0.5 * (perAreaBefore + perArea) * (areaBefore - area) : 0.0;
-    if (areaBefore == 0 && !blended) removed = -f.stored;
+    if (areaBefore == 0 && !potential) removed = -f.stored;
     if (!(area > 0)) removed = energyBefore;
     out_.tally.projection += removed;
     out_.contacts.push_back({key, Eigen::Vector3d(ux, uy, uz), f.stored, area});

@@ -90,8 +90,8 @@ struct PairBatch {
 // the terms of the relative velocity at a node,
 //   v_M - v_O + w_M x (x - c_M) - w_O x (x - c_O) = v0 + (w_M - w_O) x r,
 // with the lever r = x - c_a and v0 = v_M - v_O + w_O x (c_O - c_a) - w_M x (c_M - c_a).
-// blendedArea: the side's nodes have blended areas, whose normal energy changes by the potential's
-// work (not booked as projection).
+// blendedArea: the side's nodes have blended areas, whose normal energy changes, as a node moves,
+// by the potential's work (not booked as projection; lawAndSums).
 struct SideMotion {
   Eigen::Vector3d shift = Eigen::Vector3d::Zero(), v0 = Eigen::Vector3d::Zero(), spin = Eigen::Vector3d::Zero();
   bool blendedArea = false;
@@ -504,8 +504,11 @@ PairSums lawAndSums(const ContactLawConstants<ContactReal>& law, const SideMotio
   const Real sx0 = real(sides[0].spin.x()), sy0 = real(sides[0].spin.y()), sz0 = real(sides[0].spin.z());
   const Real sx1 = real(sides[1].spin.x()), sy1 = real(sides[1].spin.y()), sz1 = real(sides[1].spin.z());
   // Each side's share of the normal energy a change of area changes without work: 0 for blended
-  // areas, whose potential's force does that work.
-  const Real leak0 = sides[0].blendedArea ? Real(0) : Real(1), leak1 = sides[1].blendedArea ? Real(0) : Real(1);
+  // areas, whose potential's force does that work as the node moves (what the node's turn changes
+  // is booked nowhere: the residual's, docs/physics.md); with a per-node stiffness there is no
+  // such force (the energy does not scale with the area): 1.
+  const bool scalesWithArea = law.perNodeNormal == 0;
+  const Real leak0 = sides[0].blendedArea && scalesWithArea ? Real(0) : Real(1), leak1 = sides[1].blendedArea && scalesWithArea ? Real(0) : Real(1);
   b.padFrom(count);
   const int n = static_cast<int>(NodeContacts::padded(static_cast<std::size_t>(count)));
   Real fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0, nfx = 0, nfy = 0, nfz = 0, wx = 0, wy = 0, wz = 0;

@@ -107,9 +107,17 @@ TEST_CASE("a scene can carry its geometry: [geometry] in place of bundle, built 
   REQUIRE(hex.geometry->columns == 4);
   REQUIRE(hex.geometry->rows == 3);
   REQUIRE(sceneFrom(dir, "[geometry]\ntiling = \"my.obj\"\n").geometry->tiling == (dir / "my.obj"));
+  const Scene files = sceneFrom(dir, "[geometry]\ntiling = \"my.obj\"\nsurface = \"roof.stl\"\nup = \"y\"\n");
+  REQUIRE(files.geometry->surface == (dir / "roof.stl"));
+  REQUIRE(files.geometry->up == "y");
+  // A sweep's scene (sceneWithOverrides, written elsewhere) names both files absolutely.
+  const std::string swept = sceneWithOverrides(dir / "scene.toml", {{"geometry.angle", 6.0}});
+  REQUIRE_THAT(swept, Catch::Contains(fs::absolute(dir / "my.obj").lexically_normal().string()));
+  REQUIRE_THAT(swept, Catch::Contains(fs::absolute(dir / "roof.stl").lexically_normal().string()));
   for (const std::string& bad : {std::string("bundle = \"slab\"\n[geometry]\n"), std::string("[material]\nE = 4e9\n"),
                                  std::string("[geometry]\ngrid = [0, 3]\n"), std::string("[geometry]\nangle = 95\n"),
-                                 std::string("[geometry]\nfix = \"ring\"\n"), std::string("[geometry]\nwidth = 3\n")}) {
+                                 std::string("[geometry]\nfix = \"ring\"\n"), std::string("[geometry]\nwidth = 3\n"),
+                                 std::string("[geometry]\nup = \"w\"\n")}) {
     INFO(bad);
     REQUIRE_THROWS_AS(sceneFrom(dir, bad), InputError);
   }

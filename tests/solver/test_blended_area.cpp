@@ -117,7 +117,8 @@ PathBalance balanceOverEdge(const Eigen::Vector3d start, const Eigen::Quaternion
 
 // Blended: the work is the stored energy's loss to 1e-3 of the energy stored (the trapezoidal
 // rule's error where a node's nearest plane switches and its force turns: measured 2e-4). The
-// nearest plane's projection loses a quarter of it on this path (measured 0.24).
+// nearest plane's projection loses a quarter of it on this path (measured 0.24): what shows that
+// the path crosses the switches the blend is for.
 void requireBalance(const PathBalance& b, bool blended) {
   INFO("work " << b.work << " J, stored " << b.stored << " J, at the start " << b.initial << " J");
   REQUIRE(b.initial > 1e-3);
