@@ -45,7 +45,7 @@ TEST_CASE("a slab tilted 30 degrees: h and K's window are the loaded block's thi
   CHECK(p.stiffness > 0);
 }
 
-TEST_CASE("an indenter sunk past half its radius is warned about, once; the default indenter is not") {
+TEST_CASE("an indenter sunk past half its radius is warned about once and the default indenter is not") {
   // A 3 x 3 slab under an indenter 1000 x softer than the blocks' contacts: it sinks into the
   // loaded block by more than 1.25 mm before the slab resists; with the default stiffness, 0.6 mm
   // of travel sinks it by a few hundredths of its radius.
