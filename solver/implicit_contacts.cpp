@@ -374,27 +374,14 @@ void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, 
       Eigen::AlignedBox3d region = boxInNodeFrame(so.box, s);
       region.min().array() -= band;
       region.max().array() += band;
+      // A convex other side: its planes in its own frame, for its exact level set (and blended areas).
+      const PlanesInFrame planes(so.planes, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
       const bool blended = !so.planes.empty() && scene.parameters.area == ContactArea::Blended;
-      const PlanesInFrame planes(blended ? so.planes : std::vector<FacePlane>{}, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
       visitSide(acc, sm, s, region, side, share, candidates, listing, band, [&](const Eigen::Vector3d& y, Eigen::Vector3d& normal) {
         if (so.planes.empty()) return so.meshLevelSet(y, normal);
-        // The exact level set of a convex polyhedron: max_f (n_f . y - d_f), the first plane of
-        // largest value giving the normal. A node is tested only for being inside (phi < 0) or,
-        // while listing, within the band: a plane at or above that bound settles it (phi is then
-        // at least that plane's value), without the others.
-        // (The largest value and its plane by selects, not branches: which plane is nearest is
-        // no pattern a branch predictor learns.)
-        const double enough = listing ? band : 0.0;
-        double phi = -std::numeric_limits<double>::infinity();
-        std::size_t best = 0;
-        for (std::size_t k = 0; k < so.planes.size(); ++k) {
-          const FacePlane& f = so.planes[k];
-          const double v = f.normal.x() * y.x() + f.normal.y() * y.y() + f.normal.z() * y.z() - f.offset;
-          if (v >= enough) return v;
-          const bool higher = v > phi;
-          best = higher ? k : best;
-          phi = higher ? v : phi;
-        }
+        // A node is tested only for being inside (phi < 0) or, while listing, within the band.
+        int best;
+        const double phi = planes.phiBelow(y, listing ? band : 0.0, best);
         normal = so.planes[best].normal;
         return phi;
       }, blended ? &planes : nullptr);

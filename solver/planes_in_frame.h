@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace tessera {
@@ -46,6 +47,22 @@ struct PlanesInFrame {
         highest = v;
         best = f;
       }
+    }
+    return highest;
+  }
+  /// phi at p and `best`, as phi(), for a caller that needs only whether phi < enough: the first
+  /// plane whose value reaches `enough` settles it, and that value (at least `enough`, at most phi)
+  /// is returned without the others. The largest by selects, not branches: which plane is nearest
+  /// is no pattern a branch predictor learns.
+  double phiBelow(const Eigen::Vector3d& p, double enough, int& best) const {
+    best = 0;
+    double highest = -std::numeric_limits<double>::infinity();
+    for (int f = 0; f < count; ++f) {
+      const double v = value(f, p);
+      if (v >= enough) return v;
+      const bool higher = v > highest;
+      best = higher ? f : best;
+      highest = higher ? v : highest;
     }
     return highest;
   }
