@@ -6,6 +6,7 @@
 // Run: build/bench/bench_solver --benchmark_min_time=3   (results: bench/README.md)
 #include "bench/default_slab.h"
 #include "solver/world.h"
+#include "solver/world_internals.h"
 
 #include <benchmark/benchmark.h>
 
@@ -33,7 +34,8 @@ void IndentationStep(benchmark::State& state) {
   s.exactConvexLevelSets = state.range(1) == 0;
   s.exactMeshLevelSets = state.range(1) == 1;
   s.localDamping = 0.3;
-  World world(slab(static_cast<int>(state.range(2))), ContactParameters{}, s);
+  const Bundle bundle = slab(static_cast<int>(state.range(2)));
+  World world(bundle.shapes, bundle.bodies, ContactParameters{}, s);
   SphereObstacle indenter;
   indenter.center = Eigen::Vector3d(0, 0, 1.59e-3 + 2.5e-3 - 0.02e-3);  // already pressing
   indenter.velocity = Eigen::Vector3d(0, 0, -6e-3);
@@ -42,7 +44,7 @@ void IndentationStep(benchmark::State& state) {
   long evaluations = 0, contacts = 0;
   for (auto _ : state) {
     world.step();
-    for (const PairContacts& p : world.pairs()) {
+    for (const PairContacts& p : WorldInternals::pairs(world)) {
       evaluations += p.evaluations;
       contacts += static_cast<long>(p.contacts.size());
     }
@@ -54,13 +56,14 @@ void IndentationStep(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(contacts) * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["evaluations_per_s_per_core"] =
       benchmark::Counter(static_cast<double>(evaluations) / static_cast<double>(s.threads), benchmark::Counter::kIsRate);
-  state.counters["pairs"] = static_cast<double>(world.pairs().size());
+  state.counters["pairs"] = static_cast<double>(WorldInternals::pairs(world).size());
 }
 
 // The free rotation of every free body of a slab (serial, once a step): ns per free body (the
 // perimeter is fixed). Argument: blocks per side. Each body spins at 1.9 rad/s about a tilted axis.
 void FreeRotation(benchmark::State& state) {
-  RigidBodies bodies = makeRigidBodies(slab(static_cast<int>(state.range(0))), 2500.0);
+  const Bundle bundle = slab(static_cast<int>(state.range(0)));
+  RigidBodies bodies = makeRigidBodies(bundle.shapes, bundle.bodies, 2500.0);
   std::size_t free = 0;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies.angularMomentum[i] = bodies.inertia[i].cwiseProduct(Eigen::Vector3d(1.0, 0.5, -1.5));

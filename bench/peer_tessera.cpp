@@ -14,6 +14,7 @@
 #include "levelset/bundle.h"
 #include "levelset/shape_builder.h"
 #include "solver/world.h"
+#include "solver/world_internals.h"
 
 #include <chrono>
 #include <cmath>
@@ -46,7 +47,7 @@ ContactParameters material() {
 int stepTiming(const std::string& bundleDir, int threads, double dt, int steps) {
   Bundle slab = readBundle(bundleDir);
   for (Body& b : slab.bodies) b.position.head<2>() *= 1 - 5e-4;
-  World world(slab, material(), settings(dt, threads));
+  World world(slab.shapes, slab.bodies, material(), settings(dt, threads));
   SphereObstacle indenter;
   indenter.center = Eigen::Vector3d(0, 0, kThickness / 2 + indenter.radius - 20e-6);
   world.addSphere(indenter);
@@ -55,7 +56,7 @@ int stepTiming(const std::string& bundleDir, int threads, double dt, int steps) 
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < steps; ++i) {
     world.step();
-    for (const PairContacts& p : world.pairs()) {
+    for (const PairContacts& p : WorldInternals::pairs(world)) {
       contacts += static_cast<long>(p.contacts.size());
       evaluations += p.evaluations;
     }
@@ -64,7 +65,7 @@ int stepTiming(const std::string& bundleDir, int threads, double dt, int steps) 
   std::printf("{\"code\": \"tessera\", \"threads\": %d, \"us_per_step\": %.2f, \"node_contacts_per_step\": %.0f, "
               "\"node_evaluations_per_step\": %.0f, \"nodes_per_block\": %zu, \"pairs\": %zu}\n",
               threads, 1e6 * seconds / steps, static_cast<double>(contacts) / steps,
-              static_cast<double>(evaluations) / steps, slab.shapes[0].nodes.size(), world.pairs().size());
+              static_cast<double>(evaluations) / steps, slab.shapes[0].nodes.size(), WorldInternals::pairs(world).size());
   return 0;
 }
 
@@ -83,7 +84,7 @@ World stackedBoxes(double dt, const Eigen::Vector3d& gravity) {
   b.bodies = {base, top};
   SolverSettings s = settings(dt, 1);
   s.gravity = gravity;
-  return World(b, material(), s);
+  return World(b.shapes, b.bodies, material(), s);
 }
 
 int resting(double dt) {

@@ -54,7 +54,7 @@ Outcome indent(const Bundle& slab, double youngsModulus, double friction, double
   scene.protocol.deltaMax = 0.5e-3;
   scene.protocol.stopOnFailure = false;
   scene.output.checkpointSeconds = 1e9;
-  World world(slab, contact, scene.solver);
+  World world(slab.shapes, slab.bodies, contact, scene.solver);
   Outcome o;
   o.dt = world.timeStep();
   IndentationRecord record;

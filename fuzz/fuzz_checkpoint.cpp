@@ -41,7 +41,8 @@ const tessera::Bundle& stack() {
 }
 
 tessera::World& world() {
-  static tessera::World w(stack(), tessera::ContactParameters{}, tessera::SolverSettings{});
+  static const tessera::Bundle bundle = stack();
+  static tessera::World w(bundle.shapes, bundle.bodies, tessera::ContactParameters{}, tessera::SolverSettings{});
   return w;
 }
 

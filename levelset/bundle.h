@@ -1,5 +1,6 @@
 #pragma once
 #include "geometry/tessellation.h"
+#include "levelset/body.h"
 #include "levelset/shape.h"
 
 #include <Eigen/Geometry>
@@ -13,15 +14,6 @@ namespace tessera {
 inline constexpr const char* kBundleFormatName = "tessera-bundle";
 inline constexpr int kBundleFormatVersion = 1;
 inline constexpr const char* kBundleFileName = "bundle.h5";
-
-/// A placed block: a shape at a pose.
-struct Body {
-  std::string name;                                             ///< e.g. "r3c4"
-  int shape = 0;                                                ///< index into Bundle::shapes
-  Eigen::Vector3d position{0, 0, 0};                            ///< m, world position of the body-frame origin
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< unit; body frame -> world
-  bool fixed = false;                                           ///< boundary block: never moves
-};
 
 struct Bundle {
   std::string generator;        ///< tool and version that wrote it

@@ -163,19 +163,18 @@ py::dict contactsOf(const World& world) {
   std::vector<int> a, b, count, sliding;
   std::vector<double> area, elastic;
   std::vector<Eigen::Vector3d> force, normal, point;
-  for (const PairContacts& p : world.pairs()) {
-    if (p.contacts.empty()) continue;
+  for (int k = 0; k < world.pairCount(); ++k) {
+    const PairView p = world.pair(k);
+    if (p.nodeContacts == 0) continue;
     a.push_back(p.a);
     b.push_back(p.b);
-    count.push_back(static_cast<int>(p.contacts.size()));
-    sliding.push_back(p.tally.sliding);
-    double sum = 0;
-    for (const NodeContact& c : p.contacts) sum += c.area;
-    area.push_back(sum);
-    elastic.push_back(p.tally.elastic);
-    force.push_back(p.forceA);
-    normal.push_back(p.normalForceA);
-    point.push_back(p.forcePoint);
+    count.push_back(p.nodeContacts);
+    sliding.push_back(p.slidingNodes);
+    area.push_back(p.area);
+    elastic.push_back(p.elastic);
+    force.push_back(p.force);
+    normal.push_back(p.normalForce);
+    point.push_back(p.point);
   }
   py::dict d;
   d["a"] = column(a);

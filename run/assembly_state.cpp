@@ -6,8 +6,8 @@ namespace tessera {
 
 std::vector<char> touchingBlocks(const World& world) {
   std::vector<char> touching(world.bodies().size(), 0);
-  for (const PairContacts& p : world.pairs())
-    if (p.kind == PairKind::Bodies && !p.contacts.empty()) touching[p.a] = touching[p.b] = 1;
+  for (int k = 0; k < world.pairCount(); ++k)
+    if (const PairView p = world.pair(k); p.kind == PairKind::Bodies && p.nodeContacts > 0) touching[p.a] = touching[p.b] = 1;
   return touching;
 }
 
@@ -20,8 +20,8 @@ std::vector<char> supportedBodies(const World& world) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
   };
-  for (const PairContacts& p : world.pairs())
-    if (p.kind == PairKind::Bodies && !p.contacts.empty()) parent[root(p.a)] = root(p.b);
+  for (int k = 0; k < world.pairCount(); ++k)
+    if (const PairView p = world.pair(k); p.kind == PairKind::Bodies && p.nodeContacts > 0) parent[root(p.a)] = root(p.b);
   std::vector<char> held(n, 0), supported(n, 0);
   for (int i = 0; i < n; ++i)
     if (world.isSupport(i)) held[root(i)] = 1;
@@ -52,8 +52,8 @@ std::vector<char> pushedThroughBodies(const World& world, const std::vector<Eige
   // One pass over the pairs: the summed drop of each body's touching neighbours, and their count.
   std::vector<double> sum(n, 0.0);
   std::vector<int> touching(n, 0);
-  for (const PairContacts& p : world.pairs())
-    if (p.kind == PairKind::Bodies && !p.contacts.empty()) {
+  for (int k = 0; k < world.pairCount(); ++k)
+    if (const PairView p = world.pair(k); p.kind == PairKind::Bodies && p.nodeContacts > 0) {
       sum[p.a] += drop(p.b);
       sum[p.b] += drop(p.a);
       ++touching[p.a];
@@ -69,18 +69,19 @@ std::vector<char> pushedThroughBodies(const World& world, const std::vector<Eige
 
 ContactCounts countContacts(const World& world, int loaded) {
   ContactCounts c;
-  for (const PairContacts& p : world.pairs()) {
-    const long n = static_cast<long>(p.contacts.size());
+  for (int k = 0; k < world.pairCount(); ++k) {
+    const PairView p = world.pair(k);
+    const long n = p.nodeContacts;
     c.all += n;
     if (p.kind != PairKind::Bodies) {
-      if (n > 0 && p.kind == PairKind::Sphere) c.indenterDepth = std::max(c.indenterDepth, p.maxDepth);
+      if (n > 0 && p.kind == PairKind::Sphere) c.indenterDepth = std::max(c.indenterDepth, p.depth);
       continue;
     }
     c.blocks += n;
-    c.blocksSliding += p.tally.sliding;
+    c.blocksSliding += p.slidingNodes;
     if (p.a == loaded || p.b == loaded) {
       c.loaded += n;
-      c.loadedSliding += p.tally.sliding;
+      c.loadedSliding += p.slidingNodes;
     }
   }
   return c;

@@ -98,9 +98,9 @@ struct PairTable {
   std::vector<Eigen::Vector3d> spring;
 };
 
-PairTable tableOf(const std::vector<PairContacts>& pairs) {
+PairTable tableOf(const std::vector<PairState>& pairs) {
   PairTable t;
-  for (const PairContacts& p : pairs) {
+  for (const PairState& p : pairs) {
     t.a.push_back(p.a);
     t.b.push_back(p.b);
     t.contacts.push_back(static_cast<std::int32_t>(p.contacts.size()));
@@ -114,14 +114,14 @@ PairTable tableOf(const std::vector<PairContacts>& pairs) {
     t.torqueA.push_back(p.torqueA);
     t.forceB.push_back(p.forceB);
     t.torqueB.push_back(p.torqueB);
-    t.elastic.push_back(p.tally.elastic);
-    t.depth.push_back(p.maxDepth);
+    t.elastic.push_back(p.elastic);
+    t.depth.push_back(p.depth);
   }
   return t;
 }
 
 // Every count and index is checked against the arrays before it is used.
-std::vector<PairContacts> pairsOf(const PairTable& t) {
+std::vector<PairState> pairsOf(const PairTable& t) {
   const std::size_t n = t.a.size();
   if (t.b.size() != n || t.contacts.size() != n || t.forceA.size() != n || t.torqueA.size() != n || t.forceB.size() != n ||
       t.torqueB.size() != n || t.elastic.size() != n || t.depth.size() != n)
@@ -135,10 +135,10 @@ std::vector<PairContacts> pairsOf(const PairTable& t) {
     throw std::runtime_error("contact counts do not match the contact records");
   for (double key : t.key)
     if (!(key >= 0 && key < 4294967296.0 && key == std::floor(key))) throw std::runtime_error("a contact key out of range");
-  std::vector<PairContacts> pairs;
+  std::vector<PairState> pairs;
   std::size_t next = 0;
   for (std::size_t p = 0; p < n; ++p) {
-    PairContacts pair;
+    PairState pair;
     pair.a = t.a[p];
     pair.b = t.b[p];
     for (int c = 0; c < t.contacts[p]; ++c, ++next)
@@ -147,8 +147,8 @@ std::vector<PairContacts> pairsOf(const PairTable& t) {
     pair.torqueA = t.torqueA[p];
     pair.forceB = t.forceB[p];
     pair.torqueB = t.torqueB[p];
-    pair.tally.elastic = t.elastic[p];
-    pair.maxDepth = t.depth[p];
+    pair.elastic = t.elastic[p];
+    pair.depth = t.depth[p];
     pairs.push_back(std::move(pair));
   }
   return pairs;

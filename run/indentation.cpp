@@ -33,12 +33,10 @@ namespace {
 Snapshot snapshotOf(const World& world, int sphere, double delta, double load) {
   Snapshot s{delta, load, world.bodies().position, world.bodies().orientation, {}, world.bodies().velocity,
              world.sphere(sphere).center};
-  for (const PairContacts& p : world.pairs()) {
-    if (p.contacts.empty()) continue;
-    double area = 0;
-    for (const NodeContact& c : p.contacts) area += c.area;
-    s.forces.push_back({p.a, p.b, p.forcePoint, p.forceA, p.normalForceA, static_cast<int>(p.contacts.size()), area,
-                        p.tally.sliding, world.normalStiffness(p)});
+  for (int k = 0; k < world.pairCount(); ++k) {
+    const PairView p = world.pair(k);
+    if (p.nodeContacts > 0)
+      s.forces.push_back({p.a, p.b, p.point, p.force, p.normalForce, p.nodeContacts, p.area, p.slidingNodes, p.normalStiffness});
   }
   return s;
 }

@@ -289,7 +289,7 @@ void RunSession::prepare(const RunLog& log) {
   // The World checks what only the bundle and material decide (e.g. a fixed time step against
   // the stability estimate): a bad scene value, reported as such.
   try {
-    world_ = std::make_unique<World>(bundle_, contact_, scene_.solver);
+    world_ = std::make_unique<World>(bundle_.shapes, bundle_.bodies, contact_, scene_.solver);
   } catch (const std::invalid_argument& e) {
     throw InputError(scene_.path + ": " + e.what());
   }

@@ -101,8 +101,8 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
   const double band = kCandidateBandRatio * thinnest_;
   const ImplicitScene scene{&state_.bodies, &shapes_, &state_.spheres, &state_.planes, &w.start, parameters_,
                             parameters_.normalStiffness(), parameters_.tangentialStiffness(), dt, band};
-  w.results.resize(state_.pairs.size());
-  w.candidates.resize(state_.pairs.size());
+  w.results.resize(pairs_.size());
+  w.candidates.resize(pairs_.size());
   // The candidates listed this increment stay valid while every pair's sides have moved less than
   // band / sqrt(3) relative to each other since: each side's |dp| + 2 sin(theta / 2) r (the
   // chord of its turn, candidateMotion) at most half of it.
@@ -121,9 +121,9 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
     for (const SphereObstacle& s : state_.spheres) w.listedSphereCentre.push_back(s.center);
   }
   arena_->arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, state_.pairs.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs_.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t p = r.begin(); p != r.end(); ++p)
-        evaluateImplicitPair(scene, state_.pairs[p], committedOf(w.committed, state_.pairs[p]), w.candidates[p], w.results[p]);
+        evaluateImplicitPair(scene, pairs_[p], committedOf(w.committed, pairs_[p]), w.candidates[p], w.results[p]);
     });
   });
 
@@ -137,8 +137,8 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
       for (int j = 0; j < 6; ++j)
         if (m(i, j) != 0) w.triplets.emplace_back(6 * row + i, 6 * column + j, m(i, j));
   };
-  for (std::size_t p = 0; p < state_.pairs.size(); ++p) {
-    const PairContacts& pair = state_.pairs[p];
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const PairContacts& pair = pairs_[p];
     const ImplicitPairResult& r = w.results[p];
     const int a = w.dof[pair.a];
     const bool bodies2 = pair.kind == PairKind::Bodies;
@@ -268,8 +268,8 @@ void World::commitIncrement(double dt, int iterations) {
   std::fill(state_.contactForce.begin(), state_.contactForce.end(), Eigen::Vector3d::Zero());
   std::fill(state_.contactTorque.begin(), state_.contactTorque.end(), Eigen::Vector3d::Zero());
   std::fill(state_.sphereReaction.begin(), state_.sphereReaction.end(), Eigen::Vector3d::Zero());
-  for (std::size_t p = 0; p < state_.pairs.size(); ++p) {
-    PairContacts& pair = state_.pairs[p];
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    PairContacts& pair = pairs_[p];
     ImplicitPairResult& r = w.results[p];
     pair.contacts.clear();
     for (const NodeContact& c : r.contacts) pair.contacts.push_back(c);
@@ -362,8 +362,8 @@ bool World::lostEquilibrium() const {
   bool moving = false, unloading = false;
   for (std::size_t k = 0; k < state_.spheres.size(); ++k) {
     Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
-    for (std::size_t p = 0; p < state_.pairs.size(); ++p)
-      if (state_.pairs[p].kind == PairKind::Sphere && -1 - state_.pairs[p].b == static_cast<int>(k))
+    for (std::size_t p = 0; p < pairs_.size(); ++p)
+      if (pairs_[p].kind == PairKind::Sphere && -1 - pairs_[p].b == static_cast<int>(k))
         reaction -= w.results[p].force.head<3>();
     const Eigen::Vector3d& velocity = state_.spheres[k].velocity;
     const Eigen::Vector3d before = k < w.startReaction.size() ? w.startReaction[k] : Eigen::Vector3d::Zero();
@@ -400,7 +400,7 @@ void World::implicitStep() {
     const Eigen::Matrix3d R = bodies.orientation[i].toRotationMatrix();
     w.startInertia[i] = R * bodies.inertia[i].asDiagonal() * R.transpose();
   }
-  w.committed = state_.pairs;
+  w.committed = pairs_;
   std::sort(w.committed.begin(), w.committed.end(), [](const PairContacts& x, const PairContacts& y) {
     return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
   });
@@ -436,7 +436,7 @@ void World::implicitStep() {
     if (converged && !(lostEquilibrium() && dt > settings_.implicit.dynamicIncrementRatio * automaticDt_)) break;
     // Cut: back to the start, a quarter of the increment.
     bodies = w.startBodies;
-    state_.pairs = w.committed;
+    pairs_ = w.committed;
     state_.pairsValid = false;
     ++state_.implicit.cutbacks;
     dt *= 0.25;

@@ -1,4 +1,6 @@
 #pragma once
+#include "solver/pair_state.h"
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -14,15 +16,6 @@ namespace tessera {
 /// error of about 1e-7 per contact, far below what the answers resolve (docs/physics.md,
 /// "Precision of the contact law"). A pair's sums are added in float, the pairs' in double.
 using ContactReal = float;
-
-/// A node in contact and its tangential spring: key = side << 31 | rank (side 0: a node of body
-/// a in b's level set; side 1: a node of b in a's).
-struct NodeContact {
-  std::uint32_t key;
-  Eigen::Vector3d spring;  ///< m
-  double energy;           ///< J, stored in this node contact
-  double area;             ///< m^2, its effective (projected) area; 0: inside but facing away
-};
 
 /// The node contacts of a pair, sorted by key, each quantity in its own array: the contact law
 /// reads and writes the springs, areas and energies in place. Read one contact at a time as a

@@ -8,6 +8,7 @@
 #include "solver/node_bins.h"
 #include "solver/node_contacts.h"
 #include "solver/obstacles.h"
+#include "solver/pair_view.h"
 #include "solver/rigid_bodies.h"
 #include "solver/travel.h"
 
@@ -104,7 +105,7 @@ struct ShapeModel {
 /// 0 where the node faces away (projection <= 0, or NaN). docs/physics.md, "Contact".
 inline double facingArea(double share, double projection) { return share * (projection > 0 ? projection : 0.0); }
 
-/// The solver's model of a bundle shape: its nodes binned, its grid, and its exact planes when
+/// The solver's model of a shape: its nodes binned, its grid, and its exact planes when
 /// convex (and exactConvex) or else its exact mesh level set (when exactMesh).
 ShapeModel makeShapeModel(const Shape& shape, bool exactConvex, bool exactMesh);
 
@@ -163,10 +164,6 @@ struct CandidateNodes {
     az.push_back(area * n.z());
   }
 };
-
-/// What the other side of a pair is: a body, or an analytic obstacle (each has its own collide
-/// function below).
-enum class PairKind : std::uint8_t { Bodies, Sphere, Plane };
 
 /// One candidate pair and its contact state. `b` >= 0 is a body; `b` < 0 an obstacle: sphere
 /// -1 - k, or plane -1 - spheres - k (the numbering of the result files). Forces from the last

@@ -4,10 +4,10 @@
 
 namespace tessera {
 
-RigidBodies makeRigidBodies(const Bundle& bundle, double density) {
+RigidBodies makeRigidBodies(const std::vector<Shape>& shapes, const std::vector<Body>& bodies, double density) {
   RigidBodies b;
-  for (const Body& body : bundle.bodies) {
-    const Shape& shape = bundle.shapes[body.shape];
+  for (const Body& body : bodies) {
+    const Shape& shape = shapes.at(body.shape);
     b.position.push_back(body.position);
     b.orientation.push_back(body.orientation.normalized());
     b.velocity.push_back(Eigen::Vector3d::Zero());

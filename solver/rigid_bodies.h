@@ -1,5 +1,6 @@
 #pragma once
-#include "levelset/bundle.h"
+#include "levelset/body.h"
+#include "levelset/shape.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -17,9 +18,9 @@ struct RigidBodies {
   std::vector<Eigen::Vector3d> angularMomentum;  ///< kg m^2/s, body frame
   std::vector<double> mass;                      ///< kg
   std::vector<Eigen::Vector3d> inertia;          ///< kg m^2, principal moments (body axes)
-  std::vector<char> fixed;                       ///< a support: never integrated (from the bundle)
+  std::vector<char> fixed;                       ///< a support: never integrated (Body::fixed)
   std::vector<char> retired;                     ///< taken out of the computation (World::retireBody): frozen, in no pair
-  std::vector<int> shape;                        ///< index into the bundle's shapes
+  std::vector<int> shape;                        ///< index into the World's shapes
   std::vector<std::string> name;
 
   std::size_t size() const { return position.size(); }
@@ -60,8 +61,9 @@ struct BodyKinematics {
   }
 };
 
-/// Bodies of a bundle at rest: mass = density x volume, inertia = density x principal moments.
-RigidBodies makeRigidBodies(const Bundle& bundle, double density);
+/// The bodies placed among `shapes`, at rest: mass = density x volume, inertia = density x
+/// principal moments.
+RigidBodies makeRigidBodies(const std::vector<Shape>& shapes, const std::vector<Body>& bodies, double density);
 
 /// The torque-free rotation of a rigid body over dt, by the symmetric splitting of the free-rotor
 /// Hamiltonian into rotations about the principal axes (Dullweber, Leimkuhler & McLachlan,

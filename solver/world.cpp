@@ -74,24 +74,25 @@ std::string format(const char* pattern, double a, double b = 0, double c = 0) {
 
 }  // namespace
 
-World::World(const Bundle& bundle, const ContactParameters& parameters, const SolverSettings& settings)
+World::World(const std::vector<Shape>& shapes, const std::vector<Body>& bodies, const ContactParameters& parameters,
+             const SolverSettings& settings)
     : parameters_(parameters), settings_(settings), arena_(std::make_unique<ThreadArena>(settings.threads)) {
   if (!(parameters.normalStiffness() > 0)) throw std::invalid_argument("contact stiffness E M / L must be positive");
   if (!(settings.density > 0)) throw std::invalid_argument("density must be positive");
   if (settings.localDamping < 0 || settings.localDamping >= 1)
     throw std::invalid_argument("local damping must lie in [0, 1)");
-  for (const Shape& s : bundle.shapes) shapes_.push_back(makeShapeModel(s, settings.exactConvexLevelSets, settings.exactMeshLevelSets));
-  state_.bodies = makeRigidBodies(bundle, settings.density);
+  for (const Shape& s : shapes) shapes_.push_back(makeShapeModel(s, settings.exactConvexLevelSets, settings.exactMeshLevelSets));
+  state_.bodies = makeRigidBodies(shapes, bodies, settings.density);
   {
     std::vector<TriangleMesh> meshes;
-    for (const Shape& s : bundle.shapes) meshes.push_back(s.mesh);
+    for (const Shape& s : shapes) meshes.push_back(s.mesh);
     bars_ = ContactBars(meshes, state_.bodies.shape, state_.bodies.position, state_.bodies.orientation, state_.bodies.fixed,
                         parameters.stiffnessRule == StiffnessRule::Sections);
   }
 
   double omega = 0.0, thinnest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < state_.bodies.size(); ++i) {
-    const Shape& shape = bundle.shapes[state_.bodies.shape[i]];
+    const Shape& shape = shapes[state_.bodies.shape[i]];
     thinnest = std::min(thinnest, boundingBox(shape.mesh.vertices).sizes().minCoeff());
     if (state_.bodies.fixed[i]) continue;
     // The stiffest contact: k_n = E M / L (span), or E over the body's shortest bar (bars; under
@@ -135,7 +136,23 @@ World::World(const Bundle& bundle, const ContactParameters& parameters, const So
   }
 }
 
-WorldState World::state() const { return state_; }
+WorldState World::state() const {
+  WorldState s;
+  static_cast<WorldRunState&>(s) = state_;
+  for (const PairContacts& p : pairs_) {
+    PairState& q = s.pairs.emplace_back();
+    q.a = p.a;
+    q.b = p.b;
+    for (const NodeContact& c : p.contacts) q.contacts.push_back(c);
+    q.forceA = p.forceA;
+    q.torqueA = p.torqueA;
+    q.forceB = p.forceB;
+    q.torqueB = p.torqueB;
+    q.elastic = p.tally.elastic;
+    q.depth = p.maxDepth;
+  }
+  return s;
+}
 
 namespace {
 
@@ -175,7 +192,7 @@ void World::checkState(const WorldState& s) const {
   requireEach(s.sphereReaction, s.spheres.size(), false, "indenter reactions", finite);
   requireEach(s.builtSphereCentre, s.spheres.size(), !s.pairsValid, "indenter positions", finite);
   const int obstacles = static_cast<int>(s.spheres.size() + s.planes.size());
-  for (const PairContacts& p : s.pairs) {
+  for (const PairState& p : s.pairs) {
     if (p.a < 0 || p.a >= static_cast<int>(n) || p.b < -obstacles || p.b >= static_cast<int>(n) || p.a == p.b)
       throw std::invalid_argument("a contact pair (" + std::to_string(p.a) + ", " + std::to_string(p.b) + ") names no body");
     for (const NodeContact& c : p.contacts) {
@@ -199,13 +216,46 @@ void World::checkState(const WorldState& s) const {
 void World::restore(const WorldState& s) {
   checkState(s);
   state_ = s;
-  // Each pair's checked travel was measured by the World the state came from, not by this one's
-  // Travel: every pair computes its exact candidate motion at its next evaluation.
-  for (PairContacts& p : state_.pairs) {
+  // The pairs from their saved state; their candidate nodes are built again at the next
+  // evaluation, and (the travel the state's World measured is not this one's) every pair computes
+  // its exact candidate motion then.
+  pairs_.clear();
+  for (const PairState& q : s.pairs) {
+    PairContacts& p = pairs_.emplace_back();
+    p.a = q.a;
+    p.b = q.b;
+    for (const NodeContact& c : q.contacts) p.contacts.push_back(c);
+    p.forceA = q.forceA;
+    p.torqueA = q.torqueA;
+    p.forceB = q.forceB;
+    p.torqueB = q.torqueB;
+    p.tally.elastic = q.elastic;
+    p.maxDepth = q.depth;
     p.kind = pairKind(p.b, static_cast<int>(state_.spheres.size()));
     p.checkedTravel = -std::numeric_limits<double>::infinity();
     p.stiffnessScale = stiffnessScale(p);
   }
+}
+
+int World::pairCount() const { return static_cast<int>(pairs_.size()); }
+
+PairView World::pair(int k) const {
+  const PairContacts& p = pairs_.at(k);
+  PairView v;
+  v.a = p.a;
+  v.b = p.b;
+  v.kind = p.kind;
+  v.force = p.forceA;
+  v.torque = p.torqueA;
+  v.normalForce = p.normalForceA;
+  v.point = p.forcePoint;
+  v.nodeContacts = static_cast<int>(p.contacts.size());
+  v.slidingNodes = p.tally.sliding;
+  for (const NodeContact& c : p.contacts) v.area += c.area;
+  v.elastic = p.tally.elastic;
+  v.depth = p.maxDepth;
+  v.normalStiffness = normalStiffness(p);
+  return v;
 }
 
 namespace {
@@ -320,14 +370,14 @@ void World::updatePairs() {
   // Keep the state of pairs that stay candidates (both lists sorted by (a, b)).
   std::vector<PairContacts> next;
   next.reserve(wanted.size());
-  std::sort(state_.pairs.begin(), state_.pairs.end(), [](const PairContacts& x, const PairContacts& y) {
+  std::sort(pairs_.begin(), pairs_.end(), [](const PairContacts& x, const PairContacts& y) {
     return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
   });
   std::size_t old = 0;
   for (const auto& [a, b] : wanted) {
-    while (old < state_.pairs.size() && std::make_pair(state_.pairs[old].a, state_.pairs[old].b) < std::make_pair(a, b)) ++old;
-    if (old < state_.pairs.size() && state_.pairs[old].a == a && state_.pairs[old].b == b) {
-      next.push_back(std::move(state_.pairs[old]));
+    while (old < pairs_.size() && std::make_pair(pairs_[old].a, pairs_[old].b) < std::make_pair(a, b)) ++old;
+    if (old < pairs_.size() && pairs_[old].a == a && pairs_[old].b == b) {
+      next.push_back(std::move(pairs_[old]));
       // An obstacle's number shifts when a sphere is added before the planes: its kind is
       // found again, and a pair that changed kind, or names another plane, starts without contact
       // history or candidates.
@@ -347,7 +397,7 @@ void World::updatePairs() {
       next.push_back(std::move(pair));
     }
   }
-  state_.pairs = std::move(next);
+  pairs_ = std::move(next);
   state_.builtPosition = state_.bodies.position;
   state_.builtOrientation = state_.bodies.orientation;
   state_.builtSphereCentre.clear();
@@ -386,8 +436,8 @@ void World::evaluateForces(double springStep) {
   ContactScene scene{&state_.bodies, &kinematics_, &shapes_, &state_.spheres, &state_.planes, parameters_,
                      parameters_.normalStiffness(), parameters_.tangentialStiffness(), springStep, candidateBand(), &travel_};
   arena_->arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, state_.pairs.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t p = r.begin(); p != r.end(); ++p) evaluatePair(scene, state_.pairs[p]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs_.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t p = r.begin(); p != r.end(); ++p) evaluatePair(scene, pairs_[p]);
     });
   });
 
@@ -395,7 +445,7 @@ void World::evaluateForces(double springStep) {
   std::fill(state_.contactForce.begin(), state_.contactForce.end(), Eigen::Vector3d::Zero());
   std::fill(state_.contactTorque.begin(), state_.contactTorque.end(), Eigen::Vector3d::Zero());
   std::fill(state_.sphereReaction.begin(), state_.sphereReaction.end(), Eigen::Vector3d::Zero());
-  for (const PairContacts& pair : state_.pairs) {
+  for (const PairContacts& pair : pairs_) {
     state_.friction += pair.tally.friction;
     state_.damping += pair.tally.viscous;
     state_.projection += pair.tally.projection;
@@ -489,7 +539,7 @@ EnergyBudget World::energy() const {
     e.gravityWork += state_.bodies.mass[i] * settings_.gravity.dot(state_.bodies.position[i] - state_.startPosition[i]);
     if (state_.bodies.moves(i)) e.kinetic += state_.bodies.kineticEnergy(i);
   }
-  for (const PairContacts& p : state_.pairs) e.elastic += p.tally.elastic;
+  for (const PairContacts& p : pairs_) e.elastic += p.tally.elastic;
   e.obstacleWork = state_.obstacleWork;
   e.initial = state_.initialEnergy;
   e.friction = state_.friction;
@@ -501,7 +551,7 @@ EnergyBudget World::energy() const {
 
 double World::maxPenetration() const {
   double d = 0.0;
-  for (const PairContacts& p : state_.pairs) d = std::max(d, p.maxDepth);
+  for (const PairContacts& p : pairs_) d = std::max(d, p.maxDepth);
   return d;
 }
 
@@ -529,7 +579,7 @@ void World::checkStability() {
   // The cause named from the motion: a slab at rest (kinetic energy under 1e-3 of the energy
   // supplied) sank in because the penalty is too soft for its forces, not because of the step.
   const int sphereCount = static_cast<int>(state_.spheres.size());
-  for (const PairContacts& p : state_.pairs) {
+  for (const PairContacts& p : pairs_) {
     const bool indenter = p.b < 0 && -1 - p.b < sphereCount;
     const double bound = indenter ? state_.spheres[-1 - p.b].radius : penetrationLimit_;
     if (!(p.maxDepth > bound)) continue;

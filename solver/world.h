@@ -1,11 +1,15 @@
 #pragma once
-#include "levelset/bundle.h"
 #include "solver/contact_bars.h"
 #include "solver/contact_parameters.h"
 #include "solver/obstacles.h"
-#include "solver/pair_contacts.h"
+#include "solver/pair_state.h"
+#include "solver/pair_view.h"
 #include "solver/rigid_bodies.h"
 #include "solver/solver_settings.h"
+#include "solver/travel.h"
+
+#include "levelset/body.h"
+#include "levelset/shape.h"
 
 #include <memory>
 #include <stdexcept>
@@ -51,12 +55,12 @@ struct ImplicitCounts {
   long dynamicIncrements = 0;
 };
 
-/// Everything a World changes as it runs: saved in checkpoints, restored to resume bit-identically.
-struct WorldState {
+/// Everything a World changes as it runs but its contact pairs, which it keeps in its own form
+/// (WorldState adds them).
+struct WorldRunState {
   RigidBodies bodies;
   std::vector<SphereObstacle> spheres;
   std::vector<PlaneObstacle> planes;
-  std::vector<PairContacts> pairs;  ///< with their springs and last forces
   std::vector<Eigen::Vector3d> builtPosition, builtSphereCentre;
   std::vector<Eigen::Quaterniond> builtOrientation;
   bool pairsValid = false;
@@ -69,11 +73,22 @@ struct WorldState {
   ImplicitCounts implicit;
 };
 
-/// An LS-DEM world: rigid bodies from a bundle, analytic obstacles, node-vs-level-set contacts,
+/// Everything a World changes as it runs: saved in checkpoints, restored to resume bit-identically.
+struct WorldState : WorldRunState {
+  std::vector<PairState> pairs;  ///< with their springs and last forces
+};
+
+struct PairContacts;  // the solver's own record of a pair (solver/pair_contacts.h, private to the solver)
+struct ShapeModel;
+
+/// An LS-DEM world: rigid bodies placed among shapes, analytic obstacles, node-vs-level-set contacts,
 /// velocity-Verlet time integration with a symplectic free-rotation splitting.
 class World {
 public:
-  World(const Bundle& bundle, const ContactParameters& parameters, const SolverSettings& settings);
+  /// The bodies placed among the shapes (an asset bundle's Bundle::shapes and Bundle::bodies, or
+  /// any built in memory); std::out_of_range for a body whose shape index is not among them.
+  World(const std::vector<Shape>& shapes, const std::vector<Body>& bodies, const ContactParameters& parameters,
+        const SolverSettings& settings);
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
@@ -115,7 +130,7 @@ public:
   /// for the implicit method the increment's limit (the travel limit, or the longest increment).
   double travelPerStep(double speed) const;
 
-  /// The changing state, and its restoration into a World made from the same bundle and settings.
+  /// The changing state, and its restoration into a World made from the same shapes, bodies and settings.
   /// restore() checks the state first (sizes, indices, finite values): std::invalid_argument
   /// naming what is wrong, and this World unchanged.
   WorldState state() const;
@@ -140,14 +155,18 @@ public:
   const std::vector<Eigen::Vector3d>& contactTorques() const { return state_.contactTorque; }
   /// Force of the bodies on sphere k (the indenter's reaction), N.
   Eigen::Vector3d sphereReaction(int k) const { return state_.sphereReaction[k]; }
-  const std::vector<PairContacts>& pairs() const { return state_.pairs; }
-  /// A pair's normal stiffness k_n, N/m^3 (ContactParameters::stiffnessRule; an obstacle's own
-  /// stiffness factor included).
-  double normalStiffness(const PairContacts& pair) const;
+  /// The candidate pairs of the last evaluation (touching or near), and pair k of them as seen
+  /// from outside the solver.
+  int pairCount() const;
+  PairView pair(int k) const;
   EnergyBudget energy() const;
   double maxPenetration() const;  ///< m, deepest node in the last evaluation
 
 private:
+  friend struct WorldInternals;  // the solver's own tests and benchmarks (solver/world_internals.h)
+  /// A pair's normal stiffness k_n, N/m^3 (ContactParameters::stiffnessRule; an obstacle's own
+  /// stiffness factor included).
+  double normalStiffness(const PairContacts& pair) const;
   void evaluateForces(double springStep);
   void explicitStep();
   // The implicit method (solver/implicit_increment.cpp).
@@ -166,7 +185,8 @@ private:
   void checkStability();
 
   std::vector<ShapeModel> shapes_;
-  WorldState state_;  // everything that changes as it runs: state() and restore() copy it whole
+  WorldRunState state_;  // everything that changes as it runs but the pairs: state() and restore() copy it whole
+  std::vector<PairContacts> pairs_;  // sorted by (a, b): state() keeps their PairState, restore() rebuilds the rest
   ContactParameters parameters_;
   SolverSettings settings_;
   struct ThreadArena;

@@ -1,6 +1,7 @@
 #pragma once
-// A World's private parts, for the files that implement it (world.cpp, implicit_increment.cpp):
-// its threads, and the implicit method's scratch (derived from the state at each increment, never saved).
+// A World's private parts, for the files that implement it (world.cpp, implicit_increment.cpp)
+// and the solver's own tests: its pairs, its threads, and the implicit method's scratch (derived
+// from the state at each increment, never saved).
 #include "solver/implicit_contacts.h"
 #include "solver/world.h"
 
@@ -12,6 +13,13 @@
 #include <vector>
 
 namespace tessera {
+
+/// The pairs as the solver keeps them (PairContacts), for the solver's own tests and benchmarks;
+/// every other caller reads World::pair.
+struct WorldInternals {
+  static const std::vector<PairContacts>& pairs(const World& world) { return world.pairs_; }
+  static double normalStiffness(const World& world, const PairContacts& pair) { return world.normalStiffness(pair); }
+};
 
 struct World::ThreadArena {
   tbb::task_arena arena;

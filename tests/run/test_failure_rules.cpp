@@ -14,7 +14,7 @@ const double kA = 10e-3, kH = 3.18e-3;
 // A free block resting on a fixed one, its contacts evaluated (one step).
 struct Stack {
   Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
-  World world{bundle, ContactParameters{}, SolverSettings{}};
+  World world{bundle.shapes, bundle.bodies, ContactParameters{}, SolverSettings{}};
   std::vector<Eigen::Vector3d> settled;
   Stack() {
     for (int i = 0; i < 200; ++i) world.step();  // rests on the base, in contact
@@ -73,7 +73,7 @@ TEST_CASE("failure rules: support runs through chains of contacts, and a block p
   const Bundle slab = test::smallSlab(3, 0.25e-3, 1.0e-3);
   SolverSettings settings;
   settings.localDamping = 0.3;
-  World world(slab, ContactParameters{}, settings);
+  World world(slab.shapes, slab.bodies, ContactParameters{}, settings);
   for (int i = 0; i < 1000; ++i) world.step();
   const auto supported = supportedBodies(world);
   for (std::size_t i = 0; i < supported.size(); ++i) REQUIRE(supported[i]);

@@ -12,7 +12,7 @@ using namespace tessera;
 TEST_CASE("settle threshold: 1e-9 of the free bodies' sum m g h, or the absolute value given") {
   const Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
   SolverSettings settings;
-  World world(slab, ContactParameters{}, settings);
+  World world(slab.shapes, slab.bodies, ContactParameters{}, settings);
   const double m = settings.density * slab.shapes[0].mass.volume;  // one free body: the centre
   ProtocolSettings protocol;
   REQUIRE(settleThreshold(world, protocol) == Approx(1e-9 * m * 9.81 * 3.18e-3).epsilon(1e-6));
@@ -25,30 +25,30 @@ TEST_CASE("settle time limit: the longer of a plate's period scale and a block's
   ProtocolSettings protocol;
   // The paper's span: the fall time, 2 sqrt(2 t / g) = 0.0509 s, just above the plate's 0.05 s.
   const double fall = 2 * std::sqrt(2 * 3.18e-3 / 9.81);
-  REQUIRE(settleTimeLimit(World(slab, ContactParameters{}, SolverSettings{}), protocol) == Approx(fall).epsilon(1e-6));
+  REQUIRE(settleTimeLimit(World(slab.shapes, slab.bodies, ContactParameters{}, SolverSettings{}), protocol) == Approx(fall).epsilon(1e-6));
   ContactParameters wide;
   wide.spanLength *= 3;  // 9 x the period scale
-  REQUIRE(settleTimeLimit(World(slab, wide, SolverSettings{}), protocol) == Approx(0.45).epsilon(1e-6));
+  REQUIRE(settleTimeLimit(World(slab.shapes, slab.bodies, wide, SolverSettings{}), protocol) == Approx(0.45).epsilon(1e-6));
   protocol.settleMaxTime = 0.01;
-  REQUIRE(settleTimeLimit(World(slab, ContactParameters{}, SolverSettings{}), protocol) == 0.01);
+  REQUIRE(settleTimeLimit(World(slab.shapes, slab.bodies, ContactParameters{}, SolverSettings{}), protocol) == 0.01);
 }
 
 TEST_CASE("indenter speed: 30 mm/s on the paper's slab, the same at any scale, as sqrt(E) and (h / L)^2") {
   const Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
   ContactParameters paper;  // E = 4.2 GPa, L = 50 mm
   IndenterSettings indenter;
-  REQUIRE(indenterSpeed(World(slab, paper, SolverSettings{}), indenter, 3.18e-3) == Approx(0.03).epsilon(1e-12));
+  REQUIRE(indenterSpeed(World(slab.shapes, slab.bodies, paper, SolverSettings{}), indenter, 3.18e-3) == Approx(0.03).epsilon(1e-12));
   ContactParameters large = paper;
   large.spanLength *= 10;
-  REQUIRE(indenterSpeed(World(slab, large, SolverSettings{}), indenter, 31.8e-3) == Approx(0.03).epsilon(1e-12));
+  REQUIRE(indenterSpeed(World(slab.shapes, slab.bodies, large, SolverSettings{}), indenter, 31.8e-3) == Approx(0.03).epsilon(1e-12));
   ContactParameters stiff = paper;
   stiff.youngsModulus *= 4;
-  REQUIRE(indenterSpeed(World(slab, stiff, SolverSettings{}), indenter, 3.18e-3) == Approx(0.06).epsilon(1e-12));
+  REQUIRE(indenterSpeed(World(slab.shapes, slab.bodies, stiff, SolverSettings{}), indenter, 3.18e-3) == Approx(0.06).epsilon(1e-12));
   ContactParameters wide = paper;
   wide.spanLength *= 2;
-  REQUIRE(indenterSpeed(World(slab, wide, SolverSettings{}), indenter, 3.18e-3) == Approx(0.0075).epsilon(1e-12));
+  REQUIRE(indenterSpeed(World(slab.shapes, slab.bodies, wide, SolverSettings{}), indenter, 3.18e-3) == Approx(0.0075).epsilon(1e-12));
   indenter.speed = 0.006;
-  REQUIRE(indenterSpeed(World(slab, paper, SolverSettings{}), indenter, 3.18e-3) == 0.006);
+  REQUIRE(indenterSpeed(World(slab.shapes, slab.bodies, paper, SolverSettings{}), indenter, 3.18e-3) == 0.006);
 }
 
 TEST_CASE("loading anywhere: the central body by default, a point on the upper surface, a target with an offset") {

@@ -112,10 +112,9 @@ TEST_CASE("a bit flipped anywhere in checkpoint.h5 is refused or resumes exactly
         << r->record().target << r->record().timeStep << r->world().state().obstacleWork << r->world().state().friction;
     for (const CurveSample& c : r->record().curve)
       for (const CurveColumn& column : curveColumns()) all << ' ' << c.*column.field;
-    for (const PairContacts& p : r->world().state().pairs)
-      for (std::size_t i = 0; i < p.contacts.size(); ++i)
-        all << ' ' << p.contacts.key[i] << ' ' << p.contacts.springX[i] << ' ' << p.contacts.springY[i] << ' '
-            << p.contacts.springZ[i] << ' ' << p.contacts.energy[i] << ' ' << p.contacts.area[i];
+    for (const PairState& p : r->world().state().pairs)
+      for (const NodeContact& c : p.contacts)
+        all << ' ' << c.key << ' ' << c.spring.x() << ' ' << c.spring.y() << ' ' << c.spring.z() << ' ' << c.energy << ' ' << c.area;
     return all.str();
   };
   const std::string original = resumed();

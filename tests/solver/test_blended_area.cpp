@@ -8,6 +8,7 @@
 #include "solver/implicit_contacts.h"
 #include "solver/planes_in_frame.h"
 #include "solver/world.h"
+#include "solver/world_internals.h"
 #include "tests/fixtures/scenes.h"
 
 #include <catch2/catch.hpp>
@@ -141,14 +142,14 @@ TEST_CASE("blended area: over an edge the contact forces' work is the stored ene
       SolverSettings s;
       s.exactConvexLevelSets = true;
       s.threads = 1;
-      World world(bundle, p, s);
+      World world(bundle.shapes, bundle.bodies, p, s);
       world.step();
       const PathBalance b = balanceOverEdge(world.bodies().position[1], world.bodies().orientation[1],
                                             [&](const Eigen::Vector3d& x, const Eigen::Quaterniond& q, Eigen::Vector3d& f, Eigen::Vector3d& t) {
                                               world.setPose(1, x, q);
                                               f = t = Eigen::Vector3d::Zero();
                                               double stored = 0;
-                                              for (const PairContacts& pair : world.pairs()) {
+                                              for (const PairContacts& pair : WorldInternals::pairs(world)) {
                                                 if (pair.b != 1) continue;
                                                 f += pair.forceB;
                                                 t += pair.torqueB;
@@ -161,7 +162,7 @@ TEST_CASE("blended area: over an edge the contact forces' work is the stored ene
     SECTION(std::string("implicit ") + (blended ? "blended" : "nearest")) {
       std::vector<ShapeModel> shapes;
       for (const Shape& shape : bundle.shapes) shapes.push_back(makeShapeModel(shape, true, true));
-      RigidBodies bodies = makeRigidBodies(bundle, 2500);
+      RigidBodies bodies = makeRigidBodies(bundle.shapes, bundle.bodies, 2500);
       IncrementStart start;
       const std::vector<SphereObstacle> spheres;
       const std::vector<PlaneObstacle> planes;

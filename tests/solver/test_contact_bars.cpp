@@ -5,6 +5,7 @@
 #include "geometry/block_generators.h"
 #include "solver/contact_bars.h"
 #include "solver/world.h"
+#include "solver/world_internals.h"
 #include "tests/fixtures/scenes.h"
 
 #include <catch2/catch.hpp>
@@ -90,15 +91,15 @@ TEST_CASE("bar rule: a block resting on a support settles at m g w / (E A) with 
   for (double t : {kH, 2 * kH}) {
     INFO("thickness " << t << ", rule " << stiffnessRuleName(p.stiffnessRule));
     const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, t), 0.25e-3, 0.6e-3);
-    World world(bundle, p, s);
+    World world(bundle.shapes, bundle.bodies, p, s);
     const double z0 = world.bodies().position[1].z();
     for (int step = 0; step < 4000; ++step) world.step();
     const double mg = world.bodies().mass[1] * 9.81;
     REQUIRE(world.contactForces()[1].z() == Approx(mg).epsilon(1e-3));
     const double kn = p.stiffnessRule != StiffnessRule::Span ? p.youngsModulus / (t / 2) : p.normalStiffness();
     REQUIRE(z0 - world.bodies().position[1].z() == Approx(mg / (kn * kA * kA)).epsilon(0.02));
-    REQUIRE(world.pairs().size() == 1);
-    REQUIRE(world.normalStiffness(world.pairs()[0]) == Approx(kn).epsilon(1e-9));
+    REQUIRE(WorldInternals::pairs(world).size() == 1);
+    REQUIRE(WorldInternals::normalStiffness(world, WorldInternals::pairs(world)[0]) == Approx(kn).epsilon(1e-9));
   }
 }
 
@@ -107,7 +108,8 @@ TEST_CASE("bar rule on the paper's slab: E / a between free blocks, 2 E / a agai
   p.stiffnessRule = StiffnessRule::Bars;
   p.spanLength = 30e-3;
   p.spanInterfaces = 4;
-  World world(test::smallSlab(5, 0.5e-3, 1.2e-3), p, SolverSettings{});
+  const Bundle slab = test::smallSlab(5, 0.5e-3, 1.2e-3);
+  World world(slab.shapes, slab.bodies, p, SolverSettings{});
   SphereObstacle indenter;
   indenter.center = world.bodies().position[12] + Eigen::Vector3d(0, 0, kH / 2 + 2.4e-3);  // 0.1 mm into its top
   indenter.radius = 2.5e-3;
@@ -115,8 +117,8 @@ TEST_CASE("bar rule on the paper's slab: E / a between free blocks, 2 E / a agai
   world.addSphere(indenter);
   world.step();
   int between = 0, against = 0, sphere = 0;
-  for (const PairContacts& pair : world.pairs()) {
-    const double k = world.normalStiffness(pair);
+  for (const PairContacts& pair : WorldInternals::pairs(world)) {
+    const double k = WorldInternals::normalStiffness(world, pair);
     if (pair.b < 0) {
       REQUIRE(k == Approx(2.0 * p.youngsModulus / (kH / 2)).epsilon(1e-6));  // the indenter's factor counts
       ++sphere;

@@ -20,7 +20,7 @@ TEST_CASE("energy: a block sliding to rest on a fixed block dissipates its kinet
   p.friction = 0.3;
   const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
   SolverSettings s;  // no damping
-  World world(bundle, p, s);
+  World world(bundle.shapes, bundle.bodies, p, s);
   const double v0 = 0.02;  // m/s along x, from the start (the initial energy counts it)
   world.setVelocity(1, Eigen::Vector3d(v0, 0, 0), Eigen::Vector3d::Zero());
   const double x0 = world.bodies().position[1].x(), m = world.bodies().mass[1];
@@ -44,7 +44,7 @@ TEST_CASE("energy: an indenter pressing a block onto a fixed block stores its wo
     const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
     SolverSettings s;
     s.localDamping = 0.3;
-    World world(bundle, p, s);
+    World world(bundle.shapes, bundle.bodies, p, s);
     SphereObstacle indenter;
     indenter.radius = 2.5e-3;
     indenter.center = world.bodies().position[1] + Eigen::Vector3d(1e-3, 0.5e-3, 0.5 * kH + indenter.radius);
@@ -69,7 +69,7 @@ TEST_CASE("energy: indenting a 3 x 3 slab balances to 1 % of the work, with and 
       p.area = area;
       SolverSettings s;
       s.localDamping = 0.3;
-      World world(slab, p, s);
+      World world(slab.shapes, slab.bodies, p, s);
       for (int i = 0; i < 1400; ++i) world.step();
       SphereObstacle indenter;
       indenter.center = world.bodies().position[4] + Eigen::Vector3d(0, 0, 0.5 * kH + indenter.radius);
@@ -103,7 +103,7 @@ TEST_CASE("energy: local damping and normal viscosity dissipate what the balance
     else p.normalViscosity = 2e5;  // Pa s / m
     auto b = bundle;
     b.bodies[1].position.z() += 20e-6;  // dropped from 20 um
-    World world(b, p, s);
+    World world(b.shapes, b.bodies, p, s);
     for (int i = 0; i < 20000; ++i) world.step();
     const EnergyBudget e = world.energy();
     INFO((model == 0 ? "local" : "viscous") << ": gravity work " << e.gravityWork << " J, damping " << e.damping

@@ -66,7 +66,7 @@ PairBench blockOnBlock(double friction, const Eigen::Vector3d& slip) {
   const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(0.8 * kA, 0.8 * kA, kH), 0.25e-3, 0.6e-3);
   PairBench bench;
   for (const Shape& s : bundle.shapes) bench.shapes.push_back(makeShapeModel(s, true, true));
-  bench.bodies = makeRigidBodies(bundle, 2500);
+  bench.bodies = makeRigidBodies(bundle.shapes, bundle.bodies, 2500);
   bench.bodies.position[1] += Eigen::Vector3d(0.3e-3, -0.2e-3, -2e-6);
   bench.bodies.orientation[1] = turned(bench.bodies.orientation[1], Eigen::Vector3d(2e-4, -1e-4, 0.01));
   bench.start.position = bench.bodies.position;
@@ -150,7 +150,7 @@ TEST_CASE("implicit: a block resting on a fixed block sinks m g / (k_n A), on ex
   p.youngsModulus = kSoft;
   const SolverSettings s = implicitSettings(1e-10);
   const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
-  World world(bundle, p, s);
+  World world(bundle.shapes, bundle.bodies, p, s);
   const double z0 = world.bodies().position[1].z();
   // The first increments are short (inertia holds it while it sinks) and each doubles the next:
   // after 12 they are 1e4 explicit steps long and it is at rest.
@@ -173,7 +173,7 @@ TEST_CASE("implicit: a block on a tilted block sticks below atan(mu) and slides 
     s.implicit.maxIncrement = 1e-3;  // s: 100 increments over the 0.1 s
     s.gravity = 9.81 * Eigen::Vector3d(std::sin(theta), 0, -std::cos(theta));
     const Bundle bundle = test::stackedBlocks(makeBox(4 * kA, 2 * kA, kH), makeBox(kA, kA, kH), 0.25e-3, 1.0e-3);
-    World world(bundle, p, s);
+    World world(bundle.shapes, bundle.bodies, p, s);
     world.step();  // the first increment: settled (or sliding already)
     const double x0 = world.bodies().position[1].x(), v0 = world.bodies().velocity[1].x(), t0 = world.time();
     const long n0 = world.stepCount();
@@ -196,7 +196,8 @@ TEST_CASE("implicit: every free body of a settled 3 x 3 slab is in balance to 1e
   ContactParameters p;
   p.youngsModulus = kSoft;
   const SolverSettings s = implicitSettings(1e-11);
-  World world(test::smallSlab(3, 0.25e-3, 0.6e-3), p, s);
+  const Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
+  World world(slab.shapes, slab.bodies, p, s);
   for (int i = 0; i < 12; ++i) world.step();
   int free = 0;
   for (std::size_t i = 0; i < world.bodies().size(); ++i) {
@@ -215,7 +216,7 @@ TEST_CASE("implicit: a World given another's state mid-loading goes on bit-ident
   SolverSettings s;
   s.method = SolverMethod::Implicit;
   const Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
-  World first(slab, p, s);
+  World first(slab.shapes, slab.bodies, p, s);
   first.step();
   SphereObstacle indenter;
   indenter.radius = 2.5e-3;
@@ -223,7 +224,7 @@ TEST_CASE("implicit: a World given another's state mid-loading goes on bit-ident
   indenter.velocity = Eigen::Vector3d(0, 0, -0.03);
   first.addSphere(indenter);
   for (int i = 0; i < 15; ++i) first.step();
-  World second(slab, p, s);
+  World second(slab.shapes, slab.bodies, p, s);
   second.restore(first.state());
   for (int i = 0; i < 15; ++i) {
     first.step();

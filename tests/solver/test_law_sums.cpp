@@ -6,6 +6,7 @@
 #include "geometry/block_generators.h"
 #include "solver/implicit_contacts.h"
 #include "solver/world.h"
+#include "solver/world_internals.h"
 #include "tests/fixtures/scenes.h"
 
 #include <catch2/catch.hpp>
@@ -34,7 +35,7 @@ TEST_CASE("the explicit pair sums and the implicit pair evaluation agree on a pr
   SolverSettings s;
   s.threads = 1;
   s.gravity.setZero();
-  World world(bundle, p, s);
+  World world(bundle.shapes, bundle.bodies, p, s);
   // Stacked and pressed in off-centre and tilted, or side by side as tiled (the upper block turned
   // 90 degrees beside the lower one, their tilted or wavy faces against each other, pressed 20 um);
   // then slid and turned for a while, so that the springs are loaded: some stick, some slide.
@@ -52,9 +53,8 @@ TEST_CASE("the explicit pair sums and the implicit pair evaluation agree on a pr
                       b.inertia[1].cwiseProduct(Eigen::Vector3d(0, 0, 0.5)));
     world.step();
   }
-  const WorldState state = world.state();
   const PairContacts* loaded = nullptr;
-  for (const PairContacts& pair : state.pairs)
+  for (const PairContacts& pair : WorldInternals::pairs(world))
     if (pair.b >= 0 && !pair.contacts.empty()) loaded = &pair;
   REQUIRE(loaded != nullptr);
   int side1 = 0;  // both sides' nodes touch
@@ -63,7 +63,7 @@ TEST_CASE("the explicit pair sums and the implicit pair evaluation agree on a pr
   REQUIRE(side1 < static_cast<int>(loaded->contacts.size()));
 
   // Both evaluations at the bodies' poses, at rest: the springs are turned and capped, not loaded.
-  RigidBodies bodies = state.bodies;
+  RigidBodies bodies = world.bodies();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies.velocity[i].setZero();
     bodies.angularMomentum[i].setZero();

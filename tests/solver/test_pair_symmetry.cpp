@@ -2,6 +2,7 @@
 // and as (b, a) give the same force and torque on each, the same node contacts and energy.
 #include "geometry/block_generators.h"
 #include "solver/world.h"
+#include "solver/world_internals.h"
 #include "tests/fixtures/scenes.h"
 
 #include <catch2/catch.hpp>
@@ -22,10 +23,10 @@ const PairContacts& pressedPair(World& world, int upper) {
                 Eigen::Quaterniond(Eigen::AngleAxisd(0.004, Eigen::Vector3d(1, 0.3, 0).normalized())) * b.orientation[upper]);
   world.setVelocity(upper, b.velocity[upper], Eigen::Vector3d(2e-9, -1e-9, 3e-9));
   world.step();
-  for (const PairContacts& p : world.pairs())
+  for (const PairContacts& p : WorldInternals::pairs(world))
     if (p.b >= 0) return p;
   FAIL("no body pair");
-  return world.pairs().front();
+  return WorldInternals::pairs(world).front();
 }
 
 }  // namespace
@@ -41,8 +42,9 @@ TEST_CASE("pair symmetry: (a, b) and (b, a) give the same forces, torques and co
     s.threads = 1;
     ContactParameters p;
     p.friction = 0.3;
-    World asBuilt(test::stackedBlocks(lower, upper, 0.25e-3, 0.6e-3, false), p, s);  // pair (lower, upper)
-    World swapped(test::stackedBlocks(lower, upper, 0.25e-3, 0.6e-3, true), p, s);   // pair (upper, lower)
+    const Bundle built = test::stackedBlocks(lower, upper, 0.25e-3, 0.6e-3, false), flipped = test::stackedBlocks(lower, upper, 0.25e-3, 0.6e-3, true);
+    World asBuilt(built.shapes, built.bodies, p, s);        // pair (lower, upper)
+    World swapped(flipped.shapes, flipped.bodies, p, s);    // pair (upper, lower)
     const PairContacts& one = pressedPair(asBuilt, 1);
     const PairContacts& two = pressedPair(swapped, 0);
     REQUIRE(one.a == 0);
@@ -85,8 +87,9 @@ TEST_CASE("one-way evaluation: only the smaller block's nodes, whole areas, whic
   ContactParameters p;
   p.friction = 0.3;
   p.evaluation = ContactEvaluation::OneWay;
-  World asBuilt(test::stackedBlocks(lower, upper, 0.25e-3, 0.6e-3, false), p, s);  // pair (lower, upper)
-  World swapped(test::stackedBlocks(lower, upper, 0.25e-3, 0.6e-3, true), p, s);   // pair (upper, lower)
+  const Bundle built = test::stackedBlocks(lower, upper, 0.25e-3, 0.6e-3, false), flipped = test::stackedBlocks(lower, upper, 0.25e-3, 0.6e-3, true);
+  World asBuilt(built.shapes, built.bodies, p, s);        // pair (lower, upper)
+  World swapped(flipped.shapes, flipped.bodies, p, s);    // pair (upper, lower)
   const PairContacts& one = pressedPair(asBuilt, 1);
   const PairContacts& two = pressedPair(swapped, 0);
   REQUIRE_FALSE(one.contacts.empty());
@@ -111,7 +114,7 @@ TEST_CASE("viscous damping: a free spinning, moving block slows as exp(-c t), an
   SolverSettings s;
   s.gravity = Eigen::Vector3d::Zero();
   s.viscousDamping = 40.0;  // 1/s
-  World world(bundle, ContactParameters{}, s);
+  World world(bundle.shapes, bundle.bodies, ContactParameters{}, s);
   const RigidBodies& b = world.bodies();
   world.setVelocity(1, Eigen::Vector3d(0.01, -0.02, 0.005), b.inertia[1].cwiseProduct(Eigen::Vector3d(0, 0, 3.0)));  // about a principal axis
   const double v0 = b.velocity[1].norm(), w0 = b.angularVelocity(1).norm(), e0 = b.kineticEnergy(1);

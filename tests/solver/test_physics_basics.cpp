@@ -34,7 +34,7 @@ TEST_CASE("static equilibrium: a block resting on a fixed block carries m g at p
   for (bool freeFirst : {false, true}) {
     INFO("free body first: " << freeFirst << ", one-way: " << (p.evaluation == ContactEvaluation::OneWay));
     const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3, freeFirst);
-    World world(bundle, p, s);
+    World world(bundle.shapes, bundle.bodies, p, s);
     const int top = freeFirst ? 0 : 1;
     const double z0 = world.bodies().position[top].z();
     settle(world, 3000);
@@ -44,6 +44,24 @@ TEST_CASE("static equilibrium: a block resting on a fixed block carries m g at p
     const double penetration = z0 - world.bodies().position[top].z();
     REQUIRE(penetration == Approx(mg / (p.normalStiffness() * kA * kA)).epsilon(0.02));
     REQUIRE(world.bodies().velocity[top].norm() < 1e-6);
+    // The pair as callers outside the solver see it (World::pair): the force on a (the top's
+    // reaction when the support is a), the whole footprint in contact, its depth the penetration,
+    // its stored energy 1/2 k_n A d^2.
+    REQUIRE(world.pairCount() == 1);
+    const PairView pair = world.pair(0);
+    REQUIRE(pair.kind == PairKind::Bodies);
+    REQUIRE((pair.a == 0 && pair.b == 1));  // a pair is (lower index, higher)
+    const Eigen::Vector3d onTop = pair.a == top ? pair.force : Eigen::Vector3d(-pair.force);
+    REQUIRE((onTop - world.contactForces()[top]).norm() < 1e-9 * mg);
+    REQUIRE((pair.normalForce - pair.force).norm() < 1e-6 * mg);  // at rest: no friction
+    REQUIRE(pair.area == Approx(kA * kA).epsilon(0.02));
+    REQUIRE(pair.depth == Approx(penetration).epsilon(0.02));
+    REQUIRE(pair.elastic == Approx(0.5 * mg * penetration).epsilon(0.05));
+    REQUIRE(pair.normalStiffness == p.normalStiffness());
+    REQUIRE(pair.nodeContacts > 0);
+    REQUIRE(pair.slidingNodes == 0);
+    REQUIRE(std::abs(pair.point.z() - (world.bodies().position[top].z() - kH / 2)) < 0.1 * kH);
+    REQUIRE_THROWS_AS(world.pair(1), std::out_of_range);
   }
 }
 
@@ -55,7 +73,7 @@ TEST_CASE("static equilibrium on an analytic plane: the node areas carry m g at 
   Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
   bundle.bodies.erase(bundle.bodies.begin());  // the free block alone
   bundle.bodies[0].position = Eigen::Vector3d(0, 0, kH / 2);
-  World world(bundle, p, s);
+  World world(bundle.shapes, bundle.bodies, p, s);
   PlaneObstacle floor;  // z = 0, solid below
   world.addPlane(floor);
   for (int i = 0; i < 3000; ++i) world.step();
@@ -75,7 +93,7 @@ TEST_CASE("static equilibrium of the TIS block on a TIS block (inclined sides)")
   TriangleMesh flipped = block;  // upper block turned upside down: its bottom face matches the lower's top
   for (auto& v : flipped.vertices) v = Eigen::Vector3d(v.x(), -v.y(), -v.z());
   const Bundle bundle = test::stackedBlocks(block, flipped, 0.25e-3, 0.6e-3);
-  World world(bundle, p, s);
+  World world(bundle.shapes, bundle.bodies, p, s);
   const double z0 = world.bodies().position[1].z();
   settle(world, 3000);
   const double mg = world.bodies().mass[1] * 9.81;
@@ -98,7 +116,7 @@ TEST_CASE("friction threshold: a block on a tilted block sticks below atan(mu) a
       s.localDamping = 0.3;
       s.gravity = 9.81 * Eigen::Vector3d(std::sin(theta), 0, -std::cos(theta));
       const Bundle bundle = test::stackedBlocks(makeBox(2 * kA, 2 * kA, kH), makeBox(kA, kA, kH), 0.25e-3, 1.0e-3);
-      World world(bundle, p, s);
+      World world(bundle.shapes, bundle.bodies, p, s);
       const double x0 = world.bodies().position[1].x();
       while (world.time() < 0.1) world.step();
       const double slip = world.bodies().position[1].x() - x0;
@@ -119,7 +137,8 @@ TEST_CASE("Newton's third law over the World's sums: contact forces on all bodie
     SolverSettings s;
     s.method = method;
     s.threads = 2;
-    World world(test::smallSlab(3, 0.25e-3, 0.6e-3), ContactParameters{}, s);
+    const Bundle slab = test::smallSlab(3, 0.25e-3, 0.6e-3);
+    World world(slab.shapes, slab.bodies, ContactParameters{}, s);
     if (withIndenter) {
       SphereObstacle indenter;
       indenter.radius = 2.5e-3;
@@ -164,7 +183,7 @@ TEST_CASE("energy: without damping or friction a bouncing block conserves energy
   const auto bounce = [&](double factor) {
     SolverSettings s;  // no damping
     s.timeStepFactor = factor;
-    World world(bundle, p, s);
+    World world(bundle.shapes, bundle.bodies, p, s);
     // Measured in flight, after each contact: within a contact, Verlet's full-step kinetic energy
     // differs from its conserved (shadow) energy by O((omega dt)^2) and returns to it.
     int bounces = 0;
@@ -200,7 +219,7 @@ TEST_CASE("free rotation near the intermediate axis: the block flips, energy and
   const double omega = 100.0;
   s.timeStep = 0.01 / omega;
   s.allowUnsafeTimeStep = true;  // no contact here: the contact-based estimate does not apply
-  World world(bundle, ContactParameters{}, s);
+  World world(bundle.shapes, bundle.bodies, ContactParameters{}, s);
   const RigidBodies& b = world.bodies();
   const Eigen::Vector3d w(1e-3 * omega, omega, 1e-3 * omega);  // nearly about y
   world.setVelocity(1, b.velocity[1], b.inertia[1].cwiseProduct(w));
@@ -299,11 +318,11 @@ TEST_CASE("restore: a World given another's state mid-slide goes on bit-identica
   p.friction = 0;
   Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
   bundle.bodies[1].position.x() -= 2.5e-3;
-  World first(bundle, p, SolverSettings{});
+  World first(bundle.shapes, bundle.bodies, p, SolverSettings{});
   first.setVelocity(1, Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d::Zero());
   const int before = static_cast<int>(1.3e-3 / 0.1 / first.timeStep()), after = static_cast<int>(1e-3 / 0.1 / first.timeStep());
   for (int i = 0; i < before; ++i) first.step();
-  World second(bundle, p, SolverSettings{});
+  World second(bundle.shapes, bundle.bodies, p, SolverSettings{});
   second.restore(first.state());
   for (int i = 0; i < after; ++i) {
     first.step();
@@ -325,7 +344,7 @@ TEST_CASE("mutation contract: forces evaluated again at the same configuration (
   ContactParameters p;
   p.friction = 0.5;
   const Bundle bundle = test::stackedBlocks(makeBox(2 * kA, 2 * kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
-  World first(bundle, p, SolverSettings{}), second(bundle, p, SolverSettings{});
+  World first(bundle.shapes, bundle.bodies, p, SolverSettings{}), second(bundle.shapes, bundle.bodies, p, SolverSettings{});
   for (World* w : {&first, &second}) {
     w->setVelocity(1, Eigen::Vector3d(0.02, 0.01, 0), Eigen::Vector3d::Zero());
     for (int i = 0; i < 300; ++i) w->step();
@@ -359,7 +378,7 @@ TEST_CASE("mutation contract: a pose set between steps is found in contact at th
   bundle.bodies[1].position.z() += 1.0;
   SolverSettings s;
   s.gravity.setZero();
-  World world(bundle, ContactParameters{}, s);
+  World world(bundle.shapes, bundle.bodies, ContactParameters{}, s);
   world.step();
   REQUIRE(world.contactForces()[1].norm() == 0.0);
   world.setPose(1, resting - Eigen::Vector3d(0, 0, 10e-6), world.bodies().orientation[1]);
@@ -377,7 +396,8 @@ TEST_CASE("mutation contract: a pose set between steps is found in contact at th
   REQUIRE_THROWS_AS(world.setPose(0, resting, world.bodies().orientation[0]), std::invalid_argument);  // the support
   // Under gravity a body lifted between steps keeps the balance closed: gravity's work on the
   // jump is booked as supplied too.
-  World heavy(test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3), ContactParameters{}, SolverSettings{});
+  const Bundle stack = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
+  World heavy(stack.shapes, stack.bodies, ContactParameters{}, SolverSettings{});
   for (int k = 0; k < 50; ++k) heavy.step();
   const double before = heavy.energy().residual(), lift = heavy.bodies().mass[1] * 9.81 * 1e-3;
   heavy.setPose(1, heavy.bodies().position[1] + Eigen::Vector3d(0, 0, 1e-3), heavy.bodies().orientation[1]);
@@ -407,13 +427,13 @@ TEST_CASE("instability is caught: 5x the automatic time step stops the run with 
       wall.position[axis] = side * (a - 1e-6);
       bundle.bodies.push_back(wall);
     }
-  const double automatic = World(bundle, p, s).automaticTimeStep();
+  const double automatic = World(bundle.shapes, bundle.bodies, p, s).automaticTimeStep();
   const auto knock = [](World& w) {  // a small initial velocity and spin
     w.setVelocity(0, Eigen::Vector3d(1e-4, 2e-4, 0), 1e-3 * w.bodies().inertia[0]);
   };
   s.timeStep = 5 * automatic;
   s.allowUnsafeTimeStep = true;
-  World world(bundle, p, s);
+  World world(bundle.shapes, bundle.bodies, p, s);
   knock(world);
   bool stopped = false;
   try {
@@ -427,7 +447,7 @@ TEST_CASE("instability is caught: 5x the automatic time step stops the run with 
   // At the automatic step the same clamp runs quietly.
   s.timeStep = 0;
   s.allowUnsafeTimeStep = false;
-  World calm(bundle, p, s);
+  World calm(bundle.shapes, bundle.bodies, p, s);
   knock(calm);
   for (int step = 0; step < 20000; ++step) calm.step();
   REQUIRE(calm.energy().initial > 0);

@@ -25,7 +25,7 @@ struct Curve {
 
 // Indents the centre block of `slab` at constant speed until the indenter has travelled deltaMax.
 Curve indent(const Bundle& slab, const ContactParameters& p, const SolverSettings& s, double speed, double deltaMax) {
-  World world(slab, p, s);
+  World world(slab.shapes, slab.bodies, p, s);
   SphereObstacle indenter;
   indenter.radius = kRadius;
   indenter.center = Eigen::Vector3d(0, 0, kTop + kRadius);
@@ -68,7 +68,7 @@ TEST_CASE("scaling with E: at 4E with speed x2 and time step /2, P/E is the same
   ContactParameters p;
   const double speed = 2e-3, deltaMax = 0.03e-3;
   SolverSettings s = quasiStatic();
-  s.timeStep = World(slab, p, s).automaticTimeStep();
+  s.timeStep = World(slab.shapes, slab.bodies, p, s).automaticTimeStep();
   const Curve soft = indent(slab, p, s, speed, deltaMax);
   ContactParameters stiff = p;
   stiff.youngsModulus = 4 * p.youngsModulus;
@@ -108,7 +108,7 @@ TEST_CASE("node refinement: resting penetration and slab stiffness change by < 2
   double penetration[2];
   for (int level = 0; level < 2; ++level) {
     const Bundle b = test::stackedBlocks(block, flipped, 0.25e-3, 0.6e-3 / (1 << level));
-    World world(b, soft, settle);
+    World world(b.shapes, b.bodies, soft, settle);
     const double z0 = world.bodies().position[1].z();
     for (int i = 0; i < 3000; ++i) world.step();
     penetration[level] = z0 - world.bodies().position[1].z();
@@ -157,7 +157,7 @@ TEST_CASE("the indenter's contact converges with node spacing to the traction in
     b.bodies.resize(1);  // the fixed block alone
     SolverSettings s;
     s.maxPenetration = 1e-3;  // pressed in deliberately
-    World world(b, p, s);
+    World world(b.shapes, b.bodies, p, s);
     SphereObstacle sphere;
     sphere.radius = R;
     sphere.center = Eigen::Vector3d(0.1e-3, 0.2e-3, kTop + R - w);  // off any node pattern's centre
@@ -175,7 +175,7 @@ TEST_CASE("determinism: the same run gives bit-identical states, for one thread 
   const auto run = [&](int threads) {
     SolverSettings s;
     s.threads = threads;
-    World world(slab, ContactParameters{}, s);
+    World world(slab.shapes, slab.bodies, ContactParameters{}, s);
     SphereObstacle indenter;
     indenter.center = Eigen::Vector3d(0.2e-3, 0.1e-3, kTop + kRadius);
     indenter.velocity = Eigen::Vector3d(0, 0, -0.05);

@@ -5,6 +5,7 @@
 #include "geometry/block_generators.h"
 #include "levelset/shape.h"
 #include "solver/world.h"
+#include "solver/world_internals.h"
 #include "tests/fixtures/scenes.h"
 
 #include <catch2/catch.hpp>
@@ -22,15 +23,15 @@ const double kA = 10e-3, kH = 3.18e-3;
 TEST_CASE("a fixed time step above the stability estimate 2 / omega_max is refused, naming both") {
   const Bundle bundle = test::stackedBlocks(makeBox(kA, kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
   SolverSettings s;
-  const double automatic = World(bundle, ContactParameters{}, s).automaticTimeStep();
+  const double automatic = World(bundle.shapes, bundle.bodies, ContactParameters{}, s).automaticTimeStep();
   s.timeStep = automatic / s.timeStepFactor * 1.01;  // 1 % above factor 1
-  REQUIRE_THROWS_WITH(World(bundle, ContactParameters{}, s),
+  REQUIRE_THROWS_WITH(World(bundle.shapes, bundle.bodies, ContactParameters{}, s),
                       Contains("above the stability estimate") && Contains("time step"));
   s.timeStep = automatic / s.timeStepFactor * 0.99;
-  REQUIRE_NOTHROW(World(bundle, ContactParameters{}, s));
+  REQUIRE_NOTHROW(World(bundle.shapes, bundle.bodies, ContactParameters{}, s));
   s.timeStep = 10 * automatic;
   s.allowUnsafeTimeStep = true;  // for measuring critical steps only
-  REQUIRE_NOTHROW(World(bundle, ContactParameters{}, s));
+  REQUIRE_NOTHROW(World(bundle.shapes, bundle.bodies, ContactParameters{}, s));
 }
 
 TEST_CASE("deep penetration: grid forces match the exact level set's far past the exterior band, and beyond the bound the run stops") {
@@ -46,7 +47,7 @@ TEST_CASE("deep penetration: grid forces match the exact level set's far past th
   Eigen::Vector3d force[2];
   for (int grid = 0; grid < 2; ++grid) {
     s.exactConvexLevelSets = grid == 0;
-    World world(bundle, p, s);
+    World world(bundle.shapes, bundle.bodies, p, s);
     world.step();
     force[grid] = world.contactForces()[1];
   }
@@ -55,7 +56,7 @@ TEST_CASE("deep penetration: grid forces match the exact level set's far past th
   REQUIRE(force[1].z() == Approx(force[0].z()).epsilon(0.02));
   REQUIRE(std::abs(force[1].x()) < 1e-2 * force[1].z());  // the grid is not quite symmetric about the box
   s.maxPenetration = 0;  // the default bound: a quarter of the thinnest block (0.795 mm)
-  World world(bundle, p, s);
+  World world(bundle.shapes, bundle.bodies, p, s);
   REQUIRE_THROWS_WITH(world.step(), Contains("penetration") && Contains("beyond the bound") && Contains("the time step"));  // it sprang apart: dynamics
 }
 
@@ -70,7 +71,7 @@ TEST_CASE("a block pressed slowly past the bound stops naming the soft penalty, 
   s.localDamping = 0.7;
   s.maxPenetration = 0.1e-3;
   const Bundle bundle = test::stackedBlocks(makeBox(2 * kA, 2 * kA, kH), makeBox(kA, kA, kH), 0.25e-3, 0.6e-3);
-  World world(bundle, p, s);
+  World world(bundle.shapes, bundle.bodies, p, s);
   SphereObstacle sphere;
   sphere.center = bundle.bodies[1].position + Eigen::Vector3d(0, 0, 0.5 * kH + sphere.radius);
   sphere.velocity = Eigen::Vector3d(0, 0, -1e-3);
@@ -101,7 +102,7 @@ TEST_CASE("grazing contact: a block balanced edge-down across another's edge com
   const double edge = (kA / 2 + kH / 2) / std::sqrt(2.0);
   bundle.bodies[0].position.setZero();
   bundle.bodies[1].position = Eigen::Vector3d(0, 0, 2 * edge);
-  World world(bundle, p, s);
+  World world(bundle.shapes, bundle.bodies, p, s);
   const double z0 = world.bodies().position[1].z();
   const double mg = world.bodies().mass[1] * 9.81;
   // Keep it balanced: only its vertical motion is free to show the catch (the edge line is an
@@ -141,7 +142,8 @@ TEST_CASE("candidate node lists: the forces are those of candidates built afresh
     SolverSettings wide = s, fresh = s;
     wide.broadPhaseMarginRatio = 4 * s.broadPhaseMarginRatio;
     fresh.broadPhaseMarginRatio = 1e-9 * s.broadPhaseMarginRatio;
-    World narrow(slab, ContactParameters{}, s), broad(slab, ContactParameters{}, wide), every(slab, ContactParameters{}, fresh);
+    World narrow(slab.shapes, slab.bodies, ContactParameters{}, s), broad(slab.shapes, slab.bodies, ContactParameters{}, wide),
+        every(slab.shapes, slab.bodies, ContactParameters{}, fresh);
     for (World* w : {&narrow, &broad, &every}) {
       SphereObstacle indenter;
       indenter.center = Eigen::Vector3d(0, 0, kH / 2 + indenter.radius - 5e-6);
@@ -159,8 +161,8 @@ TEST_CASE("candidate node lists: the forces are those of candidates built afresh
     }
     REQUIRE(narrow.sphereReaction(0).z() > 1.0);  // loaded: over a newton on the indenter
     std::size_t narrowCandidates = 0, broadCandidates = 0;
-    for (const PairContacts& pair : narrow.pairs()) narrowCandidates += pair.candidates.nodes();
-    for (const PairContacts& pair : broad.pairs()) broadCandidates += pair.candidates.nodes();
+    for (const PairContacts& pair : WorldInternals::pairs(narrow)) narrowCandidates += pair.candidates.nodes();
+    for (const PairContacts& pair : WorldInternals::pairs(broad)) broadCandidates += pair.candidates.nodes();
     REQUIRE(narrowCandidates < broadCandidates);
   }
 }
