@@ -27,6 +27,18 @@ for folder in "${!allowed[@]}"; do
     fi
   done < <(cd "$source_dir" && grep -H -E '^#include "[a-z_]+/' "$folder"/*.h "$folder"/*.cpp 2>/dev/null || true)
 done
+# The kernel's API: the layers above it include only its public headers (world.h and what it
+# includes), and those include no other solver header, so that the solver's own records
+# (pair_contacts.h, node_contacts.h, world_internals.h, ...) stay private to it and its tests.
+public="world.h contact_parameters.h solver_settings.h pair_view.h pair_state.h rigid_bodies.h obstacles.h contact_bars.h travel.h"
+while IFS= read -r line; do
+  header=$(sed -E 's/.*#include "solver\/([a-z_]+\.h)".*/\1/' <<<"$line")
+  if [[ " $public " != *" $header "* ]]; then
+    echo "layers: ${line%%:*} includes solver/$header, which is private to the solver (public: $public)"
+    status=1
+  fi
+done < <(cd "$source_dir" && grep -H -E '^#include "solver/' run/*.h run/*.cpp tools/*.h tools/*.cpp python/*.h python/*.cpp \
+           $(for h in $public; do echo solver/$h; done) 2>/dev/null || true)
 # The kernel: no file-format headers in its sources, none among the libraries it needs.
 if grep -l -E '#include <(hdf5|toml\+\+|nlohmann|openvdb|assimp|CGAL)' "$source_dir"/solver/*.h "$source_dir"/solver/*.cpp; then
   echo "layers: the kernel (solver/) includes a file-format library"
