@@ -5,6 +5,7 @@
 #include "io/input_error.h"
 #include "run/curve_table.h"
 #include "run/run_session.h"
+#include "run/run_summary.h"
 
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
@@ -190,20 +191,11 @@ py::dict contactsOf(const World& world) {
 }
 
 // The response parameters as Python sees them (Simulation.response): summary.json's "response"
-// names without their unit suffixes, in SI units.
-py::dict responseOf(const ResponseParameters& r) {
-  py::dict d;
-  d["peak_load"] = r.peakLoad;
-  d["delta_at_peak"] = r.deltaAtPeak;
-  d["stiffness"] = r.stiffness;
-  d["failure_deflection"] = r.failureDeflection >= 0 ? py::object(py::float_(r.failureDeflection)) : py::object(py::none());
-  d["loading_energy"] = r.energy;
-  d["loading_energy_to_end"] = r.energyToEnd;
-  d["ultimate_deflection"] = r.ultimateDeflection;
-  d["failure_mode"] = r.failureMode;
-  d["quasi_static_ratio"] = r.quasiStaticRatio;
-  d["thickness"] = r.thickness;
-  return d;
+// (RunSummary, its one definition) by its plain names, in SI units; null (no failure) as None.
+py::dict responseOf(const RunSession& session) {
+  const RunSummary summary = makeRunSummary(session.scene(), session.bundle(), session.contact(), session.record(),
+                                            session.response(), {});
+  return py::module_::import("json").attr("loads")(runSummaryJson(summary, false).at("response").dump());
 }
 
 // The indenter as Python sees it (Simulation.indenter).
@@ -295,7 +287,7 @@ void bindSimulation(py::module_& m) {
                              "whether the slab settled before loading (False: settle_max_time ran out)")
       .def_property_readonly("curve", [](const Simulation& s) { return curveOf(s.session().record().curve); },
                              "dict of numpy arrays, one per column of results.h5's curve (units: tessera.curve_units)")
-      .def_property_readonly("response", [](const Simulation& s) { return responseOf(s.session().response()); },
+      .def_property_readonly("response", [](const Simulation& s) { return responseOf(s.session()); },
                              "P_max (N), K (N/m), W (J), failure deflection (m) and mode")
       .def_property_readonly("stop_reason", [](const Simulation& s) { return std::string(stopReasonName(s.session().record().stopReason)); })
       .def_property_readonly("body_names", [](const Simulation& s) { return s.session().world().bodies().name; })

@@ -6,9 +6,8 @@
 #include "io/hdf5_file.h"
 #include "run/curve_table.h"
 #include "run/paraview_state.h"
+#include "run/run_summary.h"
 #include "run/snapshot_table.h"
-
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -91,115 +90,6 @@ void writeCurveCsv(const fs::path& dir, const IndentationRecord& record) {
     out += line;
   }
   writeTextFileSafely(dir / "curve.csv", out);
-}
-
-// summary.json's "response": the response parameters, the failure and the energy balance at the end.
-nlohmann::json responseJson(const Scene& scene, const IndentationRecord& record, const ResponseParameters& response) {
-  nlohmann::json fallen = nlohmann::json::array();
-  for (const FallenBody& b : record.fallen)
-    fallen.push_back({{"name", b.name}, {"delta_mm", b.delta * 1e3}, {"retired", b.retired}, {"touching", b.touching}});
-  nlohmann::json drops = nlohmann::json::array();
-  for (const LoadDrop& d : response.drops)
-    drops.push_back({{"delta_mm", d.delta * 1e3}, {"load_before_N", d.before}, {"load_after_N", d.after}});
-  const auto contactState = [](const ContactState& c) {
-    return nlohmann::json{{"delta_mm", c.delta * 1e3},
-                          {"block_displacement_mm", c.blockDisplacement * 1e3},
-                          {"indenter_penetration_mm", c.indenterPenetration * 1e3},
-                          {"sliding_fraction", c.slidingFraction},
-                          {"loaded_sliding_fraction", c.loadedSlidingFraction},
-                          {"indenter_speed_mm_per_s", c.indenterSpeed * 1e3}};
-  };
-  const CurveSample& end = response.end;
-  const bool failed = response.failureDeflection >= 0;
-  return nlohmann::json{{"peak_load_N", response.peakLoad},
-                        {"delta_at_peak_mm", response.deltaAtPeak * 1e3},
-                        {"stiffness_N_per_mm", response.stiffness * 1e-3},
-                        {"stiffness_fit_window_mm", {response.fitFrom * 1e3, response.fitTo * 1e3}},
-                        {"failure_deflection_mm", failed ? nlohmann::json(response.failureDeflection * 1e3) : nlohmann::json(nullptr)},
-                        {"failure_load_fraction", scene.protocol.failureLoadFraction},
-                        {"block_displacement_at_failure_mm",
-                         failed ? nlohmann::json(response.atFailure.blockDisplacement * 1e3) : nlohmann::json(nullptr)},
-                        {"loading_energy_mJ", response.energy * 1e3},
-                        {"loading_energy_to_end_mJ", response.energyToEnd * 1e3},
-                        {"ultimate_deflection_mm", response.ultimateDeflection * 1e3},
-                        {"failure_mode", response.failureMode},
-                        {"fallen", fallen},
-                        {"load_drops", drops},
-                        {"at_peak", contactState(response.atPeak)},
-                        {"at_failure", failed ? contactState(response.atFailure) : nlohmann::json(nullptr)},
-                        {"end", {{"delta_mm", end.delta * 1e3}, {"load_N", end.load}, {"block_displacement_mm", end.blockDisplacement * 1e3}}},
-                        {"energy",
-                         {{"work_mJ", end.obstacleWork * 1e3},
-                          {"elastic_mJ", end.elastic * 1e3},
-                          {"kinetic_mJ", end.kinetic * 1e3},
-                          {"friction_mJ", end.friction * 1e3},
-                          {"damping_mJ", end.damping * 1e3},
-                          {"gravity_mJ", end.gravityWork * 1e3},
-                          {"retired_kinetic_mJ", end.retiredKinetic * 1e3},
-                          {"projection_mJ", end.projection * 1e3},
-                          {"residual_mJ", end.residual * 1e3}}},
-                        {"quasi_static_ratio", response.quasiStaticRatio},
-                        {"quasi_static", response.quasiStatic},
-                        {"quasi_static_target", scene.protocol.quasiStaticTarget},
-                        {"loading_speed_to_peak_mm_per_s", response.loadingSpeed * 1e3},
-                        {"peak_load_normalised", response.peakLoadNormalised},
-                        {"delta_at_peak_normalised", response.deltaAtPeakNormalised},
-                        {"thickness_mm", response.thickness * 1e3},
-                        {"delta_max_mm", record.deltaMax * 1e3}};
-}
-
-// summary.json's content (docs/outputs.md).
-nlohmann::json summaryJson(const Scene& scene, const Bundle& bundle, const ContactParameters& contact,
-                           const IndentationRecord& record, const ResponseParameters& response,
-                           const RunProvenance& provenance) {
-  nlohmann::json shapes = nlohmann::json::array();
-  for (const Shape& shape : bundle.shapes)
-    shapes.push_back({{"name", shape.name},
-                      {"level_set", levelSetPath(shape, scene.solver.exactConvexLevelSets, scene.solver.exactMeshLevelSets)},
-                      {"voxel_mm", shape.resolution.voxelSize * 1e3},
-                      {"node_spacing_mm", shape.resolution.nodeSpacing * 1e3},
-                      {"edge_node_spacing_mm", shape.resolution.edgeSpacingFraction * shape.resolution.nodeSpacing * 1e3},
-                      {"nodes", shape.nodes.size()}});
-  return {
-      {"generator", generatorVersion()},
-      {"scene", scene.path},
-      {"bundle", scene.bundle},
-      {"target", record.targetName},
-      {"stop_reason", stopReasonName(record.stopReason)},
-      {"state_digest", provenance.stateDigest},
-      {"response", responseJson(scene, record, response)},
-      {"material",
-       {{"youngs_modulus_GPa", contact.youngsModulus * 1e-9},
-        {"friction", contact.friction},
-        {"normal_stiffness_N_per_m3", contact.normalStiffness()},
-        {"tangential_stiffness_N_per_m3", contact.tangentialStiffness()},
-        {"indenter_stiffness_factor", scene.indenter.stiffnessFactor},
-        {"indenter_radius_mm", record.indenterRadius * 1e3},
-        {"indenter_speed_mm_per_s", record.indenterSpeed * 1e3},
-        {"span_length_mm", contact.spanLength * 1e3},
-        {"span_interfaces", contact.spanInterfaces},
-        {"contact_evaluation", contact.evaluation == ContactEvaluation::OneWay ? "one-way" : "two-way"},
-        {"contact_area", contact.area == ContactArea::Nearest ? "nearest" : "blended"},
-        {"stiffness_rule", stiffnessRuleName(contact.stiffnessRule)}}},
-      {"shapes", shapes},
-      {"run",
-       {{"method", record.implicit ? "implicit" : "explicit"},
-        {"time_step_s", record.timeStep},
-        {"steps", record.steps},
-        {"newton_iterations", record.implicitCounts.iterations},
-        {"cutbacks", record.implicitCounts.cutbacks},
-        {"dynamic_increments", record.implicitCounts.dynamicIncrements},
-        {"settle_time_s", record.settleTime},
-        {"settle_steps", record.settleSteps},
-        {"settled", record.settled},
-        {"settle_kinetic_J", record.settleKinetic},
-        {"settle_max_time_s", record.settleMaxTime},
-        {"sunk_while_settling", record.sunkWhileSettling},
-        {"wall_seconds", record.wallSeconds},
-        {"samples", record.curve.size()},
-        {"snapshots", record.snapshots.size()}}},
-  };
-
 }
 
 // The ParaView series: per snapshot the blocks (displacement from the bundle's pose, velocity),
@@ -285,7 +175,7 @@ void writeRunOutputs(const std::string& directory, const Scene& scene, const Bun
   writeParaViewSeries(dir, bundle, record);
   // Last: a summary.json that says how the run stopped means every file above was written then
   // (a resumed run that had finished relies on it, RunSession::finishedAndWritten).
-  writeTextFileSafely(dir / "summary.json", jsonText(summaryJson(scene, bundle, contact, record, response, provenance)));
+  writeTextFileSafely(dir / "summary.json", jsonText(runSummaryJson(makeRunSummary(scene, bundle, contact, record, response, provenance))));
 }
 
 }  // namespace tessera

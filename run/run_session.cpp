@@ -13,13 +13,11 @@
 #include "run/presets.h"
 #include "run/protocol_scale.h"
 #include "run/run_output.h"
+#include "run/run_summary.h"
 #include "run/state_digest.h"
-
-#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iterator>
 #include <sstream>
@@ -313,9 +311,8 @@ void RunSession::writeOutputs() const {
 bool RunSession::finishedAndWritten() const {
   if (!resumed_ || !record_.finished()) return false;
   try {
-    std::ifstream file(fs::path(output_) / "summary.json");
-    return nlohmann::json::parse(file).at("stop_reason").get<std::string>() == stopReasonName(record_.stopReason);
-  } catch (const std::exception&) {
+    return readRunSummary(output_).stopReason == record_.stopReason;
+  } catch (const InputError&) {
     return false;  // missing or unreadable: written again by the resumed run
   }
 }

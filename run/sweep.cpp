@@ -8,6 +8,7 @@
 #include "io/safe_write.h"
 #include "run/presets.h"
 #include "run/run_output.h"
+#include "run/run_summary.h"
 #include "run/scene.h"
 
 #include <nlohmann/json.hpp>
@@ -16,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <iterator>
 #include <map>
@@ -326,14 +326,11 @@ void recordCaseAttempt(const std::string& caseDir, int exitStatus, const std::st
 
 bool sweepCaseComplete(const std::string& runDir) {
   const fs::path run(runDir);
-  std::ifstream in(run / "summary.json");
-  if (!in) return false;
+  if (!fs::exists(run / "summary.json")) return false;
   try {
-    const auto j = nlohmann::json::parse(in);
-    const std::optional<StopReason> reason = parseStopReason(j.value("stop_reason", "running"));
-    return reason && isComplete(*reason);
-  } catch (const std::exception&) {
-    return false;
+    return isComplete(readRunSummary(run).stopReason);
+  } catch (const InputError&) {
+    return false;  // cut short or not a summary: the case runs again
   }
 }
 
@@ -343,7 +340,8 @@ namespace {
 double number(const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); }
 
 // One numeric column of the sweep tables (after the case's keys): its name, summary.json's where
-// it is one of its response parameters, and its value from a case's summary.json.
+// it is one of its response parameters, and its value from a case's summary as the file has it
+// (runSummaryJson: the file's keys and units).
 struct SweepColumn {
   std::string name;
   std::function<double(const nlohmann::json& summary)> value;
@@ -354,14 +352,14 @@ const std::vector<SweepColumn>& sweepColumns() {
     std::vector<SweepColumn> c;
     for (const char* name : {"peak_load_N", "delta_at_peak_mm", "stiffness_N_per_mm", "loading_energy_mJ", "loading_energy_to_end_mJ",
                              "failure_deflection_mm", "block_displacement_at_failure_mm"})
-      c.push_back({name, [name](const nlohmann::json& j) { return number(j["response"][name]); }});
-    c.push_back({"load_drops", [](const nlohmann::json& j) { return static_cast<double>(j["response"]["load_drops"].size()); }});
+      c.push_back({name, [name](const nlohmann::json& j) { return number(j.at("response").at(name)); }});
+    c.push_back({"load_drops", [](const nlohmann::json& j) { return static_cast<double>(j.at("response").at("load_drops").size()); }});
     c.push_back({"energy_residual_fraction", [](const nlohmann::json& j) {
-                   const nlohmann::json& e = j["response"]["energy"];
-                   const double work = e["work_mJ"];
-                   return work > 0 ? e["residual_mJ"].get<double>() / work : 0.0;
+                   const nlohmann::json& e = j.at("response").at("energy");
+                   const double work = e.at("work_mJ");
+                   return work > 0 ? e.at("residual_mJ").get<double>() / work : 0.0;
                  }});
-    c.push_back({"wall_seconds", [](const nlohmann::json& j) { return number(j["run"]["wall_seconds"]); }});
+    c.push_back({"wall_seconds", [](const nlohmann::json& j) { return number(j.at("run").at("wall_seconds")); }});
     return c;
   }();
   return columns;
@@ -389,7 +387,8 @@ int writeSweepTables(const std::string& folder) {
   for (const auto& entry : manifest["cases"]) {
     const fs::path run = dir / entry["directory"].get<std::string>() / "run";
     if (!sweepCaseComplete(run.string())) continue;  // an interrupted or failed case is never tabled or plotted
-    const nlohmann::json j = nlohmann::json::parse(readTextFile(run / "summary.json"));
+    const RunSummary summary = readRunSummary(run);
+    const nlohmann::json j = runSummaryJson(summary);
     const std::vector<double> caseValues = entry["values"];
     std::vector<double> values;
     for (const SweepColumn& c : sweepColumns()) values.push_back(c.value(j));
@@ -401,14 +400,15 @@ int writeSweepTables(const std::string& folder) {
       if (!std::isnan(v)) line << v;
     }
     std::string fallen;
-    for (const auto& f : j["response"]["fallen"]) fallen += (fallen.empty() ? "" : " ") + f["name"].get<std::string>();
-    line << "," << j["response"]["failure_mode"].get<std::string>() << "," << j["stop_reason"].get<std::string>() << "," << fallen << "\n";
+    for (const FallenBody& f : summary.fallen) fallen += (fallen.empty() ? "" : " ") + f.name;
+    const std::string reason = stopReasonName(summary.stopReason);
+    line << "," << summary.response.failureMode << "," << reason << "," << fallen << "\n";
     csv += line.str();
     rowsValues.push_back(caseValues);
     rowsTable.push_back(values);
     caseNames.push_back(entry["directory"]);
-    reasons.push_back(j["stop_reason"]);
-    modes.push_back(j["response"]["failure_mode"]);
+    reasons.push_back(reason);
+    modes.push_back(summary.response.failureMode);
   }
   writeTextFileSafely(dir / "sweep.csv", csv);
   writeSweepTable((dir / "sweep.h5").string(), keys, rowsValues, names, rowsTable, caseNames, modes, reasons);

@@ -3,7 +3,9 @@
 // values of --set, read whole or refused.
 #include "io/folder_lock.h"
 #include "io/input_error.h"
+#include "io/json_text.h"
 #include "run/indentation.h"
+#include "run/run_summary.h"
 #include "run/slurm_sweep.h"
 #include "run/stop_reason.h"
 #include "run/sweep.h"
@@ -18,6 +20,13 @@ using namespace tessera;
 namespace fs = std::filesystem;
 
 namespace {
+
+// A whole summary.json (RunSummary's), stopped for `reason`.
+std::string summaryText(StopReason reason) {
+  RunSummary summary;
+  summary.stopReason = reason;
+  return jsonText(runSummaryJson(summary));
+}
 
 void writeText(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
@@ -90,24 +99,29 @@ TEST_CASE("a case's state is read from its files: missing, failed, interrupted, 
   CHECK(deadAttemptState(c.string()) == CaseState::Interrupted);
 
   fs::remove(c / "attempt.json");
-  writeText(c / "run" / "summary.json", R"({"stop_reason": "interrupted"})");
+  writeText(c / "run" / "summary.json", summaryText(StopReason::Interrupted));
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Interrupted);  // by its checkpoint
-  writeText(c / "run" / "summary.json", R"({"stop_reason": "failure"})");
+  writeText(c / "run" / "summary.json", summaryText(StopReason::Failure));
   CHECK(sweepCaseStatus(c.string()).state == CaseState::Complete);
+  writeText(c / "run" / "summary.json", summaryText(StopReason::DeltaMax));
+  CHECK(sweepCaseStatus(c.string()).state == CaseState::Complete);
+  // A summary cut short (or of another schema) is not a complete case, whatever its stop reason.
   writeText(c / "run" / "summary.json", R"({"stop_reason": "delta_max"})");
-  CHECK(sweepCaseStatus(c.string()).state == CaseState::Complete);
+  CHECK_FALSE(sweepCaseComplete((c / "run").string()));
   // Complete as a run counts it (IndentationRecord::finished): stopped as its sample hook asked too;
   // not when unstable or still running, nor under a name no run writes.
   for (StopReason reason : {StopReason::Running, StopReason::DeltaMax, StopReason::Failure, StopReason::Requested,
                             StopReason::Interrupted, StopReason::Instability}) {
     INFO(stopReasonName(reason));
     REQUIRE(parseStopReason(stopReasonName(reason)) == reason);
-    writeText(c / "run" / "summary.json", std::string(R"({"stop_reason": ")") + stopReasonName(reason) + "\"}");
+    writeText(c / "run" / "summary.json", summaryText(reason));
     IndentationRecord record;
     record.stopReason = reason;
     CHECK(sweepCaseComplete((c / "run").string()) == record.finished());
   }
-  writeText(c / "run" / "summary.json", R"({"stop_reason": "finished"})");
+  std::string unknown = summaryText(StopReason::DeltaMax);
+  unknown.replace(unknown.find("\"delta_max\""), 11, "\"finished\"");
+  writeText(c / "run" / "summary.json", unknown);
   CHECK_FALSE(sweepCaseComplete((c / "run").string()));
   CHECK_FALSE(parseStopReason("finished"));
 }
