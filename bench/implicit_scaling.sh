@@ -33,12 +33,12 @@ folder, method, wall, note = sys.argv[1:5]
 s = json.load(open(folder + "/summary.json"))
 r, run = s["response"], s["run"]
 e = r.get("energy", {})
-work = e.get("work_mJ", 0) or 1
+work = e.get("external_work_mJ", 0) or 1
 iterations = f" ({run['newton_iterations']} iterations)" if run.get('method') == 'implicit' else ""
 print(f"{folder.split('/')[-1]:>14} {method:>8} {note}{float(wall):8.1f} s  steps {run['steps']:>8}{iterations}  "
       f"P_max {r['peak_load_N']:8.3f} N  K {r['stiffness_N_per_mm']:9.3f} N/mm  delta(P_max) {r['delta_at_peak_mm']:6.3f} mm  "
       f"W {r['loading_energy_to_end_mJ']:8.2f} mJ  failure {r.get('failure_deflection_mm')} ({r.get('failure_mode')})  "
-      f"residual {100 * e.get('residual_mJ', 0) / work:5.2f} %")
+      f"residual {100 * e.get('energy_residual_mJ', 0) / work:5.2f} %")
 EOF
 }
 

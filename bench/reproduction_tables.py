@@ -38,7 +38,7 @@ def row(run):
         "fb": "–" if fd is None else "%.2f" % (r["block_displacement_at_failure_mm"] / h),
         "main": "–" if main is None else "%.2f (%.2f h): %.0f→%.0f N" % (main["delta_mm"], main_b, main["load_before_N"], main["load_after_N"]),
         "after": after, "mode": r["failure_mode"], "out": out or "–", "qs": r["quasi_static_ratio"],
-        "end": r["end"]["delta_mm"], "residual": 100 * abs(r["energy"]["residual_mJ"]) / max(r["energy"]["work_mJ"], 1e-30),
+        "end": r["end"]["delta_mm"], "residual": 100 * abs(r["energy"]["energy_residual_mJ"]) / max(r["energy"]["external_work_mJ"], 1e-30),
     }
 
 

@@ -20,7 +20,9 @@ namespace {
 constexpr const char* kFormat = "tessera-checkpoint";
 // 8: `fixed` marks the supports only (a retired body was marked fixed too in 7, which a version-7
 // reader would need to keep it still). Version 7 files are read: their supports are the bundle's.
-constexpr std::int64_t kVersion = 8;
+// 9: the indenter's work is `external_work`, the curve's and summary's name (7 and 8 call it
+// `obstacle_work`, and are read under it).
+constexpr std::int64_t kVersion = 9;
 constexpr std::int64_t kOldestVersion = 7;
 
 hsize_t count(std::size_t n) { return static_cast<hsize_t>(n); }
@@ -185,7 +187,11 @@ struct Reader {
   void field(const char* name, std::vector<char>& v) const { v = readFlags(g, name); }
   void field(const char* name, std::vector<double>& v) const { v = h5::readDataset<double>(g, name); }
   void field(const char* name, std::vector<std::int32_t>& v) const { v = h5::readDataset<std::int32_t>(g, name); }
-  void field(const char* name, double& x) const { x = h5::readDoubleAttribute(g, name); }
+  void field(const char* name, double& x) const {
+    // A number a version before 9 kept under its former name.
+    const bool former = std::string(name) == "external_work" && !std::isfinite(h5::readDoubleAttribute(g, name, NAN));
+    x = h5::readDoubleAttribute(g, former ? "obstacle_work" : name);
+  }
   void field(const char* name, long& x) const { x = static_cast<long>(h5::readIntAttribute(g, name)); }
   void field(const char* name, int& x) const { x = static_cast<int>(h5::readIntAttribute(g, name)); }
   void field(const char* name, bool& x) const { x = h5::readIntAttribute(g, name) != 0; }
@@ -241,7 +247,7 @@ void serializeWorld(const Archive& io, WorldState& w) {
   io.field("pairs_valid", w.pairsValid);
   io.field("forces_valid", w.forcesValid);
   io.field("initial_energy", w.initialEnergy);
-  io.field("obstacle_work", w.obstacleWork);
+  io.field("external_work", w.externalWork);
   io.field("friction_dissipated", w.friction);
   io.field("damping_dissipated", w.damping);
   io.field("retired_kinetic", w.retiredKinetic);

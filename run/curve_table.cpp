@@ -21,7 +21,7 @@ const std::vector<CurveColumn>& curveColumns() {
       {"loaded_contacts", "count", &CurveSample::loadedContacts},
       {"loaded_sliding", "count", &CurveSample::loadedSliding},
       {"kinetic_energy", "J", &CurveSample::kinetic},
-      {"external_work", "J", &CurveSample::obstacleWork},
+      {"external_work", "J", &CurveSample::externalWork},
       {"elastic_energy", "J", &CurveSample::elastic},
       {"friction_dissipated", "J", &CurveSample::friction},
       {"damping_dissipated", "J", &CurveSample::damping},

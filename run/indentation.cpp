@@ -18,7 +18,7 @@ namespace tessera {
 
 void setEnergies(CurveSample& s, const EnergyBudget& e) {
   s.kinetic = e.kinetic;
-  s.obstacleWork = e.obstacleWork;
+  s.externalWork = e.externalWork;
   s.elastic = e.elastic;
   s.friction = e.friction;
   s.damping = e.damping;
@@ -209,7 +209,7 @@ private:
     const EnergyBudget e = world_.energy();
     const double settleStepsLeft =
         (record_.settleMaxTime - world_.time()) * world_.stepCount() / std::max(world_.time(), 1e-300);
-    hooks_.progress({0.0, 0.0, e.kinetic, e.obstacleWork, 0, world_.stepCount(), world_.stepCount() / (wallBefore_ + wall()),
+    hooks_.progress({0.0, 0.0, e.kinetic, e.externalWork, 0, world_.stepCount(), world_.stepCount() / (wallBefore_ + wall()),
                      eta(travel, indenterSpeed(world_, scene_.indenter, h)), true,
                      std::max(0.0, settleStepsLeft) / std::max(sessionRate(), 1e-9)});
   }
@@ -254,12 +254,12 @@ private:
   // Quasi-static check while loading up to the peak (past the first 5 % of h of contact): warned once.
   void checkQuasiStatic(double delta, double load) {
     const CurveSample& last = record_.curve.back();
-    if (warnedQuasiStatic_ || load < state_.peak || delta <= 0.05 * record_.thickness || !(last.obstacleWork > 0) ||
-        last.kinetic <= scene_.protocol.quasiStaticLimit * last.obstacleWork)
+    if (warnedQuasiStatic_ || load < state_.peak || delta <= 0.05 * record_.thickness || !(last.externalWork > 0) ||
+        last.kinetic <= scene_.protocol.quasiStaticLimit * last.externalWork)
       return;
     warnedQuasiStatic_ = true;
     if (hooks_.warning)
-      hooks_.warning("loading too fast: kinetic energy " + std::to_string(last.kinetic / last.obstacleWork).substr(0, 6) +
+      hooks_.warning("loading too fast: kinetic energy " + std::to_string(last.kinetic / last.externalWork).substr(0, 6) +
                      " x the indenter's work at delta = " + std::to_string(delta * 1e3).substr(0, 5) +
                      " mm (limit protocol.quasi_static_limit); lower indenter.speed or indenter.speed_ratio");
   }
@@ -308,13 +308,13 @@ private:
     const double target = scene_.protocol.quasiStaticTarget;
     if (target > 0 && (steered || (state_.peak > 0 && load < 0.5 * state_.peak))) state_.rateAdapted = true;
     const CurveSample& last = record_.curve.back();
-    if (target > 0 && !state_.rateAdapted && last.obstacleWork > 0 && velocity > 0) {
+    if (target > 0 && !state_.rateAdapted && last.externalWork > 0 && velocity > 0) {
       double recent = 0;
       const std::size_t n = record_.curve.size();
       for (std::size_t i = n - std::min<std::size_t>(n, kRecentSamples); i < n; ++i)
-        if (record_.curve[i].obstacleWork > 0)
-          recent = std::max(recent, record_.curve[i].kinetic / record_.curve[i].obstacleWork);
-      control.indenterSpeed = adaptedIndenterSpeed(velocity, last.kinetic / last.obstacleWork, recent, target,
+        if (record_.curve[i].externalWork > 0)
+          recent = std::max(recent, record_.curve[i].kinetic / record_.curve[i].externalWork);
+      control.indenterSpeed = adaptedIndenterSpeed(velocity, last.kinetic / last.externalWork, recent, target,
                                                    kSlowestSpeedFraction * speed_, speed_);
     }
     if (control.indenterSpeed != velocity) {
@@ -392,7 +392,7 @@ private:
         const double left = state_.contactTravel < 0 ? scene_.indenter.clearance - travel + record_.deltaMax
                                                      : record_.deltaMax - delta;
         const EnergyBudget e = world_.energy();
-        hooks_.progress({delta, load, e.kinetic, e.obstacleWork, static_cast<long>(countContacts(world_, record_.target).all),
+        hooks_.progress({delta, load, e.kinetic, e.externalWork, static_cast<long>(countContacts(world_, record_.target).all),
                          world_.stepCount(), world_.stepCount() / (wallBefore_ + wall()),
                          eta(std::max(left, 0.0), velocity > 0 ? velocity : speed_), false, 0.0});
       }

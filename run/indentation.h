@@ -23,7 +23,7 @@ struct CurveSample {
   double loadedContacts = 0;      ///< node contacts between the loaded block and other bodies
   double loadedSliding = 0;       ///< of those, at the Coulomb cap
   double kinetic = 0;             ///< J; the energies are since the start of the run (settling included)
-  double obstacleWork = 0;        ///< J, work done by the indenter
+  double externalWork = 0;        ///< J, work done by the indenter
   double elastic = 0;             ///< J, stored in the contacts
   double friction = 0;            ///< J, dissipated by sliding
   double damping = 0;             ///< J, dissipated by damping
@@ -106,7 +106,7 @@ void recordStepping(IndentationRecord& record, const World& world);
 
 /// Progress while running (called every output.progressSeconds of wall time).
 struct Progress {
-  double delta, load, kinetic, obstacleWork;
+  double delta, load, kinetic, externalWork;
   long contacts, steps;
   double stepsPerSecond, etaSeconds;
   bool settling;  ///< still settling: no load yet, the ETA counts the loading to come

@@ -153,8 +153,8 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   // Quasi-static check before the peak, once the indenter has done 1 % of its work up to the peak
   // (before that the ratio only measures the settling's leftover motion against almost nothing).
   for (std::size_t i = 0; i <= peak; ++i)
-    if (c[i].obstacleWork > 0.01 * c[peak].obstacleWork)
-      r.quasiStaticRatio = std::max(r.quasiStaticRatio, c[i].kinetic / c[i].obstacleWork);
+    if (c[i].externalWork > 0.01 * c[peak].externalWork)
+      r.quasiStaticRatio = std::max(r.quasiStaticRatio, c[i].kinetic / c[i].externalWork);
   r.quasiStatic = r.quasiStaticRatio <= settings.quasiStaticLimit;
   if (c[peak].time > c[0].time) r.loadingSpeed = (c[peak].delta - c[0].delta) / (c[peak].time - c[0].time);
 

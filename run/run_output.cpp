@@ -84,7 +84,7 @@ void writeCurveCsv(const fs::path& dir, const IndentationRecord& record) {
   char line[320];
   for (const CurveSample& s : record.curve) {
     std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g\n", s.delta * 1e3, s.load,
-                  s.time, s.kinetic, s.obstacleWork, s.contacts, s.blockDisplacement * 1e3, s.indenterPenetration * 1e3,
+                  s.time, s.kinetic, s.externalWork, s.contacts, s.blockDisplacement * 1e3, s.indenterPenetration * 1e3,
                   s.blockContacts > 0 ? s.slidingContacts / s.blockContacts : 0.0,
                   s.loadedContacts > 0 ? s.loadedSliding / s.loadedContacts : 0.0);
     out += line;

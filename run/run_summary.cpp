@@ -2,6 +2,7 @@
 
 #include "io/input_error.h"
 #include "io/text_file.h"
+#include "run/curve_table.h"
 
 #include <nlohmann/json.hpp>
 
@@ -154,16 +155,10 @@ void serializeResponse(const Io& io, RunSummary& s) {
     o.number("load", "N", r.end.load);
     o.number("block_displacement", "mm", r.end.blockDisplacement);
   });
+  // The energy balance at the end: the curve's energy columns, by their names, in mJ.
   io.object("energy", [&](const auto& o) {
-    o.number("work", "mJ", r.end.obstacleWork);
-    o.number("elastic", "mJ", r.end.elastic);
-    o.number("kinetic", "mJ", r.end.kinetic);
-    o.number("friction", "mJ", r.end.friction);
-    o.number("damping", "mJ", r.end.damping);
-    o.number("gravity", "mJ", r.end.gravityWork);
-    o.number("retired_kinetic", "mJ", r.end.retiredKinetic);
-    o.number("projection", "mJ", r.end.projection);
-    o.number("residual", "mJ", r.end.residual);
+    for (const CurveColumn& c : curveColumns())
+      if (std::string(c.unit) == "J") o.number(c.name, "mJ", r.end.*c.field);
   });
   io.number("quasi_static_ratio", "", r.quasiStaticRatio);
   io.value("quasi_static", r.quasiStatic);

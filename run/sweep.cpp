@@ -356,8 +356,8 @@ const std::vector<SweepColumn>& sweepColumns() {
     c.push_back({"load_drops", [](const nlohmann::json& j) { return static_cast<double>(j.at("response").at("load_drops").size()); }});
     c.push_back({"energy_residual_fraction", [](const nlohmann::json& j) {
                    const nlohmann::json& e = j.at("response").at("energy");
-                   const double work = e.at("work_mJ");
-                   return work > 0 ? e.at("residual_mJ").get<double>() / work : 0.0;
+                   const double work = e.at("external_work_mJ");
+                   return work > 0 ? e.at("energy_residual_mJ").get<double>() / work : 0.0;
                  }});
     c.push_back({"wall_seconds", [](const nlohmann::json& j) { return number(j.at("run").at("wall_seconds")); }});
     return c;

@@ -298,7 +298,7 @@ void World::commitIncrement(double dt, int iterations) {
   for (std::size_t k = 0; k < state_.spheres.size(); ++k) {
     const Eigen::Vector3d moved = state_.spheres[k].center - w.start.sphereCentre[k];
     const Eigen::Vector3d before = k < w.startReaction.size() ? w.startReaction[k] : Eigen::Vector3d::Zero();
-    state_.obstacleWork -= 0.5 * (before + state_.sphereReaction[k]).dot(moved);
+    state_.externalWork -= 0.5 * (before + state_.sphereReaction[k]).dot(moved);
   }
   // Backward Euler's velocities, and what it dissipates. Its balance m (v - v_0) = dt F_1 (F the
   // contact and gravity forces) gives F_1 . dx = dKE + m |v - v_0|^2 / 2, while the books (the

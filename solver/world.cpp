@@ -204,7 +204,7 @@ void World::checkState(const WorldState& s) const {
     if (!finite(p.forceA) || !finite(p.torqueA) || !finite(p.forceB) || !finite(p.torqueB))
       throw std::invalid_argument("a contact pair holds a non-finite force");
   }
-  for (double e : {s.initialEnergy, s.obstacleWork, s.friction, s.damping, s.retiredKinetic, s.projection, s.mostSupplied, s.time})
+  for (double e : {s.initialEnergy, s.externalWork, s.friction, s.damping, s.retiredKinetic, s.projection, s.mostSupplied, s.time})
     if (!std::isfinite(e)) throw std::invalid_argument("an energy or the time is not finite");
   if (s.time < 0 || s.steps < 0) throw std::invalid_argument("a negative time or step count");
   const ImplicitCounts& c = s.implicit;
@@ -521,7 +521,7 @@ void World::explicitStep() {
   rotateFreely(state_.bodies, dt_);
   for (std::size_t k = 0; k < state_.spheres.size(); ++k) {
     // Work of the prescribed motion on the bodies over this step (reaction from the last evaluation).
-    state_.obstacleWork += -state_.sphereReaction[k].dot(state_.spheres[k].velocity) * dt_;
+    state_.externalWork += -state_.sphereReaction[k].dot(state_.spheres[k].velocity) * dt_;
     state_.spheres[k].center += dt_ * state_.spheres[k].velocity;
   }
   evaluateForces(dt_);
@@ -540,7 +540,7 @@ EnergyBudget World::energy() const {
     if (state_.bodies.moves(i)) e.kinetic += state_.bodies.kineticEnergy(i);
   }
   for (const PairContacts& p : pairs_) e.elastic += p.tally.elastic;
-  e.obstacleWork = state_.obstacleWork;
+  e.externalWork = state_.externalWork;
   e.initial = state_.initialEnergy;
   e.friction = state_.friction;
   e.damping = state_.damping;
@@ -566,7 +566,7 @@ void World::checkStability() {
                               " is probably too large (automatic: " + format("%.3g s)", automaticDt_));
   }
   const EnergyBudget e = energy();
-  state_.mostSupplied = std::max(state_.mostSupplied, e.initial + std::abs(e.gravityWork) + std::abs(e.obstacleWork));
+  state_.mostSupplied = std::max(state_.mostSupplied, e.initial + std::abs(e.gravityWork) + std::abs(e.externalWork));
   // The obstacles' work is booked a step late (the last evaluation's reaction over this step's
   // travel), so a body struck in this step has gained kinetic energy whose work is not booked yet:
   // at most one step's work at the reaction now (an indenter starting in contact with a node).

@@ -30,7 +30,7 @@ struct EnergyBudget {
   double kinetic = 0.0;
   double elastic = 0.0;         ///< stored in the contact springs (normal and tangential)
   double gravityWork = 0.0;     ///< work done by gravity
-  double obstacleWork = 0.0;    ///< work done by the prescribed obstacles (the indenter)
+  double externalWork = 0.0;    ///< work done by the prescribed obstacles (the indenter)
   double initial = 0.0;         ///< kinetic + elastic at the start
   double friction = 0.0;        ///< dissipated by sliding at the Coulomb cap
   double damping = 0.0;         ///< dissipated by local and viscous damping and the normal viscosity
@@ -39,7 +39,7 @@ struct EnergyBudget {
   /// What went in minus what is stored, dissipated or carried off: zero but for the integrator's
   /// error (a time-step quantity: it shrinks with dt^2).
   double residual() const {
-    return initial + gravityWork + obstacleWork - (kinetic + elastic + friction + damping + retiredKinetic + projection);
+    return initial + gravityWork + externalWork - (kinetic + elastic + friction + damping + retiredKinetic + projection);
   }
 };
 
@@ -67,7 +67,7 @@ struct WorldRunState {
   std::vector<Eigen::Vector3d> force, torque, contactForce, contactTorque, sphereReaction, dampingForce, dampingTorque;
   bool forcesValid = false;
   std::vector<Eigen::Vector3d> startPosition;
-  double initialEnergy = 0, obstacleWork = 0, friction = 0, damping = 0, retiredKinetic = 0, projection = 0, mostSupplied = 0,
+  double initialEnergy = 0, externalWork = 0, friction = 0, damping = 0, retiredKinetic = 0, projection = 0, mostSupplied = 0,
          time = 0;
   long steps = 0;  ///< explicit steps, or implicit increments
   ImplicitCounts implicit;

@@ -101,9 +101,9 @@ void printSummary(const IndentationRecord& record, const ResponseParameters& r, 
   const CurveSample& e = r.end;
   std::printf("\n  energy (mJ)        work %.4g + gravity %.3g = elastic %.4g + kinetic %.3g + friction %.4g + damping %.4g"
               " + retired %.3g + projection %.3g; residual %.3g (%.2g %% of the work)\n",
-              e.obstacleWork * 1e3, e.gravityWork * 1e3, e.elastic * 1e3, e.kinetic * 1e3, e.friction * 1e3, e.damping * 1e3,
+              e.externalWork * 1e3, e.gravityWork * 1e3, e.elastic * 1e3, e.kinetic * 1e3, e.friction * 1e3, e.damping * 1e3,
               e.retiredKinetic * 1e3, e.projection * 1e3, e.residual * 1e3,
-              e.obstacleWork > 0 ? 100 * std::abs(e.residual) / e.obstacleWork : 0.0);
+              e.externalWork > 0 ? 100 * std::abs(e.residual) / e.externalWork : 0.0);
   // An unfinished run's "peak" is its last load so far: no verdict on a loading not yet done.
   std::printf("  quasi-static check max KE / W before the peak = %.2e%s\n", r.quasiStaticRatio,
               !record.finished() ? " (run incomplete: no verdict)"
@@ -181,7 +181,7 @@ RunHooks terminalHooks() {
       return;
     }
     std::fprintf(stderr, "run: delta %7.3f mm  P %9.3f N  KE/W %.2e  contacts %7ld  step %9ld  %6.0f steps/s  ETA %.0f s\n",
-                 p.delta * 1e3, p.load, p.obstacleWork > 0 ? p.kinetic / p.obstacleWork : 0.0, p.contacts, p.steps,
+                 p.delta * 1e3, p.load, p.externalWork > 0 ? p.kinetic / p.externalWork : 0.0, p.contacts, p.steps,
                  p.stepsPerSecond, p.etaSeconds);
   };
   hooks.interrupted = [] { return stopRequested.load(); };

@@ -60,9 +60,9 @@ Loading press(const test::TempDir& dir, const std::string& name, double speed, d
                            }) - c.begin();
   double read = 0, above = 0;
   for (std::size_t i = 0; i <= peak; ++i)
-    if (c[i].obstacleWork > 0.01 * c[peak].obstacleWork) {
+    if (c[i].externalWork > 0.01 * c[peak].externalWork) {
       read += 1;
-      above += c[i].kinetic > 1e-3 * c[i].obstacleWork ? 1 : 0;
+      above += c[i].kinetic > 1e-3 * c[i].externalWork ? 1 : 0;
     }
   r.aboveTarget = read > 0 ? above / read : 1.0;
   return r;

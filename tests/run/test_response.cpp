@@ -25,7 +25,7 @@ IndentationRecord recordOf(int n, const std::function<double(double)>& load) {
     s.delta = i * kStep;
     s.load = load(s.delta);
     if (i > 0) work += 0.5 * (s.load + r.curve.back().load) * kStep;
-    s.obstacleWork = work;
+    s.externalWork = work;
     s.kinetic = 1e-3 * work;
     r.curve.push_back(s);
   }
@@ -104,7 +104,7 @@ TEST_CASE("response: the failure mode follows the bodies out, and an unfinished 
 
 TEST_CASE("response: a loading that goes too fast is flagged") {
   IndentationRecord record = recordOf(75, triangle);
-  for (CurveSample& s : record.curve) s.kinetic = 0.05 * s.obstacleWork;
+  for (CurveSample& s : record.curve) s.kinetic = 0.05 * s.externalWork;
   const ResponseParameters r = analyseResponse(record, ResponseSettings{});
   REQUIRE(r.quasiStaticRatio == Approx(0.05));
   REQUIRE_FALSE(r.quasiStatic);

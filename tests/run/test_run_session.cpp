@@ -1,5 +1,6 @@
 // The run of one scene in process (run/run_session.h): checkpoint round trips, the sample hook
 // steering the indenter, presets and overrides, determinism across thread counts.
+#include "io/hdf5_file.h"
 #include "io/input_error.h"
 #include "run/curve_table.h"
 #include "run/presets.h"
@@ -52,7 +53,7 @@ void requireSameCurve(const std::vector<CurveSample>& a, const std::vector<Curve
     REQUIRE(a[i].time == b[i].time);
     REQUIRE(a[i].delta == b[i].delta);
     REQUIRE(a[i].load == b[i].load);
-    REQUIRE(a[i].obstacleWork == b[i].obstacleWork);
+    REQUIRE(a[i].externalWork == b[i].externalWork);
     REQUIRE(a[i].residual == b[i].residual);
   }
 }
@@ -109,7 +110,7 @@ TEST_CASE("a bit flipped anywhere in checkpoint.h5 is refused or resumes exactly
     all << stateDigest(r->world()) << r->source().sceneText << r->source().preset << r->source().threads << s.phase << s.sphere
         << s.loadStart << s.contactTravel << s.peak << s.nextSample << s.nextSnapshot << s.quietFrom << s.travelBase
         << s.pathBase << s.speedSince << s.contactPath << r->record().thickness << r->record().deltaMax
-        << r->record().target << r->record().timeStep << r->world().state().obstacleWork << r->world().state().friction;
+        << r->record().target << r->record().timeStep << r->world().state().externalWork << r->world().state().friction;
     for (const CurveSample& c : r->record().curve)
       for (const CurveColumn& column : curveColumns()) all << ' ' << c.*column.field;
     for (const PairState& p : r->world().state().pairs)
@@ -135,6 +136,26 @@ TEST_CASE("a bit flipped anywhere in checkpoint.h5 is refused or resumes exactly
     REQUIRE(got == original);
   }
   REQUIRE(refused > 20);  // most of the file is free space and padding
+}
+
+TEST_CASE("a version-8 checkpoint (the indenter's work under its former name) resumes as written") {
+  SmallTest t;
+  auto first = RunSession::start(t.request(t.dir / "run"), {});
+  RunHooks stop;
+  stop.interrupted = [&] { return first->state().phase == 1 && first->record().curve.size() >= 5; };
+  first->run(stop);
+  const double work = first->world().state().externalWork;
+  REQUIRE(work > 0);
+  first.reset();
+  {
+    h5::Handle f(H5Fopen((t.dir / "run/checkpoint.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+    REQUIRE(f.get() >= 0);
+    H5Adelete(f.get(), "format_version");
+    h5::writeAttribute(f.get(), "format_version", std::int64_t{8});
+    h5::Handle w = h5::openGroup(f.get(), "world");
+    REQUIRE(H5Arename(w.get(), "external_work", "obstacle_work") >= 0);
+  }
+  REQUIRE(RunSession::resume(t.dir / "run", "", "", -1, {})->world().state().externalWork == work);
 }
 
 TEST_CASE("sample hook: a run it does not steer is the protocol's run, a hold does no work and keeps delta") {
@@ -164,7 +185,7 @@ TEST_CASE("sample hook: a run it does not steer is the protocol's run, a hold do
   for (std::size_t i : during) {
     INFO("held sample " << i);
     REQUIRE(curve[i].delta == start.delta);                 // the indenter still
-    REQUIRE(curve[i].obstacleWork == start.obstacleWork);  // and doing no work
+    REQUIRE(curve[i].externalWork == start.externalWork);  // and doing no work
     REQUIRE(curve[i].load <= start.load * 1.001);           // the slab relaxes under it
   }
   REQUIRE(curve[during.back()].time - start.time > 0);
@@ -290,9 +311,9 @@ TEST_CASE("implicit against explicit on a 5 x 5 slab past its peak: P_max and K 
   // The residual is first-order in the increments where a node's nearest face switches or the
   // load drops within one (docs/physics.md, "Implicit method").
   for (const CurveSample& c : b->record().curve)
-    if (c.delta <= rb.deltaAtPeak) REQUIRE(std::abs(c.residual) < 0.01 * c.obstacleWork + 1e-6);
+    if (c.delta <= rb.deltaAtPeak) REQUIRE(std::abs(c.residual) < 0.01 * c.externalWork + 1e-6);
   const CurveSample& end = b->record().curve.back();
-  REQUIRE(std::abs(end.residual) < 0.03 * end.obstacleWork);
+  REQUIRE(std::abs(end.residual) < 0.03 * end.externalWork);
   REQUIRE(b->world().stepCount() < a->world().stepCount() / 50);
 }
 

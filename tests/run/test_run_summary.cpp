@@ -38,7 +38,7 @@ RunSummary filled(bool failed) {
   r.end.delta = 5.5e-3;
   r.end.load = 1.5;
   r.end.blockDisplacement = 5.25e-3;
-  r.end.obstacleWork = 0.41;
+  r.end.externalWork = 0.41;
   r.end.elastic = 0.01;
   r.end.kinetic = 0.002;
   r.end.friction = 0.3;
@@ -116,12 +116,12 @@ TEST_CASE("summary.json keys: name and unit in the file, the plain name in SI un
   const nlohmann::json file = runSummaryJson(s), si = runSummaryJson(s, false);
   REQUIRE(file["response"]["delta_at_peak_mm"].get<double>() == Approx(1.85));
   REQUIRE(file["response"]["stiffness_N_per_mm"].get<double>() == Approx(113.9));
-  REQUIRE(file["response"]["energy"]["work_mJ"].get<double>() == Approx(410));
+  REQUIRE(file["response"]["energy"]["external_work_mJ"].get<double>() == Approx(410));
   REQUIRE(file["material"]["youngs_modulus_GPa"].get<double>() == Approx(4.2));
   REQUIRE(file["response"]["failure_deflection_mm"].is_null());
   REQUIRE(file["response"]["at_failure"].is_null());
   REQUIRE(si["response"]["delta_at_peak"].get<double>() == 1.85e-3);
-  REQUIRE(si["response"]["energy"]["work"].get<double>() == 0.41);
+  REQUIRE(si["response"]["energy"]["external_work"].get<double>() == 0.41);
   REQUIRE(si["run"]["time_step"].get<double>() == 1.25e-6);
   REQUIRE(si["response"]["failure_deflection"].is_null());
 }

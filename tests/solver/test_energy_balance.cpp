@@ -52,10 +52,10 @@ TEST_CASE("energy: an indenter pressing a block onto a fixed block stores its wo
     world.addSphere(indenter);
     while (world.sphere(0).center.z() - indenter.center.z() > -0.2e-3) world.step();
     const EnergyBudget e = world.energy();
-    INFO("mu " << friction << ": work " << e.obstacleWork << " J, elastic " << e.elastic << ", friction " << e.friction
+    INFO("mu " << friction << ": work " << e.externalWork << " J, elastic " << e.elastic << ", friction " << e.friction
                << ", damping " << e.damping << ", residual " << e.residual());
-    REQUIRE(e.obstacleWork > 0);
-    CHECK(std::abs(e.residual()) < 0.01 * e.obstacleWork);
+    REQUIRE(e.externalWork > 0);
+    CHECK(std::abs(e.residual()) < 0.01 * e.externalWork);
   }
 }
 
@@ -78,16 +78,16 @@ TEST_CASE("energy: indenting a 3 x 3 slab balances to 1 % of the work, with and 
       while (world.sphere(0).center.z() - indenter.center.z() > -0.8e-3) world.step();
       const EnergyBudget e = world.energy();
       INFO((area == ContactArea::Blended ? "blended" : "nearest")
-           << " mu " << friction << ": work " << e.obstacleWork << " J, elastic " << e.elastic << ", friction " << e.friction
+           << " mu " << friction << ": work " << e.externalWork << " J, elastic " << e.elastic << ", friction " << e.friction
            << ", damping " << e.damping << ", projection " << e.projection << ", residual " << e.residual());
       REQUIRE(e.damping > 0);
       REQUIRE((friction > 0) == (e.friction > 0));
       // Without friction, the wedged centre block's nodes cross its neighbours' edges with stored
       // energy: the nearest face's area loses it there (the projection term, about 8 % of the
       // work); the blended area's potential does that work (what is left: the indenter's area).
-      if (friction == 0 && area == ContactArea::Nearest) REQUIRE(e.projection > 0.02 * e.obstacleWork);
-      if (friction == 0 && area == ContactArea::Blended) REQUIRE(std::abs(e.projection) < 0.002 * e.obstacleWork);
-      REQUIRE(std::abs(e.residual()) < 0.01 * e.obstacleWork);
+      if (friction == 0 && area == ContactArea::Nearest) REQUIRE(e.projection > 0.02 * e.externalWork);
+      if (friction == 0 && area == ContactArea::Blended) REQUIRE(std::abs(e.projection) < 0.002 * e.externalWork);
+      REQUIRE(std::abs(e.residual()) < 0.01 * e.externalWork);
     }
 }
 
