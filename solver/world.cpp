@@ -136,20 +136,31 @@ World::World(const std::vector<Shape>& shapes, const std::vector<Body>& bodies, 
   }
 }
 
+namespace {
+
+// What a PairState keeps of a pair, once for both directions: `both(x, y)` is called with each
+// field of the solver's pair and its PairState's.
+template <class Pair, class State, class Both>
+void pairStateFields(Pair& p, State& q, Both&& both) {
+  both(p.a, q.a);
+  both(p.b, q.b);
+  both(p.forceA, q.forceA);
+  both(p.torqueA, q.torqueA);
+  both(p.forceB, q.forceB);
+  both(p.torqueB, q.torqueB);
+  both(p.tally.elastic, q.elastic);
+  both(p.maxDepth, q.depth);
+}
+
+}  // namespace
+
 WorldState World::state() const {
   WorldState s;
   static_cast<WorldRunState&>(s) = state_;
   for (const PairContacts& p : pairs_) {
     PairState& q = s.pairs.emplace_back();
-    q.a = p.a;
-    q.b = p.b;
+    pairStateFields(p, q, [](const auto& from, auto& to) { to = from; });
     for (const NodeContact& c : p.contacts) q.contacts.push_back(c);
-    q.forceA = p.forceA;
-    q.torqueA = p.torqueA;
-    q.forceB = p.forceB;
-    q.torqueB = p.torqueB;
-    q.elastic = p.tally.elastic;
-    q.depth = p.maxDepth;
   }
   return s;
 }
@@ -222,15 +233,8 @@ void World::restore(const WorldState& s) {
   pairs_.clear();
   for (const PairState& q : s.pairs) {
     PairContacts& p = pairs_.emplace_back();
-    p.a = q.a;
-    p.b = q.b;
+    pairStateFields(p, q, [](auto& to, const auto& from) { to = from; });
     for (const NodeContact& c : q.contacts) p.contacts.push_back(c);
-    p.forceA = q.forceA;
-    p.torqueA = q.torqueA;
-    p.forceB = q.forceB;
-    p.torqueB = q.torqueB;
-    p.tally.elastic = q.elastic;
-    p.maxDepth = q.depth;
     p.kind = pairKind(p.b, static_cast<int>(state_.spheres.size()));
     p.checkedTravel = -std::numeric_limits<double>::infinity();
     p.stiffnessScale = stiffnessScale(p);
