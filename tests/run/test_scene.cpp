@@ -78,6 +78,26 @@ TEST_CASE("bad scene files are refused with the key and the reason") {
   REQUIRE_THROWS_WITH(readScene(dir / "none.toml"), Contains("none.toml") && Contains("no such scene file"));
 }
 
+TEST_CASE("the contact model's names reach the scene, and a name that is none of them is refused listing them") {
+  test::TempDir dir;
+  const Scene chosen = sceneFrom(dir, "bundle = \"b\"\n[material]\nstiffness_rule = \"sections\"\n"
+                                      "[solver]\ncontact_area = \"blended\"\ncontact_evaluation = \"one-way\"\n");
+  REQUIRE(chosen.contact.area == ContactArea::Blended);
+  REQUIRE(chosen.contact.evaluation == ContactEvaluation::OneWay);
+  REQUIRE(chosen.contact.stiffnessRule == StiffnessRule::Sections);
+  const Scene plain = sceneFrom(dir, "bundle = \"b\"\n");
+  REQUIRE(plain.contact.area == ContactArea::Nearest);
+  REQUIRE(plain.contact.evaluation == ContactEvaluation::TwoWay);
+  REQUIRE(plain.contact.stiffnessRule == StiffnessRule::Span);
+  REQUIRE_THROWS_WITH(sceneFrom(dir, "bundle = \"b\"\n[solver]\ncontact_area = \"smooth\"\n"),
+                      Contains("solver.contact_area must be \"blended\" or \"nearest\", got \"smooth\""));
+  REQUIRE_THROWS_WITH(sceneFrom(dir, "bundle = \"b\"\n[solver]\ncontact_evaluation = \"both\"\n"),
+                      Contains("solver.contact_evaluation must be \"two-way\" or \"one-way\", got \"both\""));
+  REQUIRE_THROWS_WITH(sceneFrom(dir, "bundle = \"b\"\n[material]\nstiffness_rule = \"E\"\n"),
+                      Contains("material.stiffness_rule must be \"span\", \"bars\" or \"sections\", got \"E\""));
+  REQUIRE_THROWS_WITH(sceneFrom(dir, "bundle = \"b\"\n[solver]\ncontact_area = 1\n"), Contains("solver.contact_area"));
+}
+
 TEST_CASE("a scene can re-prepare the shapes at another resolution") {
   test::TempDir dir;
   const Scene s = sceneFrom(dir, "bundle = \"b\"\n[resolution]\nnode_spacing = 0.3e-3\nvoxel = 0.125e-3\n");
