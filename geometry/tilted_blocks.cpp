@@ -45,7 +45,70 @@ int canonicalStart(const std::vector<Eigen::Vector2d>& tile, const std::vector<E
   return best;
 }
 
+// A search for flips that hold an unheld tile t: flip one of its edges so that t is held (or it
+// is fixed), the tile u across it then held too, or fixed, or itself held by a further flip, up to
+// `depth` tiles on; the flips are kept where it succeeds and undone where it does not.
+struct HoldingSearch {
+  const PlaneTiling& tiling;
+  const std::vector<std::vector<EdgeNeighbour>>& across;
+  std::vector<std::vector<int>>& tilts;
+  std::vector<char> onPath;
+
+  bool held(int t) const { return !freeTile(across[t]) || heldByNeighbours(tiling.tiles[t], tilts[t], across[t]); }
+  void flip(int t, int k) {
+    tilts[t][k] = -tilts[t][k];
+    tilts[across[t][k].tile][across[t][k].edge] = -tilts[t][k];
+  }
+  bool hold(int t, int depth) {
+    onPath[t] = 1;
+    for (int k = 0; k < static_cast<int>(across[t].size()); ++k) {
+      const int u = across[t][k].tile;
+      if (u < 0 || onPath[u]) continue;
+      flip(t, k);
+      if (held(t) && (held(u) || (depth > 0 && hold(u, depth - 1)))) {
+        onPath[t] = 0;
+        return true;
+      }
+      flip(t, k);
+    }
+    onPath[t] = 0;
+    return false;
+  }
+};
+
 }  // namespace
+
+bool freeTile(const std::vector<EdgeNeighbour>& across) {
+  return std::all_of(across.begin(), across.end(), [](const EdgeNeighbour& e) { return e.tile >= 0; });
+}
+
+bool heldByNeighbours(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<EdgeNeighbour>& across) {
+  std::vector<Eigen::Vector3d> n;
+  for (std::size_t k = 0; k < tile.size(); ++k) {
+    if (across[k].tile < 0) continue;
+    const Eigen::Vector2d e = tile[(k + 1) % tile.size()] - tile[k];
+    n.push_back(Eigen::Vector3d(e.y(), -e.x(), -tilts[k] * e.norm()).normalized());
+  }
+  // Positively spanning: no v != 0 with v . n_k <= 0 for every k. Were there one, the cone of the
+  // n_k would be flat or have a facet, and a facet holds two independent n_k: v is one of the
+  // n_i x n_j, either way round.
+  constexpr double kFlat = 1e-9;
+  bool spans = false;
+  for (std::size_t i = 0; i < n.size(); ++i)
+    for (std::size_t j = i + 1; j < n.size(); ++j) {
+      const Eigen::Vector3d v = n[i].cross(n[j]);
+      if (v.norm() < kFlat) continue;
+      bool above = false, below = false;
+      for (const Eigen::Vector3d& m : n) {
+        const double side = m.dot(v);
+        spans = spans || std::abs(side) > kFlat * v.norm();
+        above = above || side > kFlat * v.norm();
+        below = below || side < -kFlat * v.norm();
+      }
+      if (!above || !below) return false;
+    }
+  return spans;
+}
 
 std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across) {
   const int count = static_cast<int>(tiling.tiles.size());
@@ -95,6 +158,14 @@ std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const
       break;
     }
   }
+  // A free tile not yet held against every translation: flips that hold it without unholding
+  // another, along a path of up to kHoldingDepth neighbours (which can carry the defect to the
+  // fixed perimeter). A tiling that alternates everywhere has none to mend; a triangle is never
+  // held (docs/tiling.md), so it keeps its signs.
+  constexpr int kHoldingDepth = 4;
+  HoldingSearch search{tiling, across, tilts, std::vector<char>(count, 0)};
+  for (int t = 0; t < count; ++t)
+    if (!search.held(t)) search.hold(t, kHoldingDepth);
   return tilts;
 }
 

@@ -15,8 +15,20 @@ namespace tessera {
 /// neighbours agree; where the tiling does not allow that (odd polygons, or parities that do not
 /// close around a vertex), an edge whose two tiles disagree takes the sign that keeps both kinds
 /// of face on both tiles, and a tile left with one kind borrows an edge from a neighbour with both.
-/// Every tile with a neighbour then has a face of each kind, if the tiling allows.
+/// Every tile with a neighbour then has a face of each kind, if the tiling allows; and a free tile
+/// (freeTile) not yet held against every translation (heldByNeighbours) gets flips that hold it
+/// without unholding another, where a few suffice.
 std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across);
+
+/// A tile with a neighbour across every edge (a free block under the perimeter rule).
+bool freeTile(const std::vector<EdgeNeighbour>& across);
+
+/// Whether a tile's block, its neighbours held still, is held against every translation: the
+/// outward normals of its faces over edges with a neighbour, n_k = (m_k cos theta, -s_k sin theta)
+/// (s_k = tilts[k]), span space positively, so that every translation moves into some face (by
+/// Gordan's theorem, positive weights with sum lambda_k n_k = 0 and the n_k spanning). Scaling z
+/// does not change that, so it holds at every theta in (0, 90) degrees or at none.
+bool heldByNeighbours(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<EdgeNeighbour>& across);
 
 /// A vertical plane that bounds a block besides its faces: m . (x - point) <= 0 (plan, m).
 struct VerticalCut {

@@ -23,12 +23,21 @@ struct Freedoms {
   std::vector<int> index;  // per body: its rank among the free bodies, or -1
   int count = 0;           // free bodies
   double length = 1;       // m, L
+  std::vector<Eigen::Vector3d> position;  // m, per body: the point its rotation turns about
 
+  Freedoms(const std::vector<Eigen::Vector3d>& bodyPosition, const std::vector<char>& fixed, double bodyLength)
+      : length(bodyLength), position(bodyPosition) {
+    for (char f : fixed) {
+      index.push_back(f ? -1 : count);
+      count += !f;
+    }
+  }
   explicit Freedoms(const Bundle& bundle) {
     std::vector<double> sizes;
     for (const Body& b : bundle.bodies) {
       index.push_back(b.fixed ? -1 : count);
       count += !b.fixed;
+      position.push_back(b.position);
       sizes.push_back(boundingBox(bundle.shapes[b.shape].mesh.vertices).diagonal().norm());
     }
     std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
@@ -44,12 +53,12 @@ struct Entry {
 // The wrench a unit force `direction` at `point` on the corner's bodies exerts on their freedoms:
 // + on `second`, - on `first` (column, value), forces then moments / L. The same numbers are
 // row c of A for the corner's normal: the relative normal velocity n . (u_2(p) - u_1(p)).
-std::vector<Entry> wrench(const Bundle& bundle, const Freedoms& freedoms, const ContactCorner& c, const Eigen::Vector3d& direction) {
+std::vector<Entry> wrench(const Freedoms& freedoms, const ContactCorner& c, const Eigen::Vector3d& direction) {
   std::vector<Entry> entries;
   for (const auto& [body, sign] : {std::pair<int, double>{c.second, 1.0}, std::pair<int, double>{c.first, -1.0}}) {
     const int k = freedoms.index[body];
     if (k < 0) continue;
-    const Eigen::Vector3d moment = (c.point - bundle.bodies[body].position).cross(direction) / freedoms.length;
+    const Eigen::Vector3d moment = (c.point - freedoms.position[body]).cross(direction) / freedoms.length;
     for (int i = 0; i < 3; ++i) {  // rounding noise (1e-17 of a unit normal) left out: it only stalls the simplex
       if (std::abs(direction[i]) > 1e-12) entries.push_back({6 * k + i, sign * direction[i]});
       if (std::abs(moment[i]) > 1e-12) entries.push_back({6 * k + 3 + i, sign * moment[i]});
@@ -153,10 +162,10 @@ SlidingModes slidingModes(const Eigen::SparseMatrix<double>& a) {
 }
 
 // A: row c the corner's relative normal velocity (A x)_c, as triplets.
-std::vector<Eigen::Triplet<double>> contactMatrix(const Bundle& bundle, const Freedoms& freedoms, const std::vector<ContactCorner>& corners) {
+std::vector<Eigen::Triplet<double>> contactMatrix(const Freedoms& freedoms, const std::vector<ContactCorner>& corners) {
   std::vector<Eigen::Triplet<double>> triplets;
   for (int c = 0; c < static_cast<int>(corners.size()); ++c)
-    for (const Entry& e : wrench(bundle, freedoms, corners[c], corners[c].normal)) triplets.emplace_back(c, e.column, e.value);
+    for (const Entry& e : wrench(freedoms, corners[c], corners[c].normal)) triplets.emplace_back(c, e.column, e.value);
   return triplets;
 }
 
@@ -188,7 +197,28 @@ std::pair<Eigen::VectorXd, double> bestMotion(const std::vector<Eigen::Triplet<d
   return {x, glp_get_obj_val(lp.get())};
 }
 
+// The motion that opens the contacts most: max sum_c s_c, s = A x, 0 <= s <= 1, |x| <= 1; an
+// optimum above kOpen is a way out.
+constexpr double kOpen = 1e-6;
+std::pair<Eigen::VectorXd, double> mostOpening(const std::vector<Eigen::Triplet<double>>& triplets, int rows, int columns) {
+  Eigen::VectorXd objective = Eigen::VectorXd::Zero(columns);
+  for (const auto& t : triplets) objective[t.col()] += t.value();
+  return bestMotion(triplets, rows, columns, objective, 1.0);
+}
+
 }  // namespace
+
+double largestOpening(const std::vector<Eigen::Vector3d>& position, const std::vector<char>& fixed, double length,
+                      const std::vector<ContactCorner>& corners, std::vector<char>* moving) {
+  const Freedoms freedoms(position, fixed, length);
+  if (moving) moving->assign(fixed.size(), 0);
+  if (freedoms.count == 0) return 0.0;
+  const auto [x, opening] = mostOpening(contactMatrix(freedoms, corners), static_cast<int>(corners.size()), 6 * freedoms.count);
+  if (!(opening > kOpen)) return 0.0;
+  if (moving)
+    for (const BodyMotion& m : motionOf(freedoms, x)) (*moving)[m.body] = 1;
+  return opening;
+}
 
 InterlockingVerdict checkInterlocking(const Bundle& bundle, const std::vector<ContactCorner>& corners) {
   const Freedoms freedoms(bundle);
@@ -198,16 +228,11 @@ InterlockingVerdict checkInterlocking(const Bundle& bundle, const std::vector<Co
     verdict.interlocked = true;
     return verdict;
   }
-  const std::vector<Eigen::Triplet<double>> triplets = contactMatrix(bundle, freedoms, corners);
+  const std::vector<Eigen::Triplet<double>> triplets = contactMatrix(freedoms, corners);
   Eigen::SparseMatrix<double> a(rows, columns);
   a.setFromTriplets(triplets.begin(), triplets.end());
-
-  // The motion that opens the contacts most: max sum_c s_c, s = A x, 0 <= s <= 1, |x| <= 1; an
-  // optimum above 0 is a way out.
-  Eigen::VectorXd objective = Eigen::VectorXd::Zero(columns);
-  for (const auto& t : triplets) objective[t.col()] += t.value();
-  const auto [x, opening] = bestMotion(triplets, rows, columns, objective, 1.0);
-  if (opening > 1e-6) verdict.motion = motionOf(freedoms, x);
+  const auto [x, opening] = mostOpening(triplets, rows, columns);
+  if (opening > kOpen) verdict.motion = motionOf(freedoms, x);
   // A free body that touches nothing moves freely (lifted off, say).
   std::vector<char> touches(bundle.bodies.size(), 0);
   for (const ContactCorner& c : corners) touches[c.first] = touches[c.second] = 1;
@@ -251,7 +276,7 @@ public:
       for (int j = 0; j <= kSides; ++j) {
         const double angle = 2 * M_PI * (j - 1) / kSides;
         const Eigen::Vector3d direction = j == 0 ? corner.normal : Eigen::Vector3d(std::cos(angle) * u + std::sin(angle) * v);
-        for (const Entry& e : wrench(bundle, freedoms, corner, direction)) {
+        for (const Entry& e : wrench(freedoms, corner, direction)) {
           ri.push_back(e.column);
           ci.push_back(column(c, j));
           vi.push_back(e.value);
@@ -304,7 +329,7 @@ private:
 std::pair<Eigen::VectorXd, std::vector<char>> steepestFall(const Bundle& bundle, const Freedoms& freedoms,
                                                            const std::vector<ContactCorner>& corners) {
   const int count = static_cast<int>(corners.size()), columns = 6 * freedoms.count;
-  const std::vector<Eigen::Triplet<double>> triplets = contactMatrix(bundle, freedoms, corners);
+  const std::vector<Eigen::Triplet<double>> triplets = contactMatrix(freedoms, corners);
   Eigen::VectorXd lowering = Eigen::VectorXd::Zero(columns);
   for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body)
     if (freedoms.index[body] >= 0) lowering[6 * freedoms.index[body] + 2] = -bundle.shapes[bundle.bodies[body].shape].mass.volume;

@@ -30,6 +30,14 @@ struct InterlockingVerdict {
   int slidingModes = 0;             ///< independent motions that slide along every contact
   std::vector<BodyMotion> sliding;  ///< one of them (empty above 600 free bodies: counted, not shown)
 };
+/// The interlocking program's optimum for bodies given by their reference points (`position`, m:
+/// rotations turn about them), `fixed` flags and size `length` (m, the L of the columns), over the
+/// contact corners: 0 when interlocked, else how much a motion can open the corners (up to their
+/// count). For searches over designs (levelset/interlocking_signs.h). `moving`, if given: per body,
+/// whether the motion that opens them most moves it.
+double largestOpening(const std::vector<Eigen::Vector3d>& position, const std::vector<char>& fixed, double length,
+                      const std::vector<ContactCorner>& corners, std::vector<char>* moving = nullptr);
+
 /// Static stability under gravity (-z), rigid-block equilibrium (docs/check.md): whether contact
 /// forces at the corners, compressive and within Coulomb's cone (an inscribed pyramid of 8 faces,
 /// which needs up to 1 / cos(22.5 deg) = 1.082 times the cone's friction), balance the weight of

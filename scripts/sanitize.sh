@@ -28,6 +28,7 @@ slow='default run: the natural failure|a 15 x 15 slab|mu = 9 to 6 mm|scale invar
 slow+='|run_resumes_after|reliability 8|block writes valid meshes'
 slow+='|wave faces interlock|graded nodes on non-convex|does not stand under its own weight'  # 30-40 s each here
 slow+='|osteomorphic blocks tiled unturned'  # 3 min here: exact mesh level sets of a 4 608-triangle block
+slow+='|tessera check on the Voronoi slab'  # 49 blocks' level sets
 slow+='|run_paraview_state_opens_in_paraview|run_paraview_series_is_readable_by_vtk'  # Python reading the files back
 (cd "$build_dir" && ctest --output-on-failure -j "$jobs" -E "$slow" -LE slurm)
 

@@ -12,6 +12,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace tessera;
@@ -165,6 +166,40 @@ TEST_CASE("tilted blocks: every tile of a tiling that allows it has faces leanin
       INFO(kind << " tile " << g.tiling.names[t]);
       if (interior) REQUIRE((out && in));
     }
+  }
+}
+
+TEST_CASE("a block among still neighbours is held against every translation by faces that lean both ways enough") {
+  const std::vector<Eigen::Vector2d> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const std::vector<EdgeNeighbour> all(4, EdgeNeighbour{0, 0});
+  REQUIRE(heldByNeighbours(square, {1, -1, 1, -1}, all));       // the checkerboard
+  REQUIRE_FALSE(heldByNeighbours(square, {1, 1, 1, 1}, all));   // rests on all four: lifts off
+  REQUIRE_FALSE(heldByNeighbours(square, {1, 1, -1, -1}, all)); // slides along (1, 1, 1)
+  std::vector<EdgeNeighbour> open = all;
+  open[2].tile = -1;  // no neighbour over one edge: it leaves that way
+  REQUIRE_FALSE(heldByNeighbours(square, {1, -1, 1, -1}, open));
+  std::vector<Eigen::Vector2d> pentagon, triangle;
+  for (int k = 0; k < 5; ++k) pentagon.emplace_back(std::cos(2 * M_PI * k / 5), std::sin(2 * M_PI * k / 5));
+  for (int k = 0; k < 3; ++k) triangle.emplace_back(std::cos(2 * M_PI * k / 3), std::sin(2 * M_PI * k / 3));
+  const std::vector<EdgeNeighbour> five(5, EdgeNeighbour{0, 0}), three(3, EdgeNeighbour{0, 0});
+  REQUIRE_FALSE(heldByNeighbours(pentagon, {-1, 1, 1, 1, 1}, five));  // one face in, the rest out (docs/tiling.md)
+  REQUIRE(heldByNeighbours(pentagon, {1, -1, 1, -1, -1}, five));
+  for (const std::vector<int>& signs : std::vector<std::vector<int>>{{1, 1, -1}, {1, -1, -1}, {1, 1, 1}})
+    REQUIRE_FALSE(heldByNeighbours(triangle, signs, three));  // Gordan: never (docs/tiling.md)
+}
+
+TEST_CASE("tilted blocks: every free tile is held by its neighbours, in every tiling but the triangles") {
+  for (const std::string& kind : tilingKinds()) {
+    const GeneratedBlocks g = generate(kind, 0.01, 0.00318, 5 * M_PI / 180);
+    int free = 0, held = 0;
+    for (std::size_t t = 0; t < g.tilts.size(); ++t) {
+      if (std::any_of(g.across[t].begin(), g.across[t].end(), [](const EdgeNeighbour& e) { return e.tile < 0; })) continue;
+      ++free;
+      held += heldByNeighbours(g.tiling.tiles[t], g.tilts[t], g.across[t]) ? 1 : 0;
+    }
+    INFO(kind << ": " << held << " of " << free << " free tiles held");
+    REQUIRE(free > 0);
+    REQUIRE(held == (kind == "triangle" ? 0 : free));
   }
 }
 

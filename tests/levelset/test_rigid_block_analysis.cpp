@@ -5,6 +5,7 @@
 #include "geometry/block_generators.h"
 #include "levelset/assembly_checks.h"
 #include "levelset/generated_slab.h"
+#include "levelset/interlocking_signs.h"
 #include "levelset/rigid_block_analysis.h"
 #include "geometry/tilted_blocks.h"
 
@@ -55,6 +56,73 @@ TEST_CASE("rigid blocks: a planar block wedged among fixed ones is interlocked a
   REQUIRE(s.interlocking.slidingModes == 0);
   REQUIRE(s.stability.stable);
   REQUIRE(s.stability.leastFriction == Approx(0.0));
+}
+
+namespace {
+
+// A 7 x 7 Voronoi slab (seed 1), perimeter fixed: the alternating rule leaves it a way out.
+GeneratedSlabOptions voronoiSlab(double degrees) {
+  GeneratedSlabOptions options;
+  options.tiling.kind = "voronoi";
+  options.tiling.pitch = 0.1;
+  options.tiling.columns = options.tiling.rows = 7;
+  options.thickness = 0.0318;
+  options.angle = degrees * M_PI / 180;
+  return options;
+}
+
+// The rule's signs and the searched ones of a generated slab's tiling.
+struct SearchedSigns {
+  std::vector<std::vector<EdgeNeighbour>> across;
+  std::vector<std::vector<int>> rule, tilts;
+  InterlockingSearch search;
+};
+SearchedSigns searched(const GeneratedSlabOptions& options) {
+  const PlaneTiling tiling = makeTiling(options.tiling);
+  SearchedSigns s;
+  s.across = edgeNeighbours(tiling, 1e-9 * options.tiling.pitch);
+  std::vector<char> fixed;
+  for (const auto& edges : s.across) fixed.push_back(!freeTile(edges));
+  s.rule = s.tilts = interlockingTilts(tiling, s.across);
+  s.search = interlockSigns(tiling, s.across, fixed, options.thickness, options.angle, s.tilts);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("signs searched: a Voronoi slab, not interlocked under the alternating rule, interlocks, and a triangle slab keeps its signs") {
+  for (const double degrees : {5.0, 10.0, 20.0}) {
+    INFO(degrees << " degrees");
+    const SearchedSigns s = searched(voronoiSlab(degrees));
+    REQUIRE(s.search.interlocked);
+    REQUIRE(s.search.flips > 0);
+    REQUIRE(s.tilts != s.rule);
+    for (std::size_t t = 0; t < s.tilts.size(); ++t)
+      for (std::size_t k = 0; k < s.tilts[t].size(); ++k)
+        if (s.across[t][k].tile >= 0) REQUIRE(s.tilts[t][k] == -s.tilts[s.across[t][k].tile][s.across[t][k].edge]);  // one plane an edge
+  }
+  GeneratedSlabOptions triangles = voronoiSlab(10);
+  triangles.tiling.kind = "triangle";
+  const SearchedSigns s = searched(triangles);
+  REQUIRE_FALSE(s.search.interlocked);  // Gordan: no triangle is held (docs/tiling.md)
+  REQUIRE(s.search.programs > 0);
+  REQUIRE(s.tilts == s.rule);
+  for (const char* kind : {"square", "hex"}) {  // they alternate: interlocked as the rule leaves them
+    GeneratedSlabOptions alternating = voronoiSlab(10);
+    alternating.tiling.kind = kind;
+    const SearchedSigns a = searched(alternating);
+    REQUIRE(a.search.interlocked);
+    REQUIRE(a.search.programs == 1);
+    REQUIRE(a.tilts == a.rule);
+  }
+}
+
+TEST_CASE("signs searched: tessera check on the Voronoi slab's blocks finds it interlocked, and standing") {
+  PrepLog log;
+  const AssemblyStatics s = analysed(assembled(generatedSlabParts(voronoiSlab(20), &log)), 0.23);
+  REQUIRE(s.interlocking.interlocked);
+  REQUIRE(s.stability.stable);
+  REQUIRE(log.notes.size() == 1);  // how many edges were flipped
 }
 
 TEST_CASE("rigid blocks: a block whose faces all lean out rests on its neighbours: not interlocked, lifts off, stands") {

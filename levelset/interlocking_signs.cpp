@@ -1,0 +1,144 @@
+#include "levelset/interlocking_signs.h"
+
+#include "geometry/tilted_blocks.h"
+#include "levelset/rigid_block_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tessera {
+
+namespace {
+
+// The points of a block's mesh on a plane (within 1e-9 of its size), in the plane's basis (e1, e2)
+// about `origin`: its face there, as a convex polygon.
+std::vector<Eigen::Vector2d> faceOn(const TriangleMesh& block, const Eigen::Vector3d& origin, const Eigen::Vector3d& normal,
+                                    const Eigen::Vector3d& e1, const Eigen::Vector3d& e2, double size) {
+  std::vector<Eigen::Vector2d> points;
+  for (const Eigen::Vector3d& x : block.vertices)
+    if (std::abs(normal.dot(x - origin)) <= 1e-9 * size) points.emplace_back(e1.dot(x - origin), e2.dot(x - origin));
+  return points.size() < 3 ? std::vector<Eigen::Vector2d>{} : convexHull(points);
+}
+
+// The slab's contact corners: over each shared edge k of tile t, the corners of the two blocks'
+// common face on its tilted plane (the intersection of each block's face there), the normal
+// (m cos theta, -s sin theta) from t into its neighbour (m the edge's outward normal in plan,
+// s = tilts[t][k]); the plane contains the edge at z = 0.
+constexpr double kShrink = 0.8;
+
+std::vector<ContactCorner> slabCorners(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
+                                       const std::vector<std::vector<int>>& tilts, const std::vector<TriangleMesh>& blocks,
+                                       double angle, double size) {
+  std::vector<ContactCorner> corners;
+  int polygons = 0;
+  for (int t = 0; t < static_cast<int>(tiling.tiles.size()); ++t) {
+    const std::vector<Eigen::Vector2d>& tile = tiling.tiles[t];
+    for (int k = 0; k < static_cast<int>(tile.size()); ++k) {
+      const int u = across[t][k].tile;
+      if (u < t) continue;  // each shared edge once
+      const Eigen::Vector2d a = tile[k], b = tile[(k + 1) % tile.size()];
+      const Eigen::Vector2d m = Eigen::Vector2d(b.y() - a.y(), a.x() - b.x()).normalized();
+      const Eigen::Vector3d normal(m.x() * std::cos(angle), m.y() * std::cos(angle), -tilts[t][k] * std::sin(angle));
+      const Eigen::Vector3d origin(a.x(), a.y(), 0.0), e1 = Eigen::Vector3d(b.x() - a.x(), b.y() - a.y(), 0.0).normalized();
+      const Eigen::Vector3d e2 = normal.cross(e1);  // e1, e2 counter-clockwise seen from along the normal
+      std::vector<Eigen::Vector2d> common = faceOn(blocks[t], origin, normal, e1, e2, size);
+      const std::vector<Eigen::Vector2d> other = faceOn(blocks[u], origin, normal, e1, e2, size);
+      for (std::size_t j = 0; j < other.size() && !common.empty(); ++j) {
+        const Eigen::Vector2d p = other[j], q = other[(j + 1) % other.size()];
+        const Eigen::Vector2d outward(q.y() - p.y(), p.x() - q.x());
+        common = clipPolygon(common, outward, outward.dot(p));
+      }
+      if (other.empty() || common.size() < 3) continue;
+      // Shrunk about its centroid: a slab interlocked on smaller polygons is interlocked on any
+      // that hold them (more corners, more constraints), so the search keeps a margin for the
+      // polygons tessera check finds (the hull of the touching nodes, simplified).
+      Eigen::Vector2d centroid(0, 0);
+      for (const Eigen::Vector2d& x : common) centroid += x / static_cast<double>(common.size());
+      for (const Eigen::Vector2d& x : common) {
+        const Eigen::Vector2d shrunk = centroid + kShrink * (x - centroid);
+        corners.push_back({t, u, origin + shrunk.x() * e1 + shrunk.y() * e2, normal, polygons});
+      }
+      ++polygons;
+    }
+  }
+  return corners;
+}
+
+}  // namespace
+
+InterlockingSearch interlockSigns(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
+                                  const std::vector<char>& fixed, double thickness, double angle,
+                                  std::vector<std::vector<int>>& tilts) {
+  InterlockingSearch search;
+  const int count = static_cast<int>(tiling.tiles.size());
+  search.tooLarge = count > InterlockingSearch::kMaxTiles;
+  if (search.tooLarge || std::none_of(fixed.begin(), fixed.end(), [](char f) { return f != 0; })) return search;
+  // The bodies: each tile's centroid at mid-height; L their median size.
+  std::vector<Eigen::Vector3d> centre;
+  std::vector<double> sizes;
+  for (const std::vector<Eigen::Vector2d>& tile : tiling.tiles) {
+    Eigen::Vector2d sum(0, 0), low = tile.front(), high = tile.front();
+    double area = 0;
+    for (std::size_t k = 0; k < tile.size(); ++k) {
+      const Eigen::Vector2d &p = tile[k], &q = tile[(k + 1) % tile.size()];
+      const double cross = p.x() * q.y() - q.x() * p.y();
+      area += cross / 2;
+      sum += (p + q) * cross / 6;
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+    centre.emplace_back(sum.x() / area, sum.y() / area, 0.0);
+    sizes.push_back(std::hypot((high - low).norm(), thickness));
+  }
+  std::nth_element(sizes.begin(), sizes.begin() + count / 2, sizes.end());
+  const double length = sizes[count / 2];
+  std::vector<char> moving;  // per tile: moved by the last program's way out
+  const auto opening = [&](std::vector<char>* movingNow) {
+    ++search.programs;
+    const auto cuts = cornerCuts(tiling, across, tilts, thickness, angle);
+    std::vector<TriangleMesh> blocks;
+    for (int t = 0; t < count; ++t) blocks.push_back(tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], thickness, angle));
+    return largestOpening(centre, fixed, length, slabCorners(tiling, across, tilts, blocks, angle, length), movingNow);
+  };
+  const auto held = [&](int t) { return fixed[t] || heldByNeighbours(tiling.tiles[t], tilts[t], across[t]); };
+  const std::vector<std::vector<int>> rule = tilts;
+  // Sweeps over the edges next to a tile the last way out moves (a flip elsewhere cannot close
+  // it); a sweep that lowers nothing is followed by one over every edge, then the search stops.
+  double best = opening(&moving);
+  bool near = true;
+  for (int sweep = 0; sweep < InterlockingSearch::kSweeps && best > 0; ++sweep) {
+    const double before = best;
+    std::vector<char> trial;
+    for (int t = 0; t < count && best > 0; ++t)
+      for (int k = 0; k < static_cast<int>(across[t].size()) && best > 0; ++k) {
+        const int u = across[t][k].tile, l = across[t][k].edge;
+        if (u < t || (fixed[t] && fixed[u]) || (near && !moving[t] && !moving[u])) continue;
+        tilts[t][k] = -tilts[t][k];
+        tilts[u][l] = -tilts[u][l];
+        const double now = held(t) && held(u) ? opening(&trial) : best;
+        if (now < best) {
+          best = now;
+          moving = trial;
+          ++search.flips;
+        } else {
+          tilts[t][k] = -tilts[t][k];
+          tilts[u][l] = -tilts[u][l];
+        }
+      }
+    if (best < before) {
+      near = true;
+    } else if (near) {
+      near = false;
+    } else {
+      break;
+    }
+  }
+  search.interlocked = best == 0;
+  if (!search.interlocked) {
+    tilts = rule;
+    search.flips = 0;
+  }
+  return search;
+}
+
+}  // namespace tessera
