@@ -10,10 +10,13 @@ namespace tessera {
 namespace {
 
 const double kSameNormal = std::cos(10 * M_PI / 180);  // normals within 10 degrees
+constexpr std::size_t kMostCorners = 8;                // per contact polygon
 
-}  // namespace
-
-std::vector<Eigen::Vector2d> simplifiedContactPolygon(std::vector<Eigen::Vector2d> polygon, std::size_t most) {
+// Drops the corner that spans the smallest triangle with its neighbours (Visvalingam & Whyatt,
+// Cartographic J. 30, 1993) while more than `most` remain or that triangle is below 0.5 % of the
+// polygon's area (a corner of the hull that only rounds a straight side): a convex polygon only
+// shrinks, so the contact is not made larger than it is.
+std::vector<Eigen::Vector2d> simplified(std::vector<Eigen::Vector2d> polygon, std::size_t most) {
   const double area = polygonArea(polygon);
   while (polygon.size() > 3) {
     std::size_t smallest = 0;
@@ -30,8 +33,6 @@ std::vector<Eigen::Vector2d> simplifiedContactPolygon(std::vector<Eigen::Vector2
   }
   return polygon;
 }
-
-namespace {
 
 struct TouchingNode {
   Eigen::Vector3d point, normal;  // world; normal from the pair's first body into its second
@@ -87,7 +88,7 @@ std::vector<ContactCorner> contactPolygons(const Bundle& bundle, const AssemblyL
       const Eigen::Vector3d u = normal.unitOrthogonal(), v = normal.cross(u);
       std::vector<Eigen::Vector2d> plane;
       for (const TouchingNode& node : group) plane.emplace_back(u.dot(node.point - centre), v.dot(node.point - centre));
-      const std::vector<Eigen::Vector2d> hull = simplifiedContactPolygon(convexHull(plane));
+      const std::vector<Eigen::Vector2d> hull = simplified(convexHull(plane), kMostCorners);
       double extent = 0;
       for (const Eigen::Vector2d& x : plane) extent = std::max(extent, x.norm());
       if (hull.size() < 3 || polygonArea(hull) <= 1e-6 * extent * extent) continue;  // a line or a point

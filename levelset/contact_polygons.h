@@ -21,13 +21,6 @@ struct ContactCorner {
   int polygon = -1;             ///< index of its polygon (corners of one polygon share it)
 };
 
-/// A contact polygon (convex, counter-clockwise) with at most `most` corners: drops the corner that
-/// spans the smallest triangle with its neighbours (Visvalingam & Whyatt, Cartographic J. 30, 1993)
-/// while more than `most` remain or that triangle is below 0.5 % of the polygon's area (a corner
-/// that only rounds a straight side). A convex polygon only shrinks, so no contact is made larger
-/// than it is.
-std::vector<Eigen::Vector2d> simplifiedContactPolygon(std::vector<Eigen::Vector2d> polygon, std::size_t most = 8);
-
 /// The contact corners of every pair of bodies of the bundle, pair by pair. `touchDistance` (m):
 /// how far from the other's surface a node still touches it.
 std::vector<ContactCorner> contactPolygons(const Bundle& bundle, const AssemblyLevelSets& levelSets, double touchDistance);

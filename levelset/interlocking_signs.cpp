@@ -20,12 +20,17 @@ std::vector<Eigen::Vector2d> faceOn(const TriangleMesh& block, const Eigen::Vect
   return points.size() < 3 ? std::vector<Eigen::Vector2d>{} : convexHull(points);
 }
 
-// The slab's contact corners: over each shared edge k of tile t, the corners of the two blocks'
-// common face on its tilted plane (the intersection of each block's face there), the normal
-// (m cos theta, -s sin theta) from t into its neighbour (m the edge's outward normal in plan,
-// s = tilts[t][k]); the plane contains the edge at z = 0.
+// The contact polygons shrunk about the mean of their corners by this factor: a slab interlocked
+// on smaller polygons is interlocked on any that hold them (more corners, more constraints), so
+// the search keeps a margin for the polygons tessera check finds (the hull of the blocks' touching
+// surface nodes, simplified). Without it a 20-degree Voronoi slab found interlocked read not so in
+// check.
 constexpr double kShrink = 0.8;
 
+// The slab's contact corners: over each shared edge k of tile t, the corners of the two blocks'
+// common face on its tilted plane (the intersection of each block's face there), shrunk by
+// kShrink, the normal (m cos theta, -s sin theta) from t into its neighbour (m the edge's outward
+// normal in plan, s = tilts[t][k]); the plane contains the edge at z = 0.
 std::vector<ContactCorner> slabCorners(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
                                        const std::vector<std::vector<int>>& tilts, const std::vector<TriangleMesh>& blocks,
                                        double angle, double size) {
@@ -49,9 +54,6 @@ std::vector<ContactCorner> slabCorners(const PlaneTiling& tiling, const std::vec
         common = clipPolygon(common, outward, outward.dot(p));
       }
       if (other.empty() || common.size() < 3) continue;
-      // Shrunk about its centroid: a slab interlocked on smaller polygons is interlocked on any
-      // that hold them (more corners, more constraints), so the search keeps a margin for the
-      // polygons tessera check finds (the hull of the touching nodes, simplified).
       Eigen::Vector2d centroid(0, 0);
       for (const Eigen::Vector2d& x : common) centroid += x / static_cast<double>(common.size());
       for (const Eigen::Vector2d& x : common) {

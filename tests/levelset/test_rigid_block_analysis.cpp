@@ -25,15 +25,18 @@ Bundle assembled(std::vector<AssemblyPart> parts) {
   return assembleParts(std::move(parts), options, log, report);
 }
 
-Bundle squareSlab(double degrees) {
+// An n x n slab of a tiling, pitch 0.1 m, h = 31.8 mm (the paper's proportions), perimeter fixed.
+GeneratedSlabOptions slabOptions(const char* tiling, int n, double degrees) {
   GeneratedSlabOptions options;
-  options.tiling.kind = "square";
+  options.tiling.kind = tiling;
   options.tiling.pitch = 0.1;
-  options.tiling.columns = options.tiling.rows = 3;
+  options.tiling.columns = options.tiling.rows = n;
   options.thickness = 0.0318;
   options.angle = degrees * M_PI / 180;
-  return assembled(generatedSlabParts(options));
+  return options;
 }
+
+Bundle squareSlab(double degrees) { return assembled(generatedSlabParts(slabOptions("square", 3, degrees))); }
 
 AssemblyStatics analysed(const Bundle& bundle, double friction) { return analyseAssembly(bundle, AssemblyLevelSets(bundle), friction); }
 
@@ -60,16 +63,8 @@ TEST_CASE("rigid blocks: a planar block wedged among fixed ones is interlocked a
 
 namespace {
 
-// A 7 x 7 Voronoi slab (seed 1), perimeter fixed: the alternating rule leaves it a way out.
-GeneratedSlabOptions voronoiSlab(double degrees) {
-  GeneratedSlabOptions options;
-  options.tiling.kind = "voronoi";
-  options.tiling.pitch = 0.1;
-  options.tiling.columns = options.tiling.rows = 7;
-  options.thickness = 0.0318;
-  options.angle = degrees * M_PI / 180;
-  return options;
-}
+// A 7 x 7 Voronoi slab (seed 1): the alternating rule leaves it a way out.
+GeneratedSlabOptions voronoiSlab(double degrees) { return slabOptions("voronoi", 7, degrees); }
 
 // The rule's signs and the searched ones of a generated slab's tiling.
 struct SearchedSigns {
