@@ -19,18 +19,19 @@ std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options
   auto tilts = interlockingTilts(tiling, across);
   std::vector<char> fixed(tiling.tiles.size());
   for (std::size_t t = 0; t < fixed.size(); ++t) fixed[t] = options.fixPerimeter && !freeTile(across[t]);
-  // On the plane, signs that interlock the slab where the rule's do not (odd cells).
-  if (options.surface.kind == BaseSurface::Kind::Plane) {
-    const InterlockingSearch search = interlockSigns(tiling, across, fixed, options.thickness, options.angle, tilts);
+  // Signs that interlock the slab where the rule's do not (odd cells; curved faces).
+  {
+    const InterlockingSearch search = interlockSigns(tiling, across, fixed, options.thickness, options.angle, options.surface, tilts);
+    const std::string programs = std::to_string(search.programs) + " interlocking program" + (search.programs == 1 ? "" : "s");
     if (log && search.flips > 0)
       log->notes.push_back("signs: " + std::to_string(search.flips) + " edges flipped from the alternating rule so that the slab interlocks (" +
-                           std::to_string(search.programs) + " interlocking programs; docs/tiling.md, \"The sign rule\")");
+                           programs + "; docs/tiling.md, \"The sign rule\")");
     if (log && search.tooLarge)
       log->notes.push_back("signs: the alternating rule's, not searched further (" + std::to_string(tiling.tiles.size()) + " tiles, over " +
                            std::to_string(InterlockingSearch::kMaxTiles) + "); tessera check says whether they interlock");
     if (log && !search.interlocked && search.programs > 0)
-      log->notes.push_back("signs: no flips of the alternating rule interlock this slab (" + std::to_string(search.programs) +
-                           " interlocking programs); its signs kept (docs/tiling.md, \"The sign rule\")");
+      log->notes.push_back("signs: the search found no flips of the alternating rule that interlock this slab (" + programs +
+                           "); its signs kept (docs/tiling.md, \"The sign rule\")");
   }
   const auto cuts = cornerCuts(tiling, across, tilts, options.thickness, options.angle);
   const std::string label = options.tilingFile.empty() ? options.tiling.kind + " tiling" : options.tilingFile;

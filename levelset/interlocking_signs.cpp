@@ -3,6 +3,8 @@
 #include "geometry/tilted_blocks.h"
 #include "levelset/rigid_block_analysis.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -29,11 +31,13 @@ constexpr double kShrink = 0.8;
 
 // The slab's contact corners: over each shared edge k of tile t, the corners of the two blocks'
 // common face on its tilted plane (the intersection of each block's face there), shrunk by
-// kShrink, the normal (m cos theta, -s sin theta) from t into its neighbour (m the edge's outward
-// normal in plan, s = tilts[t][k]); the plane contains the edge at z = 0.
+// kShrink, the normal from t into its neighbour. The plane is tiltedBlock's: through the edge's
+// chord on the surface, its normal o cos theta - s n_e sin theta (o the chord's outward normal
+// across the surface, n_e the surface normal at the chord's middle, s = tilts[t][k]); on the plane
+// z = 0, (m cos theta, -s sin theta) through the edge.
 std::vector<ContactCorner> slabCorners(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
                                        const std::vector<std::vector<int>>& tilts, const std::vector<TriangleMesh>& blocks,
-                                       double angle, double size) {
+                                       double angle, const BaseSurface& surface, double size) {
   std::vector<ContactCorner> corners;
   int polygons = 0;
   for (int t = 0; t < static_cast<int>(tiling.tiles.size()); ++t) {
@@ -41,10 +45,9 @@ std::vector<ContactCorner> slabCorners(const PlaneTiling& tiling, const std::vec
     for (int k = 0; k < static_cast<int>(tile.size()); ++k) {
       const int u = across[t][k].tile;
       if (u < t) continue;  // each shared edge once
-      const Eigen::Vector2d a = tile[k], b = tile[(k + 1) % tile.size()];
-      const Eigen::Vector2d m = Eigen::Vector2d(b.y() - a.y(), a.x() - b.x()).normalized();
-      const Eigen::Vector3d normal(m.x() * std::cos(angle), m.y() * std::cos(angle), -tilts[t][k] * std::sin(angle));
-      const Eigen::Vector3d origin(a.x(), a.y(), 0.0), e1 = Eigen::Vector3d(b.x() - a.x(), b.y() - a.y(), 0.0).normalized();
+      const Eigen::Vector3d a = surface.point(tile[k]), b = surface.point(tile[(k + 1) % tile.size()]);
+      const Eigen::Vector3d origin = 0.5 * (a + b), up = surface.normal(origin), e1 = (b - a).normalized();
+      const Eigen::Vector3d normal = (e1.cross(up).normalized() * std::cos(angle) - tilts[t][k] * std::sin(angle) * up).normalized();
       const Eigen::Vector3d e2 = normal.cross(e1);  // e1, e2 counter-clockwise seen from along the normal
       std::vector<Eigen::Vector2d> common = faceOn(blocks[t], origin, normal, e1, e2, size);
       const std::vector<Eigen::Vector2d> other = faceOn(blocks[u], origin, normal, e1, e2, size);
@@ -69,28 +72,21 @@ std::vector<ContactCorner> slabCorners(const PlaneTiling& tiling, const std::vec
 }  // namespace
 
 InterlockingSearch interlockSigns(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
-                                  const std::vector<char>& fixed, double thickness, double angle,
+                                  const std::vector<char>& fixed, double thickness, double angle, const BaseSurface& surface,
                                   std::vector<std::vector<int>>& tilts) {
   InterlockingSearch search;
   const int count = static_cast<int>(tiling.tiles.size());
   search.tooLarge = count > InterlockingSearch::kMaxTiles;
   if (search.tooLarge || std::none_of(fixed.begin(), fixed.end(), [](char f) { return f != 0; })) return search;
-  // The bodies: each tile's centroid at mid-height; L their median size.
+  // The bodies: each block's middle on the surface over its tile's centroid (where tiltedBlock
+  // puts its frame); L their median size.
   std::vector<Eigen::Vector3d> centre;
   std::vector<double> sizes;
   for (const std::vector<Eigen::Vector2d>& tile : tiling.tiles) {
-    Eigen::Vector2d sum(0, 0), low = tile.front(), high = tile.front();
-    double area = 0;
-    for (std::size_t k = 0; k < tile.size(); ++k) {
-      const Eigen::Vector2d &p = tile[k], &q = tile[(k + 1) % tile.size()];
-      const double cross = p.x() * q.y() - q.x() * p.y();
-      area += cross / 2;
-      sum += (p + q) * cross / 6;
-      low = low.cwiseMin(p);
-      high = high.cwiseMax(p);
-    }
-    centre.emplace_back(sum.x() / area, sum.y() / area, 0.0);
-    sizes.push_back(std::hypot((high - low).norm(), thickness));
+    centre.push_back(surface.point(polygonCentroid(tile)));
+    Eigen::AlignedBox2d box;
+    for (const Eigen::Vector2d& x : tile) box.extend(x);
+    sizes.push_back(std::hypot(box.diagonal().norm(), thickness));
   }
   std::nth_element(sizes.begin(), sizes.begin() + count / 2, sizes.end());
   const double length = sizes[count / 2];
@@ -99,8 +95,8 @@ InterlockingSearch interlockSigns(const PlaneTiling& tiling, const std::vector<s
     ++search.programs;
     const auto cuts = cornerCuts(tiling, across, tilts, thickness, angle);
     std::vector<TriangleMesh> blocks;
-    for (int t = 0; t < count; ++t) blocks.push_back(tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], thickness, angle));
-    return largestOpening(centre, fixed, length, slabCorners(tiling, across, tilts, blocks, angle, length), movingNow);
+    for (int t = 0; t < count; ++t) blocks.push_back(tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], thickness, angle, surface));
+    return largestOpening(centre, fixed, length, slabCorners(tiling, across, tilts, blocks, angle, surface, length), movingNow);
   };
   const auto held = [&](int t) { return fixed[t] || heldByNeighbours(tiling.tiles[t], tilts[t], across[t]); };
   const std::vector<std::vector<int>> rule = tilts;

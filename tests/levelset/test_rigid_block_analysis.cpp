@@ -79,7 +79,7 @@ SearchedSigns searched(const GeneratedSlabOptions& options) {
   std::vector<char> fixed;
   for (const auto& edges : s.across) fixed.push_back(!freeTile(edges));
   s.rule = s.tilts = interlockingTilts(tiling, s.across);
-  s.search = interlockSigns(tiling, s.across, fixed, options.thickness, options.angle, s.tilts);
+  s.search = interlockSigns(tiling, s.across, fixed, options.thickness, options.angle, options.surface, s.tilts);
   return s;
 }
 
@@ -95,6 +95,15 @@ TEST_CASE("signs searched: a Voronoi slab, not interlocked under the alternating
     for (std::size_t t = 0; t < s.tilts.size(); ++t)
       for (std::size_t k = 0; k < s.tilts[t].size(); ++k)
         if (s.across[t][k].tile >= 0) REQUIRE(s.tilts[t][k] == -s.tilts[s.across[t][k].tile][s.across[t][k].edge]);  // one plane an edge
+  }
+  // On a sphere ten times the span (a dome) and a cylinder (a barrel vault) too.
+  for (const BaseSurface::Kind kind : {BaseSurface::Kind::Sphere, BaseSurface::Kind::Cylinder}) {
+    GeneratedSlabOptions curved = voronoiSlab(5);
+    curved.surface.kind = kind;
+    curved.surface.radius = 10 * 7 * curved.tiling.pitch;
+    const SearchedSigns s = searched(curved);
+    REQUIRE(s.search.interlocked);
+    REQUIRE(s.search.flips > 0);
   }
   GeneratedSlabOptions triangles = voronoiSlab(10);
   triangles.tiling.kind = "triangle";
