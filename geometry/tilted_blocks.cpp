@@ -48,13 +48,17 @@ int canonicalStart(const std::vector<Eigen::Vector2d>& tile, const std::vector<E
 // A search for flips that hold an unheld tile t: flip one of its edges so that t is held (or it
 // is fixed), the tile u across it then held too, or fixed, or itself held by a further flip, up to
 // `depth` tiles on; the flips are kept where it succeeds and undone where it does not.
+// A tile on the perimeter is not held (it has no neighbour over some edge); it keeps faces of
+// both kinds where it had them (`mixed`).
 struct HoldingSearch {
   const PlaneTiling& tiling;
   const std::vector<std::vector<EdgeNeighbour>>& across;
   std::vector<std::vector<int>>& tilts;
-  std::vector<char> onPath;
+  std::vector<char> onPath, mixed;
 
-  bool held(int t) const { return !freeTile(across[t]) || heldByNeighbours(tiling.tiles[t], tilts[t], across[t]); }
+  bool held(int t) const {
+    return freeTile(across[t]) ? heldByNeighbours(tiling.tiles[t], tilts[t], across[t]) : !mixed[t] || hasBothSigns(tilts[t], across[t]);
+  }
   void flip(int t, int k) {
     tilts[t][k] = -tilts[t][k];
     tilts[across[t][k].tile][across[t][k].edge] = -tilts[t][k];
@@ -163,7 +167,8 @@ std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const
   // fixed perimeter). A tiling that alternates everywhere has none to mend; a triangle is never
   // held (docs/tiling.md), so it keeps its signs.
   constexpr int kHoldingDepth = 4;
-  HoldingSearch search{tiling, across, tilts, std::vector<char>(count, 0)};
+  HoldingSearch search{tiling, across, tilts, std::vector<char>(count, 0), std::vector<char>(count, 0)};
+  for (int t = 0; t < count; ++t) search.mixed[t] = hasBothSigns(tilts[t], across[t]);
   for (int t = 0; t < count; ++t)
     if (!search.held(t)) search.hold(t, kHoldingDepth);
   return tilts;

@@ -19,6 +19,9 @@ std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options
   auto tilts = interlockingTilts(tiling, across);
   std::vector<char> fixed(tiling.tiles.size());
   for (std::size_t t = 0; t < fixed.size(); ++t) fixed[t] = options.fixPerimeter && !freeTile(across[t]);
+  const std::string label = options.tilingFile.empty() ? options.tiling.kind + " tiling" : options.tilingFile;
+  if (options.fixPerimeter && std::all_of(fixed.begin(), fixed.end(), [](char f) { return f != 0; }))
+    throw InputError(label + ": every tile lies on the perimeter, so every block would be fixed; give a larger --grid");
   // Signs that interlock the slab where the rule's do not (odd cells; curved faces).
   {
     const InterlockingSearch search = interlockSigns(tiling, across, fixed, options.thickness, options.angle, options.surface, tilts);
@@ -34,7 +37,6 @@ std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options
                            "); its signs kept (docs/tiling.md, \"The sign rule\")");
   }
   const auto cuts = cornerCuts(tiling, across, tilts, options.thickness, options.angle);
-  const std::string label = options.tilingFile.empty() ? options.tiling.kind + " tiling" : options.tilingFile;
   std::vector<AssemblyPart> parts;
   for (std::size_t t = 0; t < tiling.tiles.size(); ++t) {
     AssemblyPart part;
@@ -44,8 +46,6 @@ std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options
     part.fixed = fixed[t] != 0;
     parts.push_back(std::move(part));
   }
-  if (options.fixPerimeter && std::all_of(fixed.begin(), fixed.end(), [](char f) { return f != 0; }))
-    throw InputError(label + ": every tile lies on the perimeter, so every block would be fixed; give a larger --grid");
   return parts;
 }
 

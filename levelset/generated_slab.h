@@ -24,8 +24,8 @@ struct GeneratedSlabOptions {
 
 /// The blocks in place, as parts to assemble (assembleParts). Throws InputError for parameters
 /// that give no block, and when `fixPerimeter` fixes every tile (too small a grid).
-/// On the plane, the signs are searched further so that the slab interlocks (interlockSigns); what
-/// the search did is noted in `log`, if given.
+/// The signs are searched further so that the slab interlocks (interlockSigns); what the search
+/// did is noted in `log`, if given.
 std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options, PrepLog* log = nullptr);
 
 /// The bundle of a generated slab: its parts assembled (assembleParts, `unit` recorded as the

@@ -1,12 +1,14 @@
 #include "levelset/interlocking_signs.h"
 
 #include "geometry/tilted_blocks.h"
+#include "io/input_error.h"
 #include "levelset/rigid_block_analysis.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tessera {
 
@@ -19,7 +21,9 @@ std::vector<Eigen::Vector2d> faceOn(const TriangleMesh& block, const Eigen::Vect
   std::vector<Eigen::Vector2d> points;
   for (const Eigen::Vector3d& x : block.vertices)
     if (std::abs(normal.dot(x - origin)) <= 1e-9 * size) points.emplace_back(e1.dot(x - origin), e2.dot(x - origin));
-  return points.size() < 3 ? std::vector<Eigen::Vector2d>{} : convexHull(points);
+  if (points.size() < 3) return {};
+  std::vector<Eigen::Vector2d> hull = convexHull(points);
+  return hull.size() < 3 ? std::vector<Eigen::Vector2d>{} : hull;  // a line or a point: no face
 }
 
 // The contact polygons shrunk about the mean of their corners by this factor: a slab interlocked
@@ -46,9 +50,11 @@ std::vector<ContactCorner> slabCorners(const PlaneTiling& tiling, const std::vec
       const int u = across[t][k].tile;
       if (u < t) continue;  // each shared edge once
       const Eigen::Vector3d a = surface.point(tile[k]), b = surface.point(tile[(k + 1) % tile.size()]);
-      const Eigen::Vector3d origin = 0.5 * (a + b), up = surface.normal(origin), e1 = (b - a).normalized();
-      const Eigen::Vector3d normal = (e1.cross(up).normalized() * std::cos(angle) - tilts[t][k] * std::sin(angle) * up).normalized();
-      const Eigen::Vector3d e2 = normal.cross(e1);  // e1, e2 counter-clockwise seen from along the normal
+      const Eigen::Vector3d origin = 0.5 * (a + b), up = surface.normal(origin), chord = b - a;
+      const Eigen::Vector3d normal = (chord.cross(up).normalized() * std::cos(angle) - tilts[t][k] * std::sin(angle) * up).normalized();
+      // e1, e2 in the face's plane, counter-clockwise seen from along its normal (on a mesh surface
+      // the interpolated normal need not be square to the chord: e1 is the chord's part in the plane).
+      const Eigen::Vector3d e1 = (chord - normal.dot(chord) * normal).normalized(), e2 = normal.cross(e1);
       std::vector<Eigen::Vector2d> common = faceOn(blocks[t], origin, normal, e1, e2, size);
       const std::vector<Eigen::Vector2d> other = faceOn(blocks[u], origin, normal, e1, e2, size);
       for (std::size_t j = 0; j < other.size() && !common.empty(); ++j) {
@@ -91,17 +97,25 @@ InterlockingSearch interlockSigns(const PlaneTiling& tiling, const std::vector<s
   std::nth_element(sizes.begin(), sizes.begin() + count / 2, sizes.end());
   const double length = sizes[count / 2];
   std::vector<char> moving;  // per tile: moved by the last program's way out
+  // The program's optimum for the tilts as they are; a trial whose blocks cannot be built (two
+  // tiles that meet at a corner would overlap: cornerCuts refuses them) is as bad as none.
   const auto opening = [&](std::vector<char>* movingNow) {
     ++search.programs;
-    const auto cuts = cornerCuts(tiling, across, tilts, thickness, angle);
+    std::vector<std::vector<VerticalCut>> cuts;
+    try {
+      cuts = cornerCuts(tiling, across, tilts, thickness, angle);
+    } catch (const InputError&) {
+      return std::numeric_limits<double>::infinity();
+    }
     std::vector<TriangleMesh> blocks;
     for (int t = 0; t < count; ++t) blocks.push_back(tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], thickness, angle, surface));
     return largestOpening(centre, fixed, length, slabCorners(tiling, across, tilts, blocks, angle, surface, length), movingNow);
   };
   const auto held = [&](int t) { return fixed[t] || heldByNeighbours(tiling.tiles[t], tilts[t], across[t]); };
   const std::vector<std::vector<int>> rule = tilts;
-  // Sweeps over the edges next to a tile the last way out moves (a flip elsewhere cannot close
+  // Sweeps over the edges next to a tile the last way out moves (where a flip most likely closes
   // it); a sweep that lowers nothing is followed by one over every edge, then the search stops.
+  cornerCuts(tiling, across, tilts, thickness, angle);  // the rule's blocks build, or the error is the rule's
   double best = opening(&moving);
   bool near = true;
   for (int sweep = 0; sweep < InterlockingSearch::kSweeps && best > 0; ++sweep) {
@@ -114,7 +128,7 @@ InterlockingSearch interlockSigns(const PlaneTiling& tiling, const std::vector<s
         tilts[t][k] = -tilts[t][k];
         tilts[u][l] = -tilts[u][l];
         const double now = held(t) && held(u) ? opening(&trial) : best;
-        if (now < best) {
+        if (now < best - 1e-9 * std::max(1.0, best)) {  // not a rounding-level change of the optimum
           best = now;
           moving = trial;
           ++search.flips;

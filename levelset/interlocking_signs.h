@@ -15,10 +15,11 @@ namespace tessera {
 /// over every edge, until the optimum is 0, or no flip lowers it, or kSweeps have run. The
 /// program is posed on the blocks the signs make (tiltedBlock, corner cuts included): over each
 /// shared edge the two blocks' common face, shrunk for a margin (docs/tiling.md); bodies turning
-/// about their middles. `fixed`: per tile.
+/// about their middles. `fixed`: per tile; with none fixed nothing can interlock, and the tilts
+/// are left as they are (programs = 0).
 /// The tilts are changed only when the search ends interlocked (a slab it cannot interlock, such
 /// as a triangle slab, keeps the rule's signs), and not at all beyond kMaxTiles tiles (each program
-/// grows with the slab, and so does their number: 9 x 9 Voronoi tiles took 50-390 programs, 2-14 s
+/// grows with the slab, and so does their number: 9 x 9 Voronoi tiles took 50-271 programs, 2-9 s
 /// on 2 cores).
 struct InterlockingSearch {
   static constexpr int kSweeps = 8;

@@ -214,10 +214,18 @@ double largestOpening(const std::vector<Eigen::Vector3d>& position, const std::v
   if (moving) moving->assign(fixed.size(), 0);
   if (freedoms.count == 0) return 0.0;
   const auto [x, opening] = mostOpening(contactMatrix(freedoms, corners), static_cast<int>(corners.size()), 6 * freedoms.count);
-  if (!(opening > kOpen)) return 0.0;
-  if (moving)
+  if (moving && opening > kOpen)
     for (const BodyMotion& m : motionOf(freedoms, x)) (*moving)[m.body] = 1;
-  return opening;
+  // A free body that touches nothing moves freely (as checkInterlocking counts it): one more way out.
+  std::vector<char> touches(fixed.size(), 0);
+  for (const ContactCorner& c : corners) touches[c.first] = touches[c.second] = 1;
+  double loose = 0;
+  for (std::size_t body = 0; body < fixed.size(); ++body)
+    if (!fixed[body] && !touches[body]) {
+      loose += 1;
+      if (moving) (*moving)[body] = 1;
+    }
+  return (opening > kOpen ? opening : 0.0) + loose;
 }
 
 InterlockingVerdict checkInterlocking(const Bundle& bundle, const std::vector<ContactCorner>& corners) {

@@ -188,9 +188,8 @@ struct Reader {
   void field(const char* name, std::vector<double>& v) const { v = h5::readDataset<double>(g, name); }
   void field(const char* name, std::vector<std::int32_t>& v) const { v = h5::readDataset<std::int32_t>(g, name); }
   void field(const char* name, double& x) const {
-    // A number a version before 9 kept under its former name.
-    const bool former = std::string(name) == "external_work" && !std::isfinite(h5::readDoubleAttribute(g, name, NAN));
-    x = h5::readDoubleAttribute(g, former ? "obstacle_work" : name);
+    // Versions before 9 kept the indenter's work under its former name.
+    x = h5::readDoubleAttribute(g, version < 9 && std::string(name) == "external_work" ? "obstacle_work" : name);
   }
   void field(const char* name, long& x) const { x = static_cast<long>(h5::readIntAttribute(g, name)); }
   void field(const char* name, int& x) const { x = static_cast<int>(h5::readIntAttribute(g, name)); }
@@ -200,6 +199,7 @@ struct Reader {
   void field(const char* name, std::vector<Snapshot>& v) const { v = readSnapshots(h5::openGroup(g, name).get(), bodies); }
   void field(const char* name, std::vector<FallenBody>& v) const { v = readFallen(h5::openGroup(g, name).get()); }
   std::size_t bodies = 0;  ///< the bundle's, which a snapshot's arrays must match
+  std::int64_t version = kVersion;  ///< the file's format version
 };
 
 // Every field of a WorldState the checkpoint keeps, once, for both directions. (Masses, inertia,
@@ -267,7 +267,11 @@ void writeWorld(hid_t g, const WorldState& w) {
   serializeWorld(Writer{g}, const_cast<WorldState&>(w));  // a Writer only reads the fields
 }
 
-void readWorld(hid_t g, WorldState& w) { serializeWorld(Reader{g}, w); }
+void readWorld(hid_t g, WorldState& w, std::int64_t version) {
+  Reader reader{g};
+  reader.version = version;
+  serializeWorld(reader, w);
+}
 
 // Every field of the protocol's state and record the checkpoint keeps, once, for both directions
 // (the stop reason by its name).
@@ -409,7 +413,7 @@ void readCheckpoint(const std::string& path, WorldState& world, IndentationState
     Handle w = h5::openGroup(f.get(), "world");
     const std::size_t bodies = world.bodies.size();
     const std::vector<char> fixedInBundle = world.bodies.fixed;
-    readWorld(w.get(), world);
+    readWorld(w.get(), world, h5::readIntAttribute(f.get(), "format_version"));
     if (world.bodies.position.size() != bodies) throw std::runtime_error("it holds a different number of bodies than the bundle");
     // The supports are the bundle's (a checkpoint written before retired bodies had their own
     // flag marks them fixed too).

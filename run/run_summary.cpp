@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+
 namespace tessera {
 
 namespace {
@@ -76,9 +78,18 @@ struct JsonIn {
     return v;
   }
   static std::string key(const char* name, const char* unit) { return *unit ? std::string(name) + "_" + unit : std::string(name); }
+  // A number, or null: JSON has no NaN or infinity, and a non-finite value is written as null
+  // (P* without a span, say), read back as NaN.
   void number(const char* name, const char* unit, double& v) const {
-    v = at(key(name, unit), &nlohmann::json::is_number, "a number").get<double>() / unitScale(unit);
+    const nlohmann::json& x = at(key(name, unit), &nlohmann::json::is_primitive, "a number");
+    if (x.is_null()) {
+      v = std::nan("");
+      return;
+    }
+    if (!x.is_number()) throw InputError("summary.json: '" + where + key(name, unit) + "' is not a number");
+    v = x.get<double>() / unitScale(unit);
   }
+  // Null where it does not apply: v keeps its default (a failure deflection of -1: none).
   void optionalNumber(const char* name, const char* unit, double& v, bool) const {
     if (!j.contains(key(name, unit)) || !j[key(name, unit)].is_null()) number(name, unit, v);
   }

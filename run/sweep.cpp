@@ -386,8 +386,13 @@ int writeSweepTables(const std::string& folder) {
   std::vector<std::string> caseNames, modes, reasons;
   for (const auto& entry : manifest["cases"]) {
     const fs::path run = dir / entry["directory"].get<std::string>() / "run";
-    if (!sweepCaseComplete(run.string())) continue;  // an interrupted or failed case is never tabled or plotted
-    const RunSummary summary = readRunSummary(run);
+    RunSummary summary;
+    try {
+      summary = readRunSummary(run);
+    } catch (const InputError&) {
+      continue;  // not run yet, or cut short: not tabled
+    }
+    if (!isComplete(summary.stopReason)) continue;  // an interrupted or failed case is never tabled or plotted
     const nlohmann::json j = runSummaryJson(summary);
     const std::vector<double> caseValues = entry["values"];
     std::vector<double> values;

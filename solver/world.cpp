@@ -212,8 +212,9 @@ void World::checkState(const WorldState& s) const {
       if ((body >= 0 && (c.key & 0x7fffffffu) >= nodes) || !finite(c.spring) || !std::isfinite(c.energy) || !std::isfinite(c.area))
         throw std::invalid_argument("a contact names no node, or holds a non-finite value");
     }
-    if (!finite(p.forceA) || !finite(p.torqueA) || !finite(p.forceB) || !finite(p.torqueB))
-      throw std::invalid_argument("a contact pair holds a non-finite force");
+    if (!finite(p.forceA) || !finite(p.torqueA) || !finite(p.forceB) || !finite(p.torqueB) || !std::isfinite(p.elastic) ||
+        !std::isfinite(p.depth))
+      throw std::invalid_argument("a contact pair holds a non-finite force or energy");
   }
   for (double e : {s.initialEnergy, s.externalWork, s.friction, s.damping, s.retiredKinetic, s.projection, s.mostSupplied, s.time})
     if (!std::isfinite(e)) throw std::invalid_argument("an energy or the time is not finite");

@@ -156,7 +156,8 @@ public:
   /// Force of the bodies on sphere k (the indenter's reaction), N.
   Eigen::Vector3d sphereReaction(int k) const { return state_.sphereReaction[k]; }
   /// The candidate pairs of the last evaluation (touching or near), and pair k of them as seen
-  /// from outside the solver.
+  /// from outside the solver. Right after restore(), until the next evaluation, a pair's normal
+  /// force, force point and sliding nodes are 0 (a PairState does not keep them).
   int pairCount() const;
   PairView pair(int k) const;
   EnergyBudget energy() const;

@@ -174,7 +174,7 @@ TEST_CASE("a block among still neighbours is held against every translation by f
   const std::vector<EdgeNeighbour> all(4, EdgeNeighbour{0, 0});
   REQUIRE(heldByNeighbours(square, {1, -1, 1, -1}, all));       // the checkerboard
   REQUIRE_FALSE(heldByNeighbours(square, {1, 1, 1, 1}, all));   // rests on all four: lifts off
-  REQUIRE_FALSE(heldByNeighbours(square, {1, 1, -1, -1}, all)); // slides along (1, 1, 1)
+  REQUIRE_FALSE(heldByNeighbours(square, {1, 1, -1, -1}, all)); // slides along (1, -1, 1)
   std::vector<EdgeNeighbour> open = all;
   open[2].tile = -1;  // no neighbour over one edge: it leaves that way
   REQUIRE_FALSE(heldByNeighbours(square, {1, -1, 1, -1}, open));

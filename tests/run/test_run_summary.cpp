@@ -6,6 +6,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <limits>
+
 using namespace tessera;
 using Catch::Matchers::Contains;
 
@@ -124,6 +127,16 @@ TEST_CASE("summary.json keys: name and unit in the file, the plain name in SI un
   REQUIRE(si["response"]["energy"]["external_work"].get<double>() == 0.41);
   REQUIRE(si["run"]["time_step"].get<double>() == 1.25e-6);
   REQUIRE(si["response"]["failure_deflection"].is_null());
+}
+
+TEST_CASE("summary.json: a value that is not finite is written as null and read back as NaN") {
+  RunSummary s = filled(true);
+  s.response.peakLoadNormalised = std::numeric_limits<double>::infinity();  // P* = P / (E L^2) without a span
+  const std::string text = jsonText(runSummaryJson(s));
+  REQUIRE(nlohmann::json::parse(text)["response"]["peak_load_normalised"].is_null());  // JSON has no infinity
+  const RunSummary read = parseRunSummary(text);
+  REQUIRE(std::isnan(read.response.peakLoadNormalised));
+  REQUIRE(read.stopReason == StopReason::Failure);
 }
 
 TEST_CASE("a summary.json with a key missing, of the wrong type, or not JSON is refused naming the key") {
