@@ -206,6 +206,16 @@ std::pair<Eigen::VectorXd, double> mostOpening(const std::vector<Eigen::Triplet<
   return bestMotion(triplets, rows, columns, objective, 1.0);
 }
 
+// The free bodies that touch nothing: each moves freely (lifted off, say).
+std::vector<int> looseBodies(const Freedoms& freedoms, const std::vector<ContactCorner>& corners) {
+  std::vector<char> touches(freedoms.index.size(), 0);
+  for (const ContactCorner& c : corners) touches[c.first] = touches[c.second] = 1;
+  std::vector<int> loose;
+  for (int body = 0; body < static_cast<int>(freedoms.index.size()); ++body)
+    if (freedoms.index[body] >= 0 && !touches[body]) loose.push_back(body);
+  return loose;
+}
+
 }  // namespace
 
 double largestOpening(const std::vector<Eigen::Vector3d>& position, const std::vector<char>& fixed, double length,
@@ -216,16 +226,11 @@ double largestOpening(const std::vector<Eigen::Vector3d>& position, const std::v
   const auto [x, opening] = mostOpening(contactMatrix(freedoms, corners), static_cast<int>(corners.size()), 6 * freedoms.count);
   if (moving && opening > kOpen)
     for (const BodyMotion& m : motionOf(freedoms, x)) (*moving)[m.body] = 1;
-  // A free body that touches nothing moves freely (as checkInterlocking counts it): one more way out.
-  std::vector<char> touches(fixed.size(), 0);
-  for (const ContactCorner& c : corners) touches[c.first] = touches[c.second] = 1;
-  double loose = 0;
-  for (std::size_t body = 0; body < fixed.size(); ++body)
-    if (!fixed[body] && !touches[body]) {
-      loose += 1;
-      if (moving) (*moving)[body] = 1;
-    }
-  return (opening > kOpen ? opening : 0.0) + loose;
+  // A free body that touches nothing is one more way out (as checkInterlocking counts it).
+  const std::vector<int> loose = looseBodies(freedoms, corners);
+  if (moving)
+    for (int body : loose) (*moving)[body] = 1;
+  return (opening > kOpen ? opening : 0.0) + static_cast<double>(loose.size());
 }
 
 InterlockingVerdict checkInterlocking(const Bundle& bundle, const std::vector<ContactCorner>& corners) {
@@ -241,12 +246,8 @@ InterlockingVerdict checkInterlocking(const Bundle& bundle, const std::vector<Co
   a.setFromTriplets(triplets.begin(), triplets.end());
   const auto [x, opening] = mostOpening(triplets, rows, columns);
   if (opening > kOpen) verdict.motion = motionOf(freedoms, x);
-  // A free body that touches nothing moves freely (lifted off, say).
-  std::vector<char> touches(bundle.bodies.size(), 0);
-  for (const ContactCorner& c : corners) touches[c.first] = touches[c.second] = 1;
-  for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body)
-    if (!bundle.bodies[body].fixed && !touches[body] &&
-        std::none_of(verdict.motion.begin(), verdict.motion.end(), [&](const BodyMotion& m) { return m.body == body; }))
+  for (int body : looseBodies(freedoms, corners))
+    if (std::none_of(verdict.motion.begin(), verdict.motion.end(), [&](const BodyMotion& m) { return m.body == body; }))
       verdict.motion.push_back({body, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()});
   verdict.interlocked = verdict.motion.empty();
   const SlidingModes sliding = slidingModes(a);

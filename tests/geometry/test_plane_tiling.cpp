@@ -193,7 +193,7 @@ TEST_CASE("tilted blocks: every free tile is held by its neighbours, in every ti
     const GeneratedBlocks g = generate(kind, 0.01, 0.00318, 5 * M_PI / 180);
     int free = 0, held = 0;
     for (std::size_t t = 0; t < g.tilts.size(); ++t) {
-      if (std::any_of(g.across[t].begin(), g.across[t].end(), [](const EdgeNeighbour& e) { return e.tile < 0; })) continue;
+      if (!freeTile(g.across[t])) continue;
       ++free;
       held += heldByNeighbours(g.tiling.tiles[t], g.tilts[t], g.across[t]) ? 1 : 0;
     }
