@@ -11,7 +11,9 @@
 #        SPEED (the scene's indenter.speed, m/s; 0: the protocol's c (h/L)^2 rule; default: 0.03 as the
 #        default scene), METHODS ("implicit explicit"), TOLERANCES (solver.implicit_tolerance values,
 #        one implicit run each; default: the built-in one), BLOCK (a block mesh in mm; default: the
-#        default block) and TILE_OPTIONS (more `tessera tile` options, e.g. --no-alternate)
+#        default block), TILE_OPTIONS (more `tessera tile` options, e.g. --no-alternate) and OFFSET
+#        (m: the indenter's plan offset along x from the loaded block's centroid, an imperfection;
+#        unset: 0)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 tessera="${BUILD_DIR:-$here/build}/tools/tessera"
@@ -19,6 +21,8 @@ out=${OUT:-/tmp/tessera_scaling}
 threads=${THREADS:-2}
 limit=${EXPLICIT_LIMIT:-900}
 speed=${SPEED:-0.03}
+offset=""
+[ -z "${OFFSET:-}" ] || offset="\\noffset = [${OFFSET}, 0.0]"
 methods=(${METHODS:-implicit explicit})
 tolerances=(${TOLERANCES:-default})
 sizes=("$@")
@@ -59,7 +63,7 @@ for n in "${sizes[@]}"; do
     setting=""
     if [ "$tolerance" != default ]; then label="${method}_$tolerance"; setting="\nimplicit_tolerance = $tolerance"; fi
     scene="$out/scene_${n}_${name}_$label.toml"
-    sed -e "s#^bundle = .*#bundle = \"$slab\"#" -e "s#^speed = .*#speed = $speed#" \
+    sed -e "s#^bundle = .*#bundle = \"$slab\"#" -e "s#^speed = .*#speed = $speed$offset#" \
       -e "s#^\[damping\]#[solver]\nmethod = \"$method\"$setting\n\n[damping]#" "$here/assets/scenes/default.toml" > "$scene"
     run="$out/${n}_${name}_$label"
     rm -rf "$run"
