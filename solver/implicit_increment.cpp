@@ -261,7 +261,7 @@ bool World::solveIncrement(double dt, int& iterations) {
 
 // The converged increment kept: the pairs' contacts and forces, the bodies' backward-Euler
 // velocities, the energies, the time.
-void World::commitIncrement(double dt, int iterations) {
+void World::commitIncrement(double dt, int iterations, bool lost) {
   ImplicitWork& w = *implicit_;
   RigidBodies& bodies = state_.bodies;
   const std::size_t n = bodies.size();
@@ -330,8 +330,11 @@ void World::commitIncrement(double dt, int iterations) {
   state_.time += dt;
   ++state_.steps;
   state_.forcesValid = true;
-  // An easy increment lets the next double (up to the limit); a hard one keeps its length.
-  counts.increment = iterations <= kEasyIterations ? 2 * dt : dt;
+  // An easy increment lets the next double (up to the limit); a hard one keeps its length. One
+  // through a lost equilibrium (followed as dynamics) lets the next grow only up to the dynamic
+  // increment: past it, while the event goes on, the next would be lost and cut back again.
+  const double dynamicLimit = settings_.implicit.dynamicIncrementRatio * automaticDt_;
+  counts.increment = iterations <= kEasyIterations ? (lost ? std::max(dt, std::min(2 * dt, dynamicLimit)) : 2 * dt) : dt;
   // The obstacles' travel limit grows while their reactions change smoothly, and falls back at a jump.
   double change = 0.0, size = 0.0;
   for (std::size_t k = 0; k < state_.spheres.size(); ++k) {
@@ -427,13 +430,16 @@ void World::implicitStep() {
   const double first = std::min(limit, kFirstIncrementRatio * automaticDt_);
   double dt = std::min(state_.implicit.increment > 0 ? state_.implicit.increment : first, limit);
   int iterations = 0;
+  bool lost = false;
   for (;;) {
     for (std::size_t k = 0; k < state_.spheres.size(); ++k)
       state_.spheres[k].center = w.start.sphereCentre[k] + dt * state_.spheres[k].velocity;
     int tried = 0;
     const bool converged = solveIncrement(dt, tried);
     iterations += tried;
-    if (converged && !(lostEquilibrium() && dt > settings_.implicit.dynamicIncrementRatio * automaticDt_)) break;
+    const double dynamicLimit = settings_.implicit.dynamicIncrementRatio * automaticDt_;
+    lost = converged && lostEquilibrium();
+    if (converged && !(lost && dt > dynamicLimit)) break;
     // Cut: back to the start, a quarter of the increment.
     bodies = w.startBodies;
     pairs_ = w.committed;
@@ -445,7 +451,7 @@ void World::implicitStep() {
                               "the assembly or the loading is beyond what the implicit method can follow; try "
                               "solver.method = \"explicit\"");
   }
-  commitIncrement(dt, iterations);
+  commitIncrement(dt, iterations, lost);
   checkStability();
 }
 

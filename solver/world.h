@@ -178,7 +178,7 @@ private:
   double implicitTravelLimit() const;
   bool solveIncrement(double dt, int& iterations);
   double evaluateIncrement(double dt, bool withMatrix);
-  void commitIncrement(double dt, int iterations);
+  void commitIncrement(double dt, int iterations, bool lost);
   bool lostEquilibrium() const;
   void updatePairs();
   double stiffnessScale(const PairContacts& pair) const;
