@@ -127,6 +127,14 @@ PlaneTiling voronoiTiling(const TilingOptions& o) {
 
 }  // namespace
 
+std::vector<double> tileEdgeAngles(const PlaneTiling& tiling, std::size_t t, double angle) {
+  std::vector<double> angles(tiling.tiles[t].size(), angle);
+  if (t < tiling.edgeAngles.size())
+    for (std::size_t k = 0; k < angles.size() && k < tiling.edgeAngles[t].size(); ++k)
+      if (std::isfinite(tiling.edgeAngles[t][k])) angles[k] = tiling.edgeAngles[t][k];
+  return angles;
+}
+
 Polygon clipPolygon(const Polygon& polygon, const Eigen::Vector2d& n, double d) {
   Polygon kept;
   for (std::size_t i = 0; i < polygon.size(); ++i) {

@@ -10,7 +10,13 @@ namespace tessera {
 struct PlaneTiling {
   std::vector<std::string> names;                       ///< one body name per tile
   std::vector<std::vector<Eigen::Vector2d>> tiles;      ///< corners, m
+  /// The face angle of edge k of tile t, radians, where the tiling gives one (a tiling file's
+  /// `angle_<degrees>` lines: readTilingFile); empty, or NaN for an edge: the slab's angle.
+  std::vector<std::vector<double>> edgeAngles;
 };
+
+/// The face angle of each edge of tile t: the tiling's own where it gives one, else `angle`. Radians.
+std::vector<double> tileEdgeAngles(const PlaneTiling& tiling, std::size_t t, double angle);
 
 /// The built-in tilings (docs/tiling.md, "Generated tilings"), centred at the origin. `pitch` is the
 /// distance between the centres of two tiles that share an edge.
@@ -47,8 +53,11 @@ std::vector<std::vector<EdgeNeighbour>> edgeNeighbours(const PlaneTiling& tiling
 /// The tiles of a polygon mesh (OBJ, PLY, ... through assimp, polygons kept): each face one tile,
 /// its corners' (x, y) in `metresPerUnit` after the file's `up` axis is turned into +z
 /// (rotationToZUp; the mesh lies in a plane normal to it), turned counter-clockwise. Named
-/// "t<face>". Throws InputError naming the face for a non-convex or degenerate polygon, and for a
-/// mesh that does not lie flat.
+/// "t<face>". Line segments in a group (or object) named `angle_<degrees>`, e.g. `angle_7.5`, give
+/// the tile edges they lie on (end to end, within 1e-6 of the tiling's size) that face angle
+/// (edgeAngles); other lines and points are ignored. Throws InputError naming the face for a
+/// non-convex or degenerate polygon, for a mesh that does not lie flat, and naming the group for
+/// an angle outside [0, 90) degrees, a name that is no number, or a segment that is no tile's edge.
 PlaneTiling readTilingFile(const std::string& path, double metresPerUnit, const std::string& up = "z");
 
 /// The part of a convex polygon where n . x <= d (one pass of Sutherland & Hodgman, CACM 17, 1974).

@@ -9,7 +9,10 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <functional>
 
 namespace tessera {
 
@@ -24,6 +27,49 @@ bool isConvex(const std::vector<Eigen::Vector2d>& p, double tolerance) {
   return true;
 }
 
+// A group's face angle from its name, `angle_<degrees>`: NaN for any other name.
+double groupAngle(const std::string& path, const std::string& name) {
+  const std::string prefix = "angle_";
+  if (name.compare(0, prefix.size(), prefix) != 0) return std::nan("");
+  const std::string number = name.substr(prefix.size());
+  char* end = nullptr;
+  const double degrees = std::strtod(number.c_str(), &end);
+  if (number.empty() || end != number.c_str() + number.size())
+    throw InputError(path + ": group '" + name + "' names no angle; name a group of edges angle_<degrees>, e.g. angle_7.5");
+  if (!(degrees >= 0 && degrees < 90))
+    throw InputError(path + ": group '" + name + "': give the faces' tilt in degrees, in [0, 90)");
+  return degrees * M_PI / 180;
+}
+
+struct AngledSegment {
+  Eigen::Vector2d a, b;
+  double angle;      // radians
+  std::string group;
+};
+
+// Each segment's angle given to the tile edges it lies on, end to end.
+void giveEdgeAngles(const std::string& path, const std::vector<AngledSegment>& segments, double tolerance, PlaneTiling& tiling) {
+  if (segments.empty()) return;
+  tiling.edgeAngles.assign(tiling.tiles.size(), {});
+  for (std::size_t t = 0; t < tiling.tiles.size(); ++t) tiling.edgeAngles[t].assign(tiling.tiles[t].size(), std::nan(""));
+  for (const AngledSegment& segment : segments) {
+    bool found = false;
+    for (std::size_t t = 0; t < tiling.tiles.size(); ++t) {
+      const auto& tile = tiling.tiles[t];
+      for (std::size_t k = 0; k < tile.size(); ++k) {
+        const Eigen::Vector2d &p = tile[k], &q = tile[(k + 1) % tile.size()];
+        const bool along = (p - segment.a).norm() <= tolerance && (q - segment.b).norm() <= tolerance;
+        const bool against = (p - segment.b).norm() <= tolerance && (q - segment.a).norm() <= tolerance;
+        if (!along && !against) continue;
+        tiling.edgeAngles[t][k] = segment.angle;
+        found = true;
+      }
+    }
+    if (!found)
+      throw InputError(path + ": a line of group '" + segment.group + "' is no tile's edge; draw each angled edge from corner to corner of its tiles");
+  }
+}
+
 }  // namespace
 
 PlaneTiling readTilingFile(const std::string& path, double metresPerUnit, const std::string& up) {
@@ -31,32 +77,45 @@ PlaneTiling readTilingFile(const std::string& path, double metresPerUnit, const 
   if (!std::filesystem::is_regular_file(path))
     throw InputError(path + ": no such tiling file; give a polygon mesh (OBJ) of the tiles, or a built-in tiling name");
   Assimp::Importer importer;
-  // Polygons are kept as they are (no triangulation): each face is one tile.
-  const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_PreTransformVertices);
-  if (scene == nullptr)
+  // Polygons are kept as they are (no triangulation): each face is one tile. The nodes are walked
+  // with their transforms (not pre-transformed), so that each group keeps its name.
+  const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+  if (scene == nullptr || scene->mRootNode == nullptr)
     throw InputError(path + ": cannot read as a polygon mesh (" + std::string(importer.GetErrorString()) + "); give an OBJ of the tiles");
   PlaneTiling tiling;
+  std::vector<AngledSegment> segments;
   double lowest = 1e300, highest = -1e300, size = 0;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh* mesh = scene->mMeshes[m];
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-      const aiFace& face = mesh->mFaces[f];
-      if (face.mNumIndices < 3) continue;  // points and lines are not tiles
-      std::vector<Eigen::Vector2d> tile;
-      for (unsigned k = 0; k < face.mNumIndices; ++k) {
-        if (face.mIndices[k] >= mesh->mNumVertices)
+  const std::function<void(const aiNode*, const aiMatrix4x4&)> visit = [&](const aiNode* node, const aiMatrix4x4& parent) {
+    const aiMatrix4x4 transform = parent * node->mTransformation;
+    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+      const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];
+      const std::string group = mesh->mName.length > 0 ? mesh->mName.C_Str() : node->mName.C_Str();
+      const auto point = [&](unsigned f, unsigned index) {
+        if (index >= mesh->mNumVertices)
           throw InputError(path + ": face " + std::to_string(f) + " names a vertex that is not there; export the tiling again");
-        const aiVector3D& read = mesh->mVertices[face.mIndices[k]];
+        const aiVector3D read = transform * mesh->mVertices[index];
         const Eigen::Vector3d v = toZUp * Eigen::Vector3d(read.x, read.y, read.z) * metresPerUnit;
-        tile.emplace_back(v.x(), v.y());
         lowest = std::min(lowest, v.z());
         highest = std::max(highest, v.z());
+        return Eigen::Vector2d(v.x(), v.y());
+      };
+      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+        const aiFace& face = mesh->mFaces[f];
+        if (face.mNumIndices == 2) {  // a line: an angled edge in an angle_<degrees> group
+          const double angle = groupAngle(path, group);
+          if (std::isfinite(angle)) segments.push_back({point(f, face.mIndices[0]), point(f, face.mIndices[1]), angle, group});
+        }
+        if (face.mNumIndices < 3) continue;  // points and lines are not tiles
+        std::vector<Eigen::Vector2d> tile;
+        for (unsigned k = 0; k < face.mNumIndices; ++k) tile.push_back(point(f, face.mIndices[k]));
+        if (polygonArea(tile) < 0) std::reverse(tile.begin(), tile.end());
+        tiling.names.push_back("t" + std::to_string(tiling.tiles.size()));
+        tiling.tiles.push_back(std::move(tile));
       }
-      if (polygonArea(tile) < 0) std::reverse(tile.begin(), tile.end());
-      tiling.names.push_back("t" + std::to_string(tiling.tiles.size()));
-      tiling.tiles.push_back(std::move(tile));
     }
-  }
+    for (unsigned c = 0; c < node->mNumChildren; ++c) visit(node->mChildren[c], transform);
+  };
+  visit(scene->mRootNode, aiMatrix4x4());
   if (tiling.tiles.empty()) throw InputError(path + ": holds no polygon; give an OBJ whose faces are the tiles");
   for (const auto& tile : tiling.tiles)
     for (const Eigen::Vector2d& x : tile) size = std::max(size, x.norm());
@@ -70,6 +129,7 @@ PlaneTiling readTilingFile(const std::string& path, double metresPerUnit, const 
     if (!isConvex(tiling.tiles[t], 1e-9))
       throw InputError(path + ": face " + std::to_string(t) + " is not convex; split it into convex tiles");
   }
+  giveEdgeAngles(path, segments, 1e-6 * size, tiling);
   return tiling;
 }
 

@@ -21,16 +21,18 @@ bool hasBothSigns(const std::vector<int>& signs, const std::vector<EdgeNeighbour
   return out && in;
 }
 
-// The edge that starts the smallest cyclic sequence of (sign, length, turn), each rounded to 1e-6:
-// lengths of the corners lifted onto the surface, turns in plan.
-int canonicalStart(const std::vector<Eigen::Vector2d>& tile, const std::vector<Eigen::Vector3d>& corners, const std::vector<int>& tilts) {
+// The edge that starts the smallest cyclic sequence of (sign, angle, length, turn), each rounded to
+// 1e-6: lengths of the corners lifted onto the surface, turns in plan.
+int canonicalStart(const std::vector<Eigen::Vector2d>& tile, const std::vector<Eigen::Vector3d>& corners, const std::vector<int>& tilts,
+                   const std::vector<double>& angles) {
   const int n = static_cast<int>(tile.size());
   double size = 0;
   for (const Eigen::Vector2d& x : tile) size = std::max(size, x.norm());
-  std::vector<std::array<long long, 3>> key(n);
+  std::vector<std::array<long long, 4>> key(n);
   for (int k = 0; k < n; ++k) {
     const Eigen::Vector2d e = tile[(k + 1) % n] - tile[k], f = tile[(k + 2) % n] - tile[(k + 1) % n];
-    key[k] = {tilts[k], std::llround(1e6 * (corners[(k + 1) % n] - corners[k]).norm() / size), std::llround(1e6 * std::atan2(e.x() * f.y() - e.y() * f.x(), e.dot(f)))};
+    key[k] = {tilts[k], std::llround(1e6 * angles[k]), std::llround(1e6 * (corners[(k + 1) % n] - corners[k]).norm() / size),
+              std::llround(1e6 * std::atan2(e.x() * f.y() - e.y() * f.x(), e.dot(f)))};
   }
   int best = 0;
   for (int start = 1; start < n; ++start)
@@ -54,10 +56,12 @@ struct HoldingSearch {
   const PlaneTiling& tiling;
   const std::vector<std::vector<EdgeNeighbour>>& across;
   std::vector<std::vector<int>>& tilts;
+  double angle;  // radians, of the edges the tiling gives none (heldAngles)
   std::vector<char> onPath, mixed;
 
   bool held(int t) const {
-    return freeTile(across[t]) ? heldByNeighbours(tiling.tiles[t], tilts[t], across[t]) : !mixed[t] || hasBothSigns(tilts[t], across[t]);
+    return freeTile(across[t]) ? heldByNeighbours(tiling.tiles[t], tilts[t], across[t], heldAngles(tiling, t, angle))
+                               : !mixed[t] || hasBothSigns(tilts[t], across[t]);
   }
   void flip(int t, int k) {
     tilts[t][k] = -tilts[t][k];
@@ -86,12 +90,15 @@ bool freeTile(const std::vector<EdgeNeighbour>& across) {
   return std::all_of(across.begin(), across.end(), [](const EdgeNeighbour& e) { return e.tile >= 0; });
 }
 
-bool heldByNeighbours(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<EdgeNeighbour>& across) {
+bool heldByNeighbours(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<EdgeNeighbour>& across,
+                      const std::vector<double>& angles) {
   std::vector<Eigen::Vector3d> n;
   for (std::size_t k = 0; k < tile.size(); ++k) {
     if (across[k].tile < 0) continue;
-    const Eigen::Vector2d e = tile[(k + 1) % tile.size()] - tile[k];
-    n.push_back(Eigen::Vector3d(e.y(), -e.x(), -tilts[k] * e.norm()).normalized());
+    const Eigen::Vector2d m = (tile[(k + 1) % tile.size()] - tile[k]).normalized();
+    // One angle for every face: any in (0, 90) degrees gives the same verdict; 45 is used.
+    const double theta = angles.empty() ? M_PI / 4 : angles[k];
+    n.push_back(Eigen::Vector3d(m.y() * std::cos(theta), -m.x() * std::cos(theta), -tilts[k] * std::sin(theta)));
   }
   // Positively spanning: no v != 0 with v . n_k <= 0 for every k. Were there one, the cone of the
   // n_k would be flat or have a facet, and a facet holds two independent n_k: v is one of the
@@ -114,7 +121,11 @@ bool heldByNeighbours(const std::vector<Eigen::Vector2d>& tile, const std::vecto
   return spans;
 }
 
-std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across) {
+std::vector<double> heldAngles(const PlaneTiling& tiling, std::size_t t, double angle) {
+  return tiling.edgeAngles.empty() ? std::vector<double>{} : tileEdgeAngles(tiling, t, angle);
+}
+
+std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across, double angle) {
   const int count = static_cast<int>(tiling.tiles.size());
   std::vector<int> c(count, 0);
   // c_t spread breadth first: c_u (-1)^l = -c_t (-1)^k across edge k of t = edge l of u.
@@ -167,7 +178,7 @@ std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const
   // fixed perimeter). A tiling that alternates everywhere has none to mend; a triangle is never
   // held (docs/tiling.md), so it keeps its signs.
   constexpr int kHoldingDepth = 4;
-  HoldingSearch search{tiling, across, tilts, std::vector<char>(count, 0), std::vector<char>(count, 0)};
+  HoldingSearch search{tiling, across, tilts, angle, std::vector<char>(count, 0), std::vector<char>(count, 0)};
   for (int t = 0; t < count; ++t) search.mixed[t] = hasBothSigns(tilts[t], across[t]);
   for (int t = 0; t < count; ++t)
     if (!search.held(t)) search.hold(t, kHoldingDepth);
@@ -177,6 +188,9 @@ std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const
 std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
                                                  const std::vector<std::vector<int>>& tilts, double thickness, double angle) {
   const int count = static_cast<int>(tiling.tiles.size());
+  std::vector<std::vector<double>> tangents(count);  // tan(theta) of each tile's edges
+  for (int t = 0; t < count; ++t)
+    for (const double theta : tileEdgeAngles(tiling, t, angle)) tangents[t].push_back(std::tan(theta));
   double size = 0;
   for (const auto& tile : tiling.tiles)
     for (const Eigen::Vector2d& x : tile) size = std::max(size, x.norm());
@@ -192,7 +206,7 @@ std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, cons
                                    centre + Eigen::Vector2d(reach, reach), centre + Eigen::Vector2d(-reach, reach)};
     for (std::size_t k = 0; k < p.size(); ++k) {
       const Eigen::Vector2d e = (p[(k + 1) % p.size()] - p[k]).normalized(), m(e.y(), -e.x());
-      s = clipPolygon(s, m, m.dot(p[k]) + tilts[t][k] * z * std::tan(angle));
+      s = clipPolygon(s, m, m.dot(p[k]) + tilts[t][k] * z * tangents[t][k]);
     }
     return s;
   };
@@ -202,7 +216,7 @@ std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, cons
     const auto& p = tiling.tiles[b];
     for (std::size_t k = 0; k < p.size() && s.size() >= 3; ++k) {
       const Eigen::Vector2d e = (p[(k + 1) % p.size()] - p[k]).normalized(), m(e.y(), -e.x());
-      s = clipPolygon(s, m, m.dot(p[k]) + tilts[b][k] * z * std::tan(angle));
+      s = clipPolygon(s, m, m.dot(p[k]) + tilts[b][k] * z * tangents[b][k]);
     }
     return s.size() < 3 ? 0.0 : polygonArea(s);
   };
@@ -239,8 +253,14 @@ std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, cons
 
 TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<VerticalCut>& cuts,
                          double thickness, double angle, const BaseSurface& surface) {
+  return tiltedBlock(tile, tilts, cuts, thickness, std::vector<double>(tile.size(), angle), surface);
+}
+
+TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<VerticalCut>& cuts,
+                         double thickness, const std::vector<double>& angles, const BaseSurface& surface) {
   if (!(thickness > 0) || !std::isfinite(thickness)) throw InputError("tilted block: the thickness must be positive");
-  if (!(angle >= 0 && angle < M_PI / 2)) throw InputError("tilted block: the angle must lie in [0, 90) degrees");
+  if (angles.size() != tile.size() || !std::all_of(angles.begin(), angles.end(), [](double a) { return a >= 0 && a < M_PI / 2; }))
+    throw InputError("tilted block: the angle must lie in [0, 90) degrees");
   const int n = static_cast<int>(tile.size());
   std::vector<Eigen::Vector3d> corners;
   for (const Eigen::Vector2d& x : tile) corners.push_back(surface.point(x));
@@ -248,7 +268,7 @@ TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::ve
   // there, x along the outward normal of edge `start` (made perpendicular to z).
   const Eigen::Vector3d origin = surface.point(polygonCentroid(tile));
   const Eigen::Vector3d up = surface.normal(origin);
-  const int start = canonicalStart(tile, corners, tilts);
+  const int start = canonicalStart(tile, corners, tilts, angles);
   const Eigen::Vector3d d0 = corners[(start + 1) % n] - corners[start];
   const Eigen::Vector3d x0 = (d0.cross(up) - d0.cross(up).dot(up) * up).normalized();
   Eigen::Matrix3d frame;  // columns: the frame's axes in the world
@@ -267,7 +287,7 @@ TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::ve
     const Eigen::Vector3d &a = corners[k], &b = corners[(k + 1) % n];
     const Eigen::Vector3d middle = 0.5 * (a + b), normal = surface.normal(middle);
     const Eigen::Vector3d outward = (b - a).cross(normal).normalized();  // outward for a counter-clockwise tile
-    add(outward * std::cos(angle) - tilts[k] * std::sin(angle) * normal, middle);
+    add(outward * std::cos(angles[k]) - tilts[k] * std::sin(angles[k]) * normal, middle);
   }
   for (const VerticalCut& cut : cuts) {
     const Eigen::Vector3d point = surface.point(cut.point), normal = surface.normal(point);

@@ -3,6 +3,7 @@
 #include "geometry/plane_tiling.h"
 #include "geometry/triangle_mesh.h"
 
+#include <cmath>
 #include <vector>
 
 namespace tessera {
@@ -18,17 +19,26 @@ namespace tessera {
 /// Every tile with a neighbour then has a face of each kind, if the tiling allows; and a free tile
 /// (freeTile) not yet held against every translation (heldByNeighbours) gets flips that hold it
 /// without unholding another, where a few suffice.
-std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across);
+/// `angle` (radians) is the faces' angle where the tiling gives none: it matters only when the
+/// tiling gives some edges their own (heldByNeighbours).
+std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
+                                                double angle = M_PI / 4);
+
+/// The angles heldByNeighbours takes for tile t: none (one angle for every face) unless the
+/// tiling gives some edges their own, then each edge's (tileEdgeAngles, `angle` elsewhere).
+std::vector<double> heldAngles(const PlaneTiling& tiling, std::size_t t, double angle);
 
 /// A tile with a neighbour across every edge (a free block under the perimeter rule).
 bool freeTile(const std::vector<EdgeNeighbour>& across);
 
 /// Whether a tile's block, its neighbours held still, is held against every translation: the
-/// outward normals of its faces over edges with a neighbour, n_k = (m_k cos theta, -s_k sin theta)
+/// outward normals of its faces over edges with a neighbour, n_k = (m_k cos theta_k, -s_k sin theta_k)
 /// (s_k = tilts[k]), span space positively, so that every translation moves into some face (by
-/// Gordan's theorem, positive weights with sum lambda_k n_k = 0 and the n_k spanning). Scaling z
-/// does not change that, so it holds at every theta in (0, 90) degrees or at none.
-bool heldByNeighbours(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<EdgeNeighbour>& across);
+/// Gordan's theorem, positive weights with sum lambda_k n_k = 0 and the n_k spanning). With one
+/// theta for every face (`angles` empty) scaling z does not change that, so it holds at every theta
+/// in (0, 90) degrees or at none; `angles` (radians, per edge) gives each face its own.
+bool heldByNeighbours(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<EdgeNeighbour>& across,
+                      const std::vector<double>& angles = {});
 
 /// A vertical plane that bounds a block besides its faces: m . (x - point) <= 0 (plan, m).
 struct VerticalCut {
@@ -41,7 +51,8 @@ struct VerticalCut {
 /// boundary, two tiles can grow towards each other into the empty wedge. The overlap is a cone at
 /// V, so it shows in the sections z = +-h/2. Each such pair gets a vertical cut through V along
 /// the direction from V to the centroid of their overlap, so they meet on that plane instead.
-/// cuts[t]: tile t's cuts. Lengths m, angle radians.
+/// cuts[t]: tile t's cuts. Lengths m, angle radians (each edge's own where the tiling gives one:
+/// tileEdgeAngles).
 std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
                                                  const std::vector<std::vector<int>>& tilts, double thickness, double angle);
 
@@ -60,5 +71,8 @@ std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, cons
 /// shape when assembled. Lengths m, angle radians.
 TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<VerticalCut>& cuts,
                          double thickness, double angle, const BaseSurface& surface = {});
+/// The same with each edge's face at its own angle, angles[k] (radians).
+TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<VerticalCut>& cuts,
+                         double thickness, const std::vector<double>& angles, const BaseSurface& surface = {});
 
 }  // namespace tessera

@@ -16,7 +16,7 @@ std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options
   for (const auto& tile : tiling.tiles)
     for (const Eigen::Vector2d& x : tile) size = std::max(size, x.norm());
   const auto across = edgeNeighbours(tiling, 1e-7 * size);
-  auto tilts = interlockingTilts(tiling, across);
+  auto tilts = interlockingTilts(tiling, across, options.angle);
   std::vector<char> fixed(tiling.tiles.size());
   for (std::size_t t = 0; t < fixed.size(); ++t) fixed[t] = options.fixPerimeter && !freeTile(across[t]);
   const std::string label = options.tilingFile.empty() ? options.tiling.kind + " tiling" : options.tilingFile;
@@ -42,7 +42,7 @@ std::vector<AssemblyPart> generatedSlabParts(const GeneratedSlabOptions& options
     AssemblyPart part;
     part.name = tiling.names[t];
     part.label = label + ", tile " + part.name;
-    part.mesh = tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], options.thickness, options.angle, options.surface);
+    part.mesh = tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], options.thickness, tileEdgeAngles(tiling, t, options.angle), options.surface);
     part.fixed = fixed[t] != 0;
     parts.push_back(std::move(part));
   }

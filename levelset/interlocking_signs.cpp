@@ -46,12 +46,13 @@ std::vector<ContactCorner> slabCorners(const PlaneTiling& tiling, const std::vec
   int polygons = 0;
   for (int t = 0; t < static_cast<int>(tiling.tiles.size()); ++t) {
     const std::vector<Eigen::Vector2d>& tile = tiling.tiles[t];
+    const std::vector<double> angles = tileEdgeAngles(tiling, t, angle);
     for (int k = 0; k < static_cast<int>(tile.size()); ++k) {
       const int u = across[t][k].tile;
       if (u < t) continue;  // each shared edge once
       const Eigen::Vector3d a = surface.point(tile[k]), b = surface.point(tile[(k + 1) % tile.size()]);
       const Eigen::Vector3d origin = 0.5 * (a + b), up = surface.normal(origin), chord = b - a;
-      const Eigen::Vector3d normal = (chord.cross(up).normalized() * std::cos(angle) - tilts[t][k] * std::sin(angle) * up).normalized();
+      const Eigen::Vector3d normal = (chord.cross(up).normalized() * std::cos(angles[k]) - tilts[t][k] * std::sin(angles[k]) * up).normalized();
       // e1, e2 in the face's plane, counter-clockwise seen from along its normal (on a mesh surface
       // the interpolated normal need not be square to the chord: e1 is the chord's part in the plane).
       const Eigen::Vector3d e1 = (chord - normal.dot(chord) * normal).normalized(), e2 = normal.cross(e1);
@@ -108,10 +109,10 @@ InterlockingSearch interlockSigns(const PlaneTiling& tiling, const std::vector<s
       return std::numeric_limits<double>::infinity();
     }
     std::vector<TriangleMesh> blocks;
-    for (int t = 0; t < count; ++t) blocks.push_back(tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], thickness, angle, surface));
+    for (int t = 0; t < count; ++t) blocks.push_back(tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], thickness, tileEdgeAngles(tiling, t, angle), surface));
     return largestOpening(centre, fixed, length, slabCorners(tiling, across, tilts, blocks, angle, surface, length), movingNow);
   };
-  const auto held = [&](int t) { return fixed[t] || heldByNeighbours(tiling.tiles[t], tilts[t], across[t]); };
+  const auto held = [&](int t) { return fixed[t] || heldByNeighbours(tiling.tiles[t], tilts[t], across[t], heldAngles(tiling, t, angle)); };
   const std::vector<std::vector<int>> rule = tilts;
   // Sweeps over the edges next to a tile the last way out moves (where a flip most likely closes
   // it); a sweep that lowers nothing is followed by one over every edge, then the search stops.

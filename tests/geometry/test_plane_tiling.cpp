@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
 using namespace tessera;
 
@@ -291,4 +292,71 @@ TEST_CASE("tilted blocks on a mesh surface: a flat mesh gives the plane's blocks
   test::writeFile(dir / "small.obj", heightFieldObj(2, 0.01, [](double, double) { return 0.0; }));
   REQUIRE_THROWS_WITH(generate("hex", pitch, h, theta, baseSurface(dir / "small.obj", 0, 1.0)), Catch::Contains("beyond the surface"));
   REQUIRE_THROWS_WITH(baseSurface(dir / "missing.obj", 0, 1.0), Catch::Contains("mesh file of the surface"));
+}
+
+TEST_CASE("a tiling file's angle_<degrees> lines give those edges their own face angle, and bad ones are refused naming the group") {
+  test::TempDir dir;
+  // 4 x 4 squares of 10 mm; the edges along y (x = const) drawn again as lines in group angle_10.
+  const int n = 4;
+  const auto vertex = [&](int i, int j) { return 1 + i * (n + 1) + j; };
+  const auto write = [&](const std::string& name, const std::string& lines) {
+    std::ofstream obj(dir / name);
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; j <= n; ++j) obj << "v " << 10 * i - 20 << " " << 10 * j - 20 << " 0\n";
+    obj << "o tiles\n";
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) obj << "f " << vertex(i, j) << " " << vertex(i + 1, j) << " " << vertex(i + 1, j + 1) << " " << vertex(i, j + 1) << "\n";
+    obj << lines;
+    return dir / name;
+  };
+  std::string angled = "g angle_10\n";
+  for (int i = 1; i < n; ++i)
+    for (int j = 0; j < n; ++j) angled += "l " + std::to_string(vertex(i, j)) + " " + std::to_string(vertex(i, j + 1)) + "\n";
+  const PlaneTiling tiling = readTilingFile(write("angled.obj", angled + "g notes\nl 1 7\n"), 1e-3);
+  const auto across = edgeNeighbours(tiling, 1e-9);
+  const double angle = 5 * M_PI / 180, h = 0.00318;
+  int given = 0;
+  for (std::size_t t = 0; t < tiling.tiles.size(); ++t) {
+    const std::vector<double> angles = tileEdgeAngles(tiling, t, angle);
+    for (std::size_t k = 0; k < angles.size(); ++k) {
+      const auto& p = tiling.tiles[t];
+      const bool alongY = std::abs(p[k].x() - p[(k + 1) % p.size()].x()) < 1e-12;
+      const bool inner = std::abs(p[k].x()) < 0.015;  // not on the tiling's boundary x = +-20 mm
+      INFO("tile " << t << " edge " << k);
+      REQUIRE(angles[k] == Approx(alongY && inner ? 10 * M_PI / 180 : angle).epsilon(1e-12));
+      given += alongY && inner ? 1 : 0;
+    }
+  }
+  REQUIRE(given == 2 * 3 * n);  // each of the 12 lines on both its tiles
+
+  // The blocks: no overlap, and each shared edge's plane, at that edge's angle, carries a face of both.
+  const auto tilts = interlockingTilts(tiling, across, angle);
+  const auto cuts = cornerCuts(tiling, across, tilts, h, angle);
+  std::vector<TriangleMesh> meshes;
+  for (std::size_t t = 0; t < tiling.tiles.size(); ++t) meshes.push_back(tiltedBlock(tiling.tiles[t], tilts[t], cuts[t], h, tileEdgeAngles(tiling, t, angle)));
+  for (std::size_t t = 0; t < meshes.size(); ++t) {
+    TriangleMesh copy = meshes[t];
+    REQUIRE_FALSE(validateSolidMesh(copy, tiling.names[t]).reoriented);
+    for (std::size_t u = t + 1; u < meshes.size(); ++u) REQUIRE(sharedVolume(meshes[t], meshes[u], 0.1) <= 1e-9 * 0.01 * 0.01 * h);
+    const std::vector<double> angles = tileEdgeAngles(tiling, t, angle);
+    for (std::size_t k = 0; k < across[t].size(); ++k) {
+      const EdgeNeighbour& e = across[t][k];
+      if (e.tile < 0) continue;
+      const auto& p = tiling.tiles[t];
+      const Eigen::Vector2d d = (p[(k + 1) % p.size()] - p[k]).normalized(), m(d.y(), -d.x());
+      const Eigen::Vector3d normal(m.x() * std::cos(angles[k]), m.y() * std::cos(angles[k]), -tilts[t][k] * std::sin(angles[k]));
+      const double offset = m.dot(p[k]) * std::cos(angles[k]);
+      for (const TriangleMesh* mesh : {&meshes[t], &meshes[e.tile]})
+        REQUIRE(std::count_if(mesh->vertices.begin(), mesh->vertices.end(),
+                              [&](const Eigen::Vector3d& x) { return std::abs(normal.dot(x) - offset) <= 1e-12; }) >= 3);
+    }
+  }
+
+  const auto refused = [&](const std::string& name, const std::string& lines, const std::string& words) {
+    INFO(name);
+    REQUIRE_THROWS_WITH(readTilingFile(write(name, lines), 1e-3), Catch::Contains(words));
+  };
+  refused("word.obj", "g angle_steep\nl 6 7\n", "group 'angle_steep' names no angle");
+  refused("steep.obj", "g angle_90\nl 6 7\n", "group 'angle_90': give the faces' tilt in degrees, in [0, 90)");
+  refused("diagonal.obj", "g angle_10\nl 1 7\n", "a line of group 'angle_10' is no tile's edge");
 }
