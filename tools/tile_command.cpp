@@ -159,7 +159,7 @@ void addTileCommand(CLI::App& app) {
   cmd->add_option("--tiling", args->tiling,
                   "Generate the blocks from a tiling: square, hex, triangle, rhombille, voronoi, or a polygon mesh file (OBJ) of the tiles; instead of --block");
   cmd->add_option("--thickness", args->thickness, "With --tiling: the blocks' thickness, in --unit");
-  cmd->add_option("--angle", args->angle, "With --tiling: the tilt of the blocks' side faces, degrees")->capture_default_str();
+  cmd->add_option("--angle", args->angle, "With --tiling: the tilt of the blocks' side faces, degrees (a tiling file's edges drawn as lines in a group angle_<degrees> take that angle)")->capture_default_str();
   cmd->add_option("--seed", args->seed, "With --tiling voronoi: the seed of the random sites")->capture_default_str();
   cmd->add_option("--surface", args->surface,
                   "With --tiling: lay the tiles on a plane, a sphere (a dome), a cylinder along x (a barrel vault), or the surface of "
