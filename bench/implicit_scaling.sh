@@ -62,6 +62,7 @@ for n in "${sizes[@]}"; do
     label=$method
     setting=""
     if [ "$tolerance" != default ]; then label="${method}_$tolerance"; setting="\nimplicit_tolerance = $tolerance"; fi
+    [ -z "${OFFSET:-}" ] || label="${label}_off$OFFSET"
     scene="$out/scene_${n}_${name}_$label.toml"
     sed -e "s#^bundle = .*#bundle = \"$slab\"#" -e "s#^speed = .*#speed = $speed$offset#" \
       -e "s#^\[damping\]#[solver]\nmethod = \"$method\"$setting\n\n[damping]#" "$here/assets/scenes/default.toml" > "$scene"

@@ -47,11 +47,16 @@ struct AngledSegment {
   std::string group;
 };
 
-// Each segment's angle given to the tile edges it lies on, end to end.
-void giveEdgeAngles(const std::string& path, const std::vector<AngledSegment>& segments, double tolerance, PlaneTiling& tiling) {
+// Each segment's angle given to the tile edges it lies on, end to end (both tiles of a shared edge).
+void giveEdgeAngles(const std::string& path, const std::vector<AngledSegment>& segments, double tolerance, double metresPerUnit,
+                    PlaneTiling& tiling) {
   if (segments.empty()) return;
   tiling.edgeAngles.assign(tiling.tiles.size(), {});
-  for (std::size_t t = 0; t < tiling.tiles.size(); ++t) tiling.edgeAngles[t].assign(tiling.tiles[t].size(), std::nan(""));
+  std::vector<std::vector<const AngledSegment*>> givenBy(tiling.tiles.size());
+  for (std::size_t t = 0; t < tiling.tiles.size(); ++t) {
+    tiling.edgeAngles[t].assign(tiling.tiles[t].size(), std::nan(""));
+    givenBy[t].assign(tiling.tiles[t].size(), nullptr);
+  }
   for (const AngledSegment& segment : segments) {
     bool found = false;
     for (std::size_t t = 0; t < tiling.tiles.size(); ++t) {
@@ -61,12 +66,21 @@ void giveEdgeAngles(const std::string& path, const std::vector<AngledSegment>& s
         const bool along = (p - segment.a).norm() <= tolerance && (q - segment.b).norm() <= tolerance;
         const bool against = (p - segment.b).norm() <= tolerance && (q - segment.a).norm() <= tolerance;
         if (!along && !against) continue;
+        if (givenBy[t][k] && givenBy[t][k]->angle != segment.angle)
+          throw InputError(path + ": an edge of tile " + tiling.names[t] + " is in groups '" + givenBy[t][k]->group + "' and '" +
+                           segment.group + "'; give each edge one angle");
         tiling.edgeAngles[t][k] = segment.angle;
+        givenBy[t][k] = &segment;
         found = true;
       }
     }
-    if (!found)
-      throw InputError(path + ": a line of group '" + segment.group + "' is no tile's edge; draw each angled edge from corner to corner of its tiles");
+    if (!found) {
+      const auto at = [&](const Eigen::Vector2d& x) {
+        return "(" + std::to_string(x.x() / metresPerUnit) + ", " + std::to_string(x.y() / metresPerUnit) + ")";
+      };
+      throw InputError(path + ": the line " + at(segment.a) + "-" + at(segment.b) + " of group '" + segment.group +
+                       "' is no tile's edge; draw each angled edge from corner to corner of its tiles");
+    }
   }
 }
 
@@ -89,10 +103,17 @@ PlaneTiling readTilingFile(const std::string& path, double metresPerUnit, const 
     const aiMatrix4x4 transform = parent * node->mTransformation;
     for (unsigned i = 0; i < node->mNumMeshes; ++i) {
       const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];
-      const std::string group = mesh->mName.length > 0 ? mesh->mName.C_Str() : node->mName.C_Str();
-      const auto point = [&](unsigned f, unsigned index) {
+      // An angle group is the node's name (OBJ's g or o, a design tool's object); the mesh's where
+      // that names none (OBJ meshes split by material are named after it).
+      std::string group = node->mName.C_Str();
+      double angle = groupAngle(path, group);
+      if (!std::isfinite(angle)) {
+        group = mesh->mName.C_Str();
+        angle = groupAngle(path, group);
+      }
+      const auto point = [&](unsigned index) {
         if (index >= mesh->mNumVertices)
-          throw InputError(path + ": face " + std::to_string(f) + " names a vertex that is not there; export the tiling again");
+          throw InputError(path + ": face " + std::to_string(tiling.tiles.size()) + " names a vertex that is not there; export the tiling again");
         const aiVector3D read = transform * mesh->mVertices[index];
         const Eigen::Vector3d v = toZUp * Eigen::Vector3d(read.x, read.y, read.z) * metresPerUnit;
         lowest = std::min(lowest, v.z());
@@ -101,13 +122,11 @@ PlaneTiling readTilingFile(const std::string& path, double metresPerUnit, const 
       };
       for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
         const aiFace& face = mesh->mFaces[f];
-        if (face.mNumIndices == 2) {  // a line: an angled edge in an angle_<degrees> group
-          const double angle = groupAngle(path, group);
-          if (std::isfinite(angle)) segments.push_back({point(f, face.mIndices[0]), point(f, face.mIndices[1]), angle, group});
-        }
+        if (face.mNumIndices == 2 && std::isfinite(angle))  // a line: an angled edge
+          segments.push_back({point(face.mIndices[0]), point(face.mIndices[1]), angle, group});
         if (face.mNumIndices < 3) continue;  // points and lines are not tiles
         std::vector<Eigen::Vector2d> tile;
-        for (unsigned k = 0; k < face.mNumIndices; ++k) tile.push_back(point(f, face.mIndices[k]));
+        for (unsigned k = 0; k < face.mNumIndices; ++k) tile.push_back(point(face.mIndices[k]));
         if (polygonArea(tile) < 0) std::reverse(tile.begin(), tile.end());
         tiling.names.push_back("t" + std::to_string(tiling.tiles.size()));
         tiling.tiles.push_back(std::move(tile));
@@ -129,7 +148,7 @@ PlaneTiling readTilingFile(const std::string& path, double metresPerUnit, const 
     if (!isConvex(tiling.tiles[t], 1e-9))
       throw InputError(path + ": face " + std::to_string(t) + " is not convex; split it into convex tiles");
   }
-  giveEdgeAngles(path, segments, 1e-6 * size, tiling);
+  giveEdgeAngles(path, segments, 1e-6 * size, metresPerUnit, tiling);
   return tiling;
 }
 

@@ -244,7 +244,8 @@ std::vector<std::vector<VerticalCut>> cornerCuts(const PlaneTiling& tiling, cons
         for (const Eigen::Vector2d& x : tiling.tiles[t])
           if ((t == a ? 1 : -1) * normal.dot(x - v) > tolerance)
             throw InputError("tiles " + tiling.names[a] + " and " + tiling.names[b] + " would overlap at their shared corner, and no vertical plane "
-                             "through it separates them; use a smaller --angle or a tiling whose tiles have an even number of edges");
+                             "through it separates them; use a smaller --angle (or smaller angle_<degrees> groups in a tiling file) or a tiling whose "
+                             "tiles have an even number of edges");
       cuts[a].push_back({v, normal});
       cuts[b].push_back({v, -normal});
     }
@@ -259,7 +260,8 @@ TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::ve
 TriangleMesh tiltedBlock(const std::vector<Eigen::Vector2d>& tile, const std::vector<int>& tilts, const std::vector<VerticalCut>& cuts,
                          double thickness, const std::vector<double>& angles, const BaseSurface& surface) {
   if (!(thickness > 0) || !std::isfinite(thickness)) throw InputError("tilted block: the thickness must be positive");
-  if (angles.size() != tile.size() || !std::all_of(angles.begin(), angles.end(), [](double a) { return a >= 0 && a < M_PI / 2; }))
+  if (angles.size() != tile.size()) throw InputError("tilted block: one angle per edge of the tile is needed");
+  if (!std::all_of(angles.begin(), angles.end(), [](double a) { return a >= 0 && a < M_PI / 2; }))
     throw InputError("tilted block: the angle must lie in [0, 90) degrees");
   const int n = static_cast<int>(tile.size());
   std::vector<Eigen::Vector3d> corners;

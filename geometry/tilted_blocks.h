@@ -22,7 +22,7 @@ namespace tessera {
 /// `angle` (radians) is the faces' angle where the tiling gives none: it matters only when the
 /// tiling gives some edges their own (heldByNeighbours).
 std::vector<std::vector<int>> interlockingTilts(const PlaneTiling& tiling, const std::vector<std::vector<EdgeNeighbour>>& across,
-                                                double angle = M_PI / 4);
+                                                double angle);
 
 /// The angles heldByNeighbours takes for tile t: none (one angle for every face) unless the
 /// tiling gives some edges their own, then each edge's (tileEdgeAngles, `angle` elsewhere).

@@ -215,7 +215,7 @@ void bindTiles(py::module_& m) {
       py::arg("fix_perimeter") = true, py::arg("voxel") = py::none(), py::arg("spacing") = py::none(),
       py::arg("edge_spacing") = ShapeResolution{}.edgeSpacingFraction, py::arg("replace") = false, py::arg("up") = "z",
       "A slab bundle generated from a tiling (as `tessera tile --tiling`, docs/tiling.md): 'square', 'hex', 'triangle', "
-      "'rhombille', 'voronoi' or a polygon mesh file (in m); pitch, thickness and radius in m, angle in degrees; "
+      "'rhombille', 'voronoi' or a polygon mesh file (in m; edges drawn as lines in a group named angle_<degrees> take that angle); pitch, thickness and radius in m, angle in degrees; "
       "surface 'plane', 'sphere', 'cylinder' or a mesh file of a height field (in m). Returns a summary.");
 }
 

@@ -82,6 +82,9 @@ double World::implicitIncrementLimit() const {
   return limit;
 }
 
+// s, the longest increment that follows a lost equilibrium as dynamics.
+double World::implicitDynamicIncrement() const { return settings_.implicit.dynamicIncrementRatio * automaticDt_; }
+
 // m, the farthest an obstacle may move in one increment now.
 double World::implicitTravelLimit() const {
   const ImplicitSettings& s = settings_.implicit;
@@ -333,8 +336,7 @@ void World::commitIncrement(double dt, int iterations, bool lost) {
   // An easy increment lets the next double (up to the limit); a hard one keeps its length. One
   // through a lost equilibrium (followed as dynamics) lets the next grow only up to the dynamic
   // increment: past it, while the event goes on, the next would be lost and cut back again.
-  const double dynamicLimit = settings_.implicit.dynamicIncrementRatio * automaticDt_;
-  counts.increment = iterations <= kEasyIterations ? (lost ? std::max(dt, std::min(2 * dt, dynamicLimit)) : 2 * dt) : dt;
+  counts.increment = iterations <= kEasyIterations ? (lost ? std::max(dt, std::min(2 * dt, implicitDynamicIncrement())) : 2 * dt) : dt;
   // The obstacles' travel limit grows while their reactions change smoothly, and falls back at a jump.
   double change = 0.0, size = 0.0;
   for (std::size_t k = 0; k < state_.spheres.size(); ++k) {
@@ -437,9 +439,8 @@ void World::implicitStep() {
     int tried = 0;
     const bool converged = solveIncrement(dt, tried);
     iterations += tried;
-    const double dynamicLimit = settings_.implicit.dynamicIncrementRatio * automaticDt_;
     lost = converged && lostEquilibrium();
-    if (converged && !(lost && dt > dynamicLimit)) break;
+    if (converged && !(lost && dt > implicitDynamicIncrement())) break;
     // Cut: back to the start, a quarter of the increment.
     bodies = w.startBodies;
     pairs_ = w.committed;

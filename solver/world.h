@@ -176,6 +176,7 @@ private:
   double implicitLongestIncrement() const;
   double implicitIncrementLimit() const;
   double implicitTravelLimit() const;
+  double implicitDynamicIncrement() const;
   bool solveIncrement(double dt, int& iterations);
   double evaluateIncrement(double dt, bool withMatrix);
   void commitIncrement(double dt, int iterations, bool lost);

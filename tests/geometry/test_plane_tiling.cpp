@@ -35,7 +35,7 @@ GeneratedBlocks generate(const std::string& kind, double pitch, double thickness
   options.columns = options.rows = 5;
   g.tiling = makeTiling(options);
   g.across = edgeNeighbours(g.tiling, 1e-9 * pitch);
-  g.tilts = interlockingTilts(g.tiling, g.across);
+  g.tilts = interlockingTilts(g.tiling, g.across, angle);
   const auto cuts = cornerCuts(g.tiling, g.across, g.tilts, thickness, angle);
   for (std::size_t t = 0; t < g.tiling.tiles.size(); ++t)
     g.meshes.push_back(tiltedBlock(g.tiling.tiles[t], g.tilts[t], cuts[t], thickness, angle, surface));
@@ -299,10 +299,11 @@ TEST_CASE("a tiling file's angle_<degrees> lines give those edges their own face
   // 4 x 4 squares of 10 mm; the edges along y (x = const) drawn again as lines in group angle_10.
   const int n = 4;
   const auto vertex = [&](int i, int j) { return 1 + i * (n + 1) + j; };
-  const auto write = [&](const std::string& name, const std::string& lines) {
+  const auto write = [&](const std::string& name, const std::string& lines, bool yUp = false) {
     std::ofstream obj(dir / name);
     for (int i = 0; i <= n; ++i)
-      for (int j = 0; j <= n; ++j) obj << "v " << 10 * i - 20 << " " << 10 * j - 20 << " 0\n";
+      for (int j = 0; j <= n; ++j)
+        obj << "v " << 10 * i - 20 << (yUp ? " 0 " + std::to_string(20 - 10 * j) : " " + std::to_string(10 * j - 20) + " 0") << "\n";
     obj << "o tiles\n";
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) obj << "f " << vertex(i, j) << " " << vertex(i + 1, j) << " " << vertex(i + 1, j + 1) << " " << vertex(i, j + 1) << "\n";
@@ -312,11 +313,21 @@ TEST_CASE("a tiling file's angle_<degrees> lines give those edges their own face
   std::string angled = "g angle_10\n";
   for (int i = 1; i < n; ++i)
     for (int j = 0; j < n; ++j) angled += "l " + std::to_string(vertex(i, j)) + " " + std::to_string(vertex(i, j + 1)) + "\n";
-  const PlaneTiling tiling = readTilingFile(write("angled.obj", angled + "g notes\nl 1 7\n"), 1e-3);
+  // Half the lines after a usemtl (assimp then names their mesh after the material: the group is
+  // the node's name), a line of another group ignored.
+  const std::size_t half = angled.find("l ", angled.size() / 2);
+  const std::string withMaterial = angled.substr(0, half) + "usemtl red\n" + angled.substr(half) + "g notes\nl 1 7\n";
+  const PlaneTiling tiling = readTilingFile(write("angled.obj", withMaterial), 1e-3);
+  const PlaneTiling yUp = readTilingFile(write("angled_yup.obj", withMaterial, true), 1e-3, "y");
   const auto across = edgeNeighbours(tiling, 1e-9);
   const double angle = 5 * M_PI / 180, h = 0.00318;
   int given = 0;
+  REQUIRE(yUp.edgeAngles.size() == tiling.edgeAngles.size());
   for (std::size_t t = 0; t < tiling.tiles.size(); ++t) {
+    for (std::size_t k = 0; k < tiling.tiles[t].size(); ++k) {
+      REQUIRE((yUp.tiles[t][k] - tiling.tiles[t][k]).norm() < 1e-12);
+      REQUIRE(tileEdgeAngles(yUp, t, angle)[k] == tileEdgeAngles(tiling, t, angle)[k]);
+    }
     const std::vector<double> angles = tileEdgeAngles(tiling, t, angle);
     for (std::size_t k = 0; k < angles.size(); ++k) {
       const auto& p = tiling.tiles[t];
@@ -352,11 +363,26 @@ TEST_CASE("a tiling file's angle_<degrees> lines give those edges their own face
     }
   }
 
+  // Tiles with the same signs and angles, edge by edge, give the same block, vertex for vertex, up
+  // to a translation (so that they share one shape: the canonical start keys the angles too).
+  int alike = 0;
+  for (std::size_t t = 0; t < meshes.size(); ++t)
+    for (std::size_t u = t + 1; u < meshes.size(); ++u) {
+      if (tilts[t] != tilts[u] || tileEdgeAngles(tiling, t, angle) != tileEdgeAngles(tiling, u, angle) || !cuts[t].empty() || !cuts[u].empty())
+        continue;
+      const Eigen::Vector3d shift = meshes[u].vertices[0] - meshes[t].vertices[0];
+      REQUIRE(meshes[t].vertices.size() == meshes[u].vertices.size());
+      for (std::size_t i = 0; i < meshes[t].vertices.size(); ++i) REQUIRE((meshes[t].vertices[i] + shift - meshes[u].vertices[i]).norm() < 1e-12);
+      ++alike;
+    }
+  REQUIRE(alike > 0);
+
   const auto refused = [&](const std::string& name, const std::string& lines, const std::string& words) {
     INFO(name);
     REQUIRE_THROWS_WITH(readTilingFile(write(name, lines), 1e-3), Catch::Contains(words));
   };
   refused("word.obj", "g angle_steep\nl 6 7\n", "group 'angle_steep' names no angle");
   refused("steep.obj", "g angle_90\nl 6 7\n", "group 'angle_90': give the faces' tilt in degrees, in [0, 90)");
-  refused("diagonal.obj", "g angle_10\nl 1 7\n", "a line of group 'angle_10' is no tile's edge");
+  refused("diagonal.obj", "g angle_10\nl 1 7\n", "the line (-20.000000, -20.000000)-(-10.000000, -10.000000) of group 'angle_10' is no tile's edge");
+  refused("twice.obj", "g angle_10\nl 6 7\ng angle_7.5\nl 7 6\n", "is in groups 'angle_10' and 'angle_7.5'; give each edge one angle");
 }

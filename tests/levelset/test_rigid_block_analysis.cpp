@@ -78,7 +78,7 @@ SearchedSigns searched(const GeneratedSlabOptions& options) {
   s.across = edgeNeighbours(tiling, 1e-9 * options.tiling.pitch);
   std::vector<char> fixed;
   for (const auto& edges : s.across) fixed.push_back(!freeTile(edges));
-  s.rule = s.tilts = interlockingTilts(tiling, s.across);
+  s.rule = s.tilts = interlockingTilts(tiling, s.across, options.angle);
   s.search = interlockSigns(tiling, s.across, fixed, options.thickness, options.angle, options.surface, s.tilts);
   return s;
 }
@@ -135,7 +135,7 @@ TEST_CASE("rigid blocks: a block whose faces all lean out rests on its neighbour
   options.columns = options.rows = 3;
   const PlaneTiling tiling = makeTiling(options);
   const auto across = edgeNeighbours(tiling, 1e-9);
-  auto tilts = interlockingTilts(tiling, across);
+  auto tilts = interlockingTilts(tiling, across, 10 * M_PI / 180);
   for (std::size_t k = 0; k < 4; ++k) {  // the centre tile (4): every face leans out, its neighbours' in
     tilts[4][k] = 1;
     tilts[across[4][k].tile][across[4][k].edge] = -1;
