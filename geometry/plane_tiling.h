@@ -53,13 +53,13 @@ std::vector<std::vector<EdgeNeighbour>> edgeNeighbours(const PlaneTiling& tiling
 /// The tiles of a polygon mesh (OBJ, PLY, ... through assimp, polygons kept): each face one tile,
 /// its corners' (x, y) in `metresPerUnit` after the file's `up` axis is turned into +z
 /// (rotationToZUp; the mesh lies in a plane normal to it), turned counter-clockwise. Named
-/// "t<face>", the faces numbered in the file's order (its groups as they come). Line segments in a group (or object) named `angle_<degrees>`, e.g. `angle_7.5`, give
-/// the tile edges they lie on (end to end, within 1e-6 of the tiling's size) that face angle
-/// (edgeAngles); other lines and points are ignored. Throws InputError naming the face for a
-/// non-convex or degenerate polygon, for a mesh that does not lie flat, and naming the group for
-/// an angle outside [0, 90) degrees, a name that is no number, a segment that is no tile's edge,
-/// or an edge in two groups of different angles. The group is the node's name (OBJ's `g` or `o`),
-/// else the mesh's.
+/// "t<face>", the faces numbered in the file's order (its groups as they come). Line segments in
+/// a group named `angle_<degrees>`, e.g. `angle_7.5` (the node's name: OBJ's `g` or `o`; else the
+/// mesh's), give the tile edges they lie on (end to end, within 1e-6 of the tiling's size) that
+/// face angle (edgeAngles); other lines and points are ignored. Throws InputError naming the face
+/// for a non-convex or degenerate polygon, for a mesh that does not lie flat, and naming the group
+/// for an angle outside [0, 90) degrees, a name that is no number, a segment that is no tile's
+/// edge, or an edge in two groups of different angles.
 PlaneTiling readTilingFile(const std::string& path, double metresPerUnit, const std::string& up = "z");
 
 /// The part of a convex polygon where n . x <= d (one pass of Sutherland & Hodgman, CACM 17, 1974).

@@ -3,7 +3,6 @@
 #include "geometry/plane_tiling.h"
 #include "geometry/triangle_mesh.h"
 
-#include <cmath>
 #include <vector>
 
 namespace tessera {
