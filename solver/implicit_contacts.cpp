@@ -1,6 +1,7 @@
 #include "solver/implicit_contacts.h"
 
 #include "solver/blended_area.h"
+#include "solver/cpu_versions.h"
 #include "solver/node_contact_law.h"
 #include "solver/planes_in_frame.h"
 
@@ -340,6 +341,7 @@ Eigen::Matrix<double, 12, 12> pairTangent(const ImplicitPairResult& r, const Eig
   return K;
 }
 
+TESSERA_CPU_VERSIONS __attribute__((flatten))
 void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, const NodeContacts& committed,
                           ImplicitCandidates& candidates, ImplicitPairResult& out) {
   const bool listing = !candidates.listed || candidates.a != pair.a || candidates.b != pair.b;

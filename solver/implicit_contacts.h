@@ -63,6 +63,8 @@ struct ImplicitPairResult {
   Eigen::Vector3d normalForceA{0, 0, 0}, forcePoint{0, 0, 0};
   double maxDepth = 0.0;
   double forceScale = 0.0;  ///< N, sum of (1 + mu) f_n >= |f| over the contacts (the size the residual is judged by)
+  /// The pair's tangent (pairTangent), where the evaluation asked for it.
+  Eigen::Matrix<double, 12, 12> tangent = Eigen::Matrix<double, 12, 12>::Zero();
 };
 
 /// [r]x, the matrix of r x .

@@ -125,8 +125,14 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
   }
   arena_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs_.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t p = r.begin(); p != r.end(); ++p)
-        evaluateImplicitPair(scene, pairs_[p], committedOf(w.committed, pairs_[p]), w.candidates[p], w.results[p]);
+      for (std::size_t p = r.begin(); p != r.end(); ++p) {
+        const PairContacts& pair = pairs_[p];
+        ImplicitPairResult& result = w.results[p];
+        evaluateImplicitPair(scene, pair, committedOf(w.committed, pair), w.candidates[p], result);
+        if (withMatrix)
+          result.tangent = pairTangent(result, state_.bodies.position[pair.a],
+                                       state_.bodies.position[pair.kind == PairKind::Bodies ? pair.b : pair.a]);
+      }
     });
   });
 
@@ -155,7 +161,7 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
       if (b >= 0) w.residual.segment<6>(6 * b) -= shiftToPoint(bodies.position[pair.a], cb).transpose() * r.force;
     }
     if (!withMatrix || (a < 0 && b < 0)) continue;
-    const Eigen::Matrix<double, 12, 12> K = pairTangent(r, bodies.position[pair.a], cb);
+    const Eigen::Matrix<double, 12, 12>& K = r.tangent;
     if (a >= 0) block(a, a, K.topLeftCorner<6, 6>());
     if (b >= 0) block(b, b, K.bottomRightCorner<6, 6>());
     if (a >= 0 && b >= 0) {
@@ -222,7 +228,16 @@ bool World::solveIncrement(double dt, int& iterations) {
     if (converged) return true;
     if (iterations == settings_.implicit.maxIterations || !std::isfinite(merit)) return false;
     if (w.freeBodies == 0) return true;
-    w.solver.analyzePattern(w.matrix);
+    // The ordering and symbolic analysis depend only on the pattern, which mostly stays from one
+    // iteration to the next: analysed again when it changes.
+    const Eigen::Index nonZeros = w.matrix.nonZeros();
+    if (w.matrix.cols() + 1 != static_cast<Eigen::Index>(w.patternOuter.size()) || nonZeros != static_cast<Eigen::Index>(w.patternInner.size()) ||
+        !std::equal(w.patternInner.begin(), w.patternInner.end(), w.matrix.innerIndexPtr()) ||
+        !std::equal(w.patternOuter.begin(), w.patternOuter.end(), w.matrix.outerIndexPtr())) {
+      w.solver.analyzePattern(w.matrix);
+      w.patternOuter.assign(w.matrix.outerIndexPtr(), w.matrix.outerIndexPtr() + w.matrix.cols() + 1);
+      w.patternInner.assign(w.matrix.innerIndexPtr(), w.matrix.innerIndexPtr() + nonZeros);
+    }
     w.solver.factorize(w.matrix);
     if (w.solver.info() != Eigen::Success) return false;
     const Eigen::VectorXd step = w.solver.solve(w.residual);
@@ -274,8 +289,7 @@ void World::commitIncrement(double dt, int iterations, bool lost) {
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     PairContacts& pair = pairs_[p];
     ImplicitPairResult& r = w.results[p];
-    pair.contacts.clear();
-    for (const NodeContact& c : r.contacts) pair.contacts.push_back(c);
+    pair.contacts.assign(r.contacts);
     pair.forceA = r.force.head<3>();
     pair.torqueA = r.force.tail<3>();
     pair.forceB = -pair.forceA;

@@ -44,8 +44,16 @@ struct NodeContacts {
   }
   /// A contact at the end, its values rounded to ContactReal (exact for values read from one).
   void push_back(const NodeContact& c) {
-    const std::size_t i = size();
-    resize(i + 1);
+    resize(size() + 1);
+    set(size() - 1, c);
+  }
+  /// These contacts in place of the ones held, in their order.
+  void assign(const std::vector<NodeContact>& contacts) {
+    resize(contacts.size());
+    for (std::size_t i = 0; i < contacts.size(); ++i) set(i, contacts[i]);
+  }
+  /// Contact i set to c, its values rounded to ContactReal.
+  void set(std::size_t i, const NodeContact& c) {
     const auto real = [](double v) { return static_cast<ContactReal>(v); };
     key[i] = c.key;
     springX[i] = real(c.spring.x());

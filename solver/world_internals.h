@@ -48,6 +48,7 @@ struct World::ImplicitWork {
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::SparseMatrix<double> matrix;   ///< the tangent, -d residual / d (dx, dtheta)
   Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
+  std::vector<int> patternOuter, patternInner;  ///< the matrix's pattern the solver last analysed
 };
 
 }  // namespace tessera
