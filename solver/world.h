@@ -173,6 +173,7 @@ private:
   // The implicit method (solver/implicit_increment.cpp).
   struct ImplicitWork;
   void implicitStep();
+  void numberFreeBodies();
   double implicitLongestIncrement() const;
   double implicitIncrementLimit() const;
   double implicitTravelLimit() const;

@@ -47,7 +47,16 @@ struct World::ImplicitWork {
   double forceScale = 0.0;              ///< N, the largest of them
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::SparseMatrix<double> matrix;   ///< the tangent, -d residual / d (dx, dtheta)
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
+  /// Per unknown, the factor D of the system solved, (D K D) y = D R, x = D y: 1 for a translation,
+  /// 1 / r for a rotation (r: the body's radius), so that it is solved for the arc r theta and the
+  /// moment's equation weighs M / r, a force, and the entries compare point motions and forces alike.
+  Eigen::VectorXd scale;
+  /// The scaled tangent's LU in the order of the unknowns (World::numberFreeBodies), a diagonal
+  /// pivot kept while it is at least kPivotThreshold of its column's largest entry (threshold
+  /// partial pivoting; scaled, the tangent's diagonals pass it on the slabs measured).
+  static constexpr double kPivotThreshold = 0.1;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::NaturalOrdering<int>> solver;
+  ImplicitWork() { solver.setPivotThreshold(kPivotThreshold); }
   std::vector<int> patternOuter, patternInner;  ///< the matrix's pattern the solver last analysed
 };
 
