@@ -422,10 +422,12 @@ void World::numberFreeBodies() {
     }
   Eigen::SparseMatrix<double> graph(count, count);
   graph.setFromTriplets(links.begin(), links.end());
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;  // order.indices()[k]: the k-th eliminated
-  Eigen::AMDOrdering<int>()(graph, order);
   std::vector<int> position(count);
-  for (int k = 0; k < count; ++k) position[order.indices()[k]] = k;
+  if (count > 0) {
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;  // order.indices()[k]: the k-th eliminated
+    Eigen::AMDOrdering<int>()(graph, order);
+    for (int k = 0; k < count; ++k) position[order.indices()[k]] = k;
+  }
   w.dof.assign(n, -1);
   w.freeBodies = count;
   w.scale.resize(6 * count);
