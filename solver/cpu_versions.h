@@ -9,3 +9,11 @@
 #else
 #define TESSERA_CPU_VERSIONS
 #endif
+
+// TESSERA_FLATTEN: every call inside the function inlined into it (GCC's and Clang's flatten), so
+// that a function built in CPU versions runs its callees in the same version.
+#if defined(__GNUC__) || defined(__clang__)
+#define TESSERA_FLATTEN __attribute__((flatten))
+#else
+#define TESSERA_FLATTEN
+#endif

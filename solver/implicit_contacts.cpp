@@ -341,10 +341,10 @@ Eigen::Matrix<double, 12, 12> pairTangent(const ImplicitPairResult& r, const Eig
   return K;
 }
 
-// Built for each CPU version (cpu_versions.h), with everything it calls inlined into it (flatten:
-// the accumulator, the visits and the law would otherwise stay baseline code): 0.91 x the default
-// test's time (docs/performance.md, "Built for the CPU").
-TESSERA_CPU_VERSIONS __attribute__((flatten))
+// Built for each CPU version (cpu_versions.h) with everything it calls inlined into it
+// (TESSERA_FLATTEN: the accumulator, the visits and the law would otherwise stay baseline code):
+// 0.91 x the default test's time (docs/performance.md, "Built for the CPU").
+TESSERA_CPU_VERSIONS TESSERA_FLATTEN
 void evaluateImplicitPair(const ImplicitScene& scene, const PairContacts& pair, const NodeContacts& committed,
                           ImplicitCandidates& candidates, ImplicitPairResult& out) {
   const bool listing = !candidates.listed || candidates.a != pair.a || candidates.b != pair.b;

@@ -5,10 +5,10 @@
 // q q_0^-1), the tangent assembled from each pair's contact stiffness (implicit_contacts.h) and
 // factorised sparse (Eigen's SparseLU, in numberFreeBodies' order), with a backtracking line
 // search. Where the increment is long against a body's periods the inertia terms vanish against
-// the contact forces and the balance is static; where no static balance exists (a block losing its support) they carry the
-// motion as backward-Euler dynamics. An increment that does not converge is cut to a quarter and
-// tried again from the same start; an easy one lets the next grow. Friction history, energies and
-// forces are committed only at a converged increment.
+// the contact forces and the balance is static; where no static balance exists (a block losing
+// its support) they carry the motion as backward-Euler dynamics. An increment that does not
+// converge is cut to a quarter and tried again from the same start; an easy one lets the next
+// grow. Friction history, energies and forces are committed only at a converged increment.
 #include "solver/world_internals.h"
 
 #include <tbb/blocked_range.h>
@@ -129,9 +129,9 @@ double World::evaluateIncrement(double dt, bool withMatrix) {
         const PairContacts& pair = pairs_[p];
         ImplicitPairResult& result = w.results[p];
         evaluateImplicitPair(scene, pair, committedOf(w.committed, pair), w.candidates[p], result);
-        if (withMatrix)
-          result.tangent = pairTangent(result, state_.bodies.position[pair.a],
-                                       state_.bodies.position[pair.kind == PairKind::Bodies ? pair.b : pair.a]);
+        const int b = pair.kind == PairKind::Bodies ? pair.b : pair.a;  // an obstacle pair's: its body's centroid
+        if (withMatrix && !result.contacts.empty() && (w.dof[pair.a] >= 0 || w.dof[b] >= 0))
+          result.tangent = pairTangent(result, state_.bodies.position[pair.a], state_.bodies.position[b]);
       }
     });
   });
@@ -229,16 +229,7 @@ bool World::solveIncrement(double dt, int& iterations) {
     if (converged) return true;
     if (iterations == settings_.implicit.maxIterations || !std::isfinite(merit)) return false;
     if (w.freeBodies == 0) return true;
-    // The ordering and symbolic analysis depend only on the pattern, which mostly stays from one
-    // iteration to the next: analysed again when it changes.
-    const Eigen::Index nonZeros = w.matrix.nonZeros();
-    if (w.matrix.cols() + 1 != static_cast<Eigen::Index>(w.patternOuter.size()) || nonZeros != static_cast<Eigen::Index>(w.patternInner.size()) ||
-        !std::equal(w.patternInner.begin(), w.patternInner.end(), w.matrix.innerIndexPtr()) ||
-        !std::equal(w.patternOuter.begin(), w.patternOuter.end(), w.matrix.outerIndexPtr())) {
-      w.solver.analyzePattern(w.matrix);
-      w.patternOuter.assign(w.matrix.outerIndexPtr(), w.matrix.outerIndexPtr() + w.matrix.cols() + 1);
-      w.patternInner.assign(w.matrix.innerIndexPtr(), w.matrix.innerIndexPtr() + nonZeros);
-    }
+    w.solver.analyzePattern(w.matrix);  // natural order (numberFreeBodies'): its elimination tree only
     w.solver.factorize(w.matrix);
     if (w.solver.info() != Eigen::Success) return false;
     const Eigen::VectorXd step = w.scale.cwiseProduct(w.solver.solve(w.scale.cwiseProduct(w.residual)));
@@ -402,23 +393,25 @@ bool World::lostEquilibrium() const {
 
 // Each free body's block of six unknowns (w.dof), numbered in the approximate minimum degree order
 // of the graph of the pairs between free bodies (Amestoy, Davis & Duff, SIAM J. Matrix Anal. Appl.
-// 17, 1996; Eigen's AMDOrdering): the tangent's pattern is that graph's, and factorised in that
-// order, the diagonal pivots kept (ImplicitWork::solver), its LU fills in little. On a 31 x 31 slab
-// a factorisation takes 2.4 x less time than in COLAMD's column order with partial pivoting.
+// 17, 1996; Eigen's AMDOrdering). The tangent's blocks lie on that graph's edges (and on a pair's
+// found within the increment); factorised in that order, the diagonal pivots kept
+// (ImplicitWork::solver), its LU fills in little: on a 31 x 31 slab a factorisation takes 2.4 x
+// less time than in COLAMD's column order with partial pivoting.
 void World::numberFreeBodies() {
   ImplicitWork& w = *implicit_;
+  updatePairs();  // the pairs at the increment's start (the first evaluation finds the same)
   const RigidBodies& bodies = state_.bodies;
   const std::size_t n = bodies.size();
-  std::vector<int> free(n, -1);
+  std::vector<int> freeIndex(n, -1);
   int count = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (bodies.moves(i)) free[i] = count++;
+    if (bodies.moves(i)) freeIndex[i] = count++;
   std::vector<Eigen::Triplet<double>> links;
   for (int k = 0; k < count; ++k) links.emplace_back(k, k, 1.0);
   for (const PairContacts& pair : pairs_)
-    if (pair.kind == PairKind::Bodies && free[pair.a] >= 0 && free[pair.b] >= 0) {
-      links.emplace_back(free[pair.a], free[pair.b], 1.0);
-      links.emplace_back(free[pair.b], free[pair.a], 1.0);
+    if (pair.kind == PairKind::Bodies && freeIndex[pair.a] >= 0 && freeIndex[pair.b] >= 0) {
+      links.emplace_back(freeIndex[pair.a], freeIndex[pair.b], 1.0);
+      links.emplace_back(freeIndex[pair.b], freeIndex[pair.a], 1.0);
     }
   Eigen::SparseMatrix<double> graph(count, count);
   graph.setFromTriplets(links.begin(), links.end());
@@ -432,8 +425,8 @@ void World::numberFreeBodies() {
   w.freeBodies = count;
   w.scale.resize(6 * count);
   for (std::size_t i = 0; i < n; ++i) {
-    if (free[i] < 0) continue;
-    const int d = w.dof[i] = position[free[i]];
+    if (freeIndex[i] < 0) continue;
+    const int d = w.dof[i] = position[freeIndex[i]];
     w.scale.segment<3>(6 * d).setOnes();
     w.scale.segment<3>(6 * d + 3).setConstant(1.0 / bodyRadius_[i]);
   }

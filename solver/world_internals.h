@@ -57,7 +57,6 @@ struct World::ImplicitWork {
   static constexpr double kPivotThreshold = 0.1;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::NaturalOrdering<int>> solver;
   ImplicitWork() { solver.setPivotThreshold(kPivotThreshold); }
-  std::vector<int> patternOuter, patternInner;  ///< the matrix's pattern the solver last analysed
 };
 
 }  // namespace tessera

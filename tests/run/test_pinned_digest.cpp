@@ -1,6 +1,7 @@
 // Answers change only on purpose: a short run's final state, digested to the last bit, against the
-// digest pinned for this compiler and CPU version (the SIMD loops are compiled for the baseline
-// CPU, AVX2 and AVX-512, and fused multiply-adds round differently: solver/cpu_versions.h). A
+// digest pinned for this compiler and CPU version (the explicit step's SIMD loops and the implicit
+// evaluation are compiled for the baseline CPU, AVX2 and AVX-512, and fused multiply-adds round
+// differently: solver/cpu_versions.h). A
 // change to the physics, the protocol or the order of a sum changes it: pin the new digest the
 // failure prints, and say in the commit why the answers moved. Where no digest is pinned (another
 // compiler or CPU) the test says so and passes.
