@@ -235,7 +235,7 @@ void World::restore(const WorldState& s) {
   for (const PairState& q : s.pairs) {
     PairContacts& p = pairs_.emplace_back();
     pairStateFields(p, q, [](auto& to, const auto& from) { to = from; });
-    for (const NodeContact& c : q.contacts) p.contacts.push_back(c);
+    p.contacts.assign(q.contacts);
     p.kind = pairKind(p.b, static_cast<int>(state_.spheres.size()));
     p.checkedTravel = -std::numeric_limits<double>::infinity();
     p.stiffnessScale = stiffnessScale(p);
