@@ -39,13 +39,10 @@ Eigen::Quaterniond turned(const Eigen::Quaterniond& q, const Eigen::Vector3d& th
   return (Eigen::Quaterniond(Eigen::AngleAxisd(angle, theta / angle)) * q).normalized();
 }
 
-// The order of the committed copy of the pairs: by their bodies (a, b).
-bool byBodies(const PairContacts& x, const PairContacts& y) { return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b); }
-
 // A pair's committed contacts (the increment's start), found by (a, b) in the sorted copy.
 const NodeContacts& committedOf(const std::vector<PairContacts>& committed, const PairContacts& pair) {
   static const NodeContacts none;
-  const auto found = std::lower_bound(committed.begin(), committed.end(), pair, byBodies);
+  const auto found = std::lower_bound(committed.begin(), committed.end(), pair, pairsByBodies);
   return found != committed.end() && found->a == pair.a && found->b == pair.b && found->kind == pair.kind ? found->contacts : none;
 }
 
@@ -451,7 +448,7 @@ void World::implicitStep() {
     w.startInertia[i] = R * bodies.inertia[i].asDiagonal() * R.transpose();
   }
   w.committed = pairs_;
-  std::sort(w.committed.begin(), w.committed.end(), byBodies);
+  std::sort(w.committed.begin(), w.committed.end(), pairsByBodies);
   if (state_.steps == 0) {
     // The energy stored at the start (an assembly built overlapping), and the forces there: the
     // residual of an increment too long for inertia to count, with no motion.

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace tessera {
@@ -201,6 +202,12 @@ struct PairContacts {
   double maxDepth = 0.0;       ///< m, deepest node penetration
   long evaluations = 0;        ///< node-vs-level-set evaluations in the last evaluation (for benchmarks)
 };
+
+/// The pairs' order by their bodies (a, b): the World's list after updatePairs, and the implicit
+/// method's copy of the pairs at an increment's start.
+inline bool pairsByBodies(const PairContacts& x, const PairContacts& y) {
+  return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
+}
 
 /// The scene as a pair evaluation needs it (read-only during evaluation).
 struct ContactScene {

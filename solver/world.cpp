@@ -375,9 +375,7 @@ void World::updatePairs() {
   // Keep the state of pairs that stay candidates (both lists sorted by (a, b)).
   std::vector<PairContacts> next;
   next.reserve(wanted.size());
-  std::sort(pairs_.begin(), pairs_.end(), [](const PairContacts& x, const PairContacts& y) {
-    return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
-  });
+  std::sort(pairs_.begin(), pairs_.end(), pairsByBodies);
   std::size_t old = 0;
   for (const auto& [a, b] : wanted) {
     while (old < pairs_.size() && std::make_pair(pairs_[old].a, pairs_[old].b) < std::make_pair(a, b)) ++old;
