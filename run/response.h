@@ -14,6 +14,7 @@ struct ResponseSettings {
   int freeBodies = 0;              ///< free bodies of the slab ("collapse": all of them fell)
   double stiffnessFitRatio = 0.4e-3 / kPaperThickness;  ///< K's fit window ends at this x h (or at delta_peak / 2)
   double quasiStaticLimit = 1e-2;  ///< quasiStatic is false above this KE / W before the peak
+  double peakRangeFraction = 0.01;  ///< the peak range: where P is within this fraction of P_max
 };
 
 /// A sudden fall of the load after the peak (a slip event): within 0.05 h of travel, by at least
@@ -37,6 +38,10 @@ struct ContactState {
 struct ResponseParameters {
   double peakLoad = 0;            ///< N, P_max
   double deltaAtPeak = 0;         ///< m
+  /// m, the peak range: from the first to the last sample where P is within
+  /// ResponseSettings::peakRangeFraction of P_max, where delta at P_max could be were the loads that
+  /// much otherwise (on a flat peak, anywhere on it).
+  double peakRangeFrom = 0, peakRangeTo = 0;
   double stiffness = 0;           ///< N/m, K: least-squares slope of P(delta) over the fit window
   double fitFrom = 0, fitTo = 0;  ///< m, the fit window
   /// m, where the load first falls below failureLoadFraction x P_max after the peak; < 0: it never does.

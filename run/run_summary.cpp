@@ -139,6 +139,7 @@ void serializeResponse(const Io& io, RunSummary& s) {
   const bool failed = r.failureDeflection >= 0;  // (writing; a reader finds null)
   io.number("peak_load", "N", r.peakLoad);
   io.number("delta_at_peak", "mm", r.deltaAtPeak);
+  io.range("peak_range", "mm", r.peakRangeFrom, r.peakRangeTo);
   io.number("stiffness", "N_per_mm", r.stiffness);
   io.range("stiffness_fit_window", "mm", r.fitFrom, r.fitTo);
   io.optionalNumber("failure_deflection", "mm", r.failureDeflection, failed);

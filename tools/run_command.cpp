@@ -79,7 +79,8 @@ void printSettlingSummary(const RunSession& session, const std::string& out) {
 void printSummary(const IndentationRecord& record, const ResponseParameters& r, double failureFraction, const std::string& out) {
   std::printf("settled in %.4g s (%ld steps)%s; loaded block '%s'; stopped: %s\n", record.settleTime, record.settleSteps,
               record.settled ? "" : " (not settled)", record.targetName.c_str(), stopReasonName(record.stopReason));
-  std::printf("  peak load          P_max = %.4g N at delta = %.4g mm\n", r.peakLoad, r.deltaAtPeak * 1e3);
+  std::printf("  peak load          P_max = %.4g N at delta = %.4g mm (within %.3g %% of it from %.4g to %.4g mm)\n", r.peakLoad,
+              r.deltaAtPeak * 1e3, 100 * ResponseSettings{}.peakRangeFraction, r.peakRangeFrom * 1e3, r.peakRangeTo * 1e3);
   std::printf("  initial stiffness  K = %.4g N/mm (fit over delta in [%.3g, %.3g] mm)\n", r.stiffness * 1e-3,
               r.fitFrom * 1e3, r.fitTo * 1e3);
   if (r.failureDeflection >= 0)

@@ -49,6 +49,9 @@ TEST_CASE("response: K, P_max, failure deflection and W of a triangular curve") 
   const ResponseParameters r = analyseResponse(record, settings);
   REQUIRE(r.peakLoad == Approx(100.0).epsilon(1e-12));
   REQUIRE(r.deltaAtPeak == Approx(1e-3).epsilon(1e-12));
+  // A sharp peak: only its own sample is within 1 % (96 N at 0.96 and 1.04 mm).
+  REQUIRE(r.peakRangeFrom == r.deltaAtPeak);
+  REQUIRE(r.peakRangeTo == r.deltaAtPeak);
   // The fit window ends at 0.4 mm (stiffnessFitRatio x h), before delta_peak / 2 = 0.5 mm.
   REQUIRE(r.fitTo == Approx(0.4e-3).epsilon(1e-9));
   REQUIRE(r.stiffness == Approx(100e3).epsilon(1e-9));
@@ -153,4 +156,30 @@ TEST_CASE("response: failure is read on the loading envelope, not where a steere
   REQUIRE(r.failureDeflection == Approx(1.44e-3).epsilon(1e-9));  // 3.2 N
   REQUIRE(r.drops.size() == 1);
   REQUIRE(r.drops[0].delta == Approx(1e-3));
+}
+
+TEST_CASE("response: the peak range spans the samples within 1 % of P_max, a second maximum nearly as high too") {
+  // P = 100 (1 - 4 (d - 1)^2) N (d in mm) near the peak: within 1 % of P_max for |d - 1| <= (2 x 0.01
+  // x 100 / 800)^1/2 = 0.05 mm, so the samples at 0.96, 1.00 and 1.04 mm.
+  const auto parabola = [](double delta) { return std::max(0.0, 100 * (1 - 4 * (delta * 1e3 - 1) * (delta * 1e3 - 1))); };
+  const ResponseParameters r = analyseResponse(recordOf(75, parabola), ResponseSettings{});
+  REQUIRE(r.peakLoad == Approx(100.0).epsilon(1e-12));
+  REQUIRE(r.deltaAtPeak == Approx(1e-3).epsilon(1e-12));
+  REQUIRE(r.peakRangeFrom == Approx(0.96e-3).epsilon(1e-12));
+  REQUIRE(r.peakRangeTo == Approx(1.04e-3).epsilon(1e-12));
+  ResponseSettings wider;
+  wider.peakRangeFraction = 0.1;  // |d - 1| <= 0.158 mm: 0.88 to 1.12 mm
+  const ResponseParameters w = analyseResponse(recordOf(75, parabola), wider);
+  REQUIRE(w.peakRangeFrom == Approx(0.88e-3).epsilon(1e-12));
+  REQUIRE(w.peakRangeTo == Approx(1.12e-3).epsilon(1e-12));
+  // A second hump, 99.5 N at 2 mm after a dip to 60 N, is within 1 % of P_max from 1.96 to 2.04 mm
+  // ((d - 2)^2 <= 0.5 / 158): the highest sample could be there, and the range reaches it.
+  const auto twoHumps = [&](double delta) {
+    const double mm = delta * 1e3;
+    return mm <= 1.5 ? parabola(delta) : 99.5 - 39.5 * std::min(1.0, 4 * (mm - 2) * (mm - 2));
+  };
+  const ResponseParameters h = analyseResponse(recordOf(75, twoHumps), ResponseSettings{});
+  REQUIRE(h.deltaAtPeak == Approx(1e-3).epsilon(1e-12));
+  REQUIRE(h.peakRangeFrom == Approx(0.96e-3).epsilon(1e-12));
+  REQUIRE(h.peakRangeTo == Approx(2.04e-3).epsilon(1e-12));
 }

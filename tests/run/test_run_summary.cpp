@@ -27,6 +27,8 @@ RunSummary filled(bool failed) {
   ResponseParameters& r = s.response;
   r.peakLoad = 118.4;
   r.deltaAtPeak = 1.85e-3;
+  r.peakRangeFrom = 1.67e-3;
+  r.peakRangeTo = 2.22e-3;
   r.stiffness = 113.9e3;
   r.fitFrom = 0.0;
   r.fitTo = 0.4e-3;
@@ -89,6 +91,8 @@ TEST_CASE("summary.json read back: every field as written, a failure's nulls as 
     REQUIRE(read.target == "r3c3");
     REQUIRE(read.response.peakLoad == 118.4);
     REQUIRE(read.response.deltaAtPeak == Approx(1.85e-3).epsilon(1e-15));
+    REQUIRE(read.response.peakRangeFrom == Approx(1.67e-3).epsilon(1e-15));
+    REQUIRE(read.response.peakRangeTo == Approx(2.22e-3).epsilon(1e-15));
     REQUIRE(read.response.stiffness == Approx(113.9e3).epsilon(1e-15));
     REQUIRE(read.response.fitTo == Approx(0.4e-3).epsilon(1e-15));
     REQUIRE(read.response.energy == Approx(0.3515).epsilon(1e-15));
