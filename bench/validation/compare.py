@@ -67,7 +67,8 @@ def main() -> int:
         # A peak at the FE run's last increment is a lower bound (the run stopped or ended there).
         bound = "≥ " if peak == len(f) - 1 else ""
         p_fe, d_fe = f["load_N"][peak], f["block_displacement_mm"][peak]
-        run = f"{fs['nodes']} nodes, {fs['total_seconds'] / 60:.1f} min" + ("" if fs["completed"] else ", stopped")
+        part = {0: "", 1: " (a half)", 2: " (a quarter)"}[len(fs.get("mirror_planes", []))]
+        run = f"{fs['nodes']} nodes{part}, {fs['total_seconds'] / 60:.1f} min" + ("" if fs["completed"] else ", stopped")
         ax.plot(f["block_displacement_mm"], f["load_N"], "k-", lw=2, label="FE (CalculiX): block's mean displacement")
         ax.plot(f["delta_mm"], f["load_N"], "k:", lw=1.5, label="FE: patch displacement")
         reach, curves = f["delta_mm"].max(), []

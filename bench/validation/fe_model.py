@@ -5,7 +5,9 @@ every pair of faces two blocks share becomes a surface-to-surface penalty contac
 friction; fixed blocks have every node clamped (Tessera's fixed blocks never move); the loaded
 block's top is pressed down by a prescribed displacement on a round patch at its centre. CalculiX's
 static nonlinear solver (ccx 2.20) runs it and the reaction on the patch gives the load-deflection
-curve. Units inside the model: mm, N, MPa.
+curve. A slab that is its own mirror image about vertical planes through the loaded block's centre
+can be modelled by its half or quarter (mirror_part, symmetry_constraints). Units inside the
+model: mm, N, MPa.
 
 Used by run_case.py (one slab) and by tests/validation (a prism pressed on a prism, against the
 closed form). Needs Debian's python3-gmsh, python3-h5py, python3-numpy and calculix-ccx.
@@ -294,17 +296,17 @@ class Constraint:
     value: float = 0.0
 
 
-def slab_supports(mesh: Mesh, loaded: int, punch_radius: float, deflection: float):
+def slab_supports(mesh: Mesh, loaded: int, punch_radius: float, deflection: float, centre: np.ndarray | None = None):
     """Tessera's supports: every node of a fixed block clamped; the loaded block pressed down on
-    the nodes of its top face within punch_radius (mm) of its centre, held laterally (a punch that
-    sticks). Returns (model constraints, step constraints)."""
+    the nodes of its top face within punch_radius (mm) of its centre (`centre`, or its vertices'
+    mean), held laterally (a punch that sticks). Returns (model constraints, step constraints)."""
     held = []
     for k, b in enumerate(mesh.blocks):
         if b.fixed:
             held += mesh.node_ids(k, np.ones(len(mesh.meshes[k].nodes), bool))
     nodes = mesh.meshes[loaded].nodes
     top = nodes[:, 2].max()
-    centre = mesh.blocks[loaded].vertices.mean(axis=0)
+    centre = mesh.blocks[loaded].vertices.mean(axis=0) if centre is None else centre
     on_patch = (nodes[:, 2] > top - 1e-6 * np.ptp(nodes)) & \
                (np.hypot(nodes[:, 0] - centre[0], nodes[:, 1] - centre[1]) <= punch_radius)
     patch = mesh.node_ids(loaded, on_patch)
@@ -312,6 +314,90 @@ def slab_supports(mesh: Mesh, loaded: int, punch_radius: float, deflection: floa
         raise ValueError("no node on the punch patch: refine the mesh or widen the punch")
     return ([Constraint("CLAMPED", held, 1, 3)] if held else [],
             [Constraint("PATCH", patch, 1, 2), Constraint("PATCH", patch, 3, 3, -deflection)])
+
+
+# --- mirror symmetry -----------------------------------------------------------------------------
+
+def mirrored(blocks: list[Block], centre: np.ndarray, axis: int) -> bool:
+    """Whether the slab is its own mirror image in the plane x_axis = centre[axis]: every block's
+    vertices, mirrored, are those of a block with the same fixity (to 1e-6 of the slab)."""
+    size = np.ptp(np.vstack([b.vertices for b in blocks]), axis=0).max()
+
+    def key(v):
+        return np.array(sorted(map(tuple, np.round(v / (1e-6 * size)))))
+
+    keys = [(b.fixed, key(b.vertices)) for b in blocks]
+    for b in blocks:
+        m = b.vertices.copy()
+        m[:, axis] = 2 * centre[axis] - m[:, axis]
+        km = key(m)
+        if not any(f == b.fixed and len(k) == len(km) and np.abs(k - km).max() <= 1 for f, k in keys):
+            return False
+    return True
+
+
+def clipped(block: Block, cuts: list[tuple[np.ndarray, float]]) -> Block | None:
+    """The convex block cut by the half-spaces n . x <= d of `cuts`, as a triangle mesh (each face a
+    fan, outward); None where nothing of it is left. Its vertices are the points where three of its
+    planes meet inside every other one."""
+    planes = [(f.normal, f.offset) for f in planar_faces(block)] + list(cuts)
+    size = np.ptp(block.vertices, axis=0).max()
+    tolerance = 1e-9 * size
+    points = []
+    for i in range(len(planes)):
+        for j in range(i + 1, len(planes)):
+            for k in range(j + 1, len(planes)):
+                A = np.array([planes[i][0], planes[j][0], planes[k][0]])
+                if abs(np.linalg.det(A)) < 1e-9:
+                    continue
+                x = np.linalg.solve(A, [planes[i][1], planes[j][1], planes[k][1]])
+                if all(n @ x <= d + tolerance for n, d in planes) and \
+                        not any(np.linalg.norm(x - p) <= tolerance for p in points):
+                    points.append(x)
+    if len(points) < 4:
+        return None
+    vertices = np.array(points)
+    centroid = vertices.mean(axis=0)
+    if np.linalg.svd(vertices - centroid, compute_uv=False)[-1] <= tolerance:
+        return None  # flat: the cut leaves a face, not a solid
+    triangles = []
+    for n, d in planes:
+        on = [v for v in range(len(vertices)) if abs(n @ vertices[v] - d) <= tolerance]
+        if len(on) < 3:
+            continue
+        middle = vertices[on].mean(axis=0)
+        u = vertices[on[0]] - middle
+        u /= np.linalg.norm(u)
+        w = np.cross(n, u)
+        on.sort(key=lambda v: np.arctan2((vertices[v] - middle) @ w, (vertices[v] - middle) @ u))
+        triangles += [(on[0], on[m], on[m + 1]) for m in range(1, len(on) - 1)]  # counter-clockwise about n
+    return Block(block.name, block.fixed, vertices, np.array(triangles))
+
+
+def mirror_part(blocks: list[Block], centre: np.ndarray) -> tuple[list[Block], list[int]]:
+    """The part x_a >= centre_a of the slab for each axis a (0: x, 1: y) about whose vertical plane
+    through `centre` the slab is its own mirror image (mirrored): the blocks across those planes
+    cut. Returns the part and those axes; ValueError for a slab with neither plane."""
+    axes = [axis for axis in (0, 1) if mirrored(blocks, centre, axis)]
+    if not axes:
+        raise ValueError(f"the slab is not its mirror image about x = {centre[0]:.6g} mm nor y = {centre[1]:.6g} mm: "
+                         "no symmetric part to model (run it whole)")
+    cuts = [(-np.eye(3)[axis], -centre[axis]) for axis in axes]
+    return [c for c in (clipped(b, cuts) for b in blocks) if c is not None], axes
+
+
+def symmetry_constraints(mesh: Mesh, centre: np.ndarray, axes: list[int]) -> list[Constraint]:
+    """The symmetric part's planes (mirror_part's axes): nodes on x_a = centre_a held in x_a."""
+    size = np.ptp(np.vstack([b.vertices for b in mesh.blocks]), axis=0).max()
+    held = []
+    for axis in axes:
+        name = "SYM" + "XY"[axis]
+        ids = []
+        for k, m in enumerate(mesh.meshes):
+            ids += mesh.node_ids(k, np.abs(m.nodes[:, axis] - centre[axis]) <= 1e-6 * size)
+        if ids:
+            held.append(Constraint(name, ids, axis + 1, axis + 1))
+    return held
 
 
 def write_input(path: Path, mesh: Mesh, model: Model, held: list[Constraint],

@@ -7,7 +7,9 @@
 # Env:   CASES (default "square3 square5 hex5 tet3"; tet5 and tall3 too), MU (0.23), NU (0.2), E (4.2e9 Pa),
 #        DEFLECTION (the FE runs' last deflection, a fraction of h: 0.8; 0.15 gives K alone, in
 #        a fifth of the time), INCREMENTS (20),
-#        FE_OPTIONS (extra run_case.py flags, e.g. "--element-size 0.2"), TESSERA (build/tools/tessera)
+#        FE_OPTIONS (extra run_case.py flags, e.g. "--element-size 0.2"), TESSERA (build/tools/tessera),
+#        MIRROR (1: the slabs with mirror planes through the loaded block, square3, square5 and tall3
+#        (two: a quarter) and hex5 (one: a half), are modelled by that part, run_case.py --mirror; 0: whole)
 # Needs calculix-ccx and python3-gmsh (scripts/setup.sh installs them). Each case's FE run takes
 # minutes (docs/validation.md lists the times); the cases run one after another on 2 threads.
 set -euo pipefail
@@ -22,12 +24,15 @@ block="$here/assets/blocks/planar_a10_h3.18_5deg.obj"
 
 bundle() {  # CASE DIR: the slab of each case, in the paper's block size (mm); sets case_options
   case_options=()
+  local mirror=()
+  [ "${MIRROR:-1}" = 0 ] || mirror=(--mirror)
   case "$1" in
-    square3) "$tessera" tile --block "$block" --unit mm --grid 3x3 --pitch 10 -o "$2" --replace ;;
+    square3) "$tessera" tile --block "$block" --unit mm --grid 3x3 --pitch 10 -o "$2" --replace
+      case_options=("${mirror[@]}") ;;
     square5) "$tessera" tile --block "$block" --unit mm --grid 5x5 --pitch 10 -o "$2" --replace
-      case_options=(--element-size 0.4) ;;  # nine free blocks
+      case_options=(--element-size 0.4 "${mirror[@]}") ;;  # nine free blocks
     hex5) "$tessera" tile --tiling hex --grid 5x5 --pitch 10 --thickness 3.18 --angle 5 --unit mm -o "$2" --replace
-      case_options=(--element-size 0.4) ;;
+      case_options=(--element-size 0.4 "${mirror[@]}") ;;
     tet3 | tet5)  # Dyskin's tetrahedral blocks, truncated: a 10 mm mid-section square, faces at
       # 35.26 deg (a regular tetrahedron's), 13.5 mm thick (the whole tetrahedron: 14.14), a 0.45 mm top ridge
       "$tessera" block planar --size 10 --thickness 13.5 --angle 35.26 --unit mm -o "$2.obj"
@@ -38,7 +43,7 @@ bundle() {  # CASE DIR: the slab of each case, in the paper's block size (mm); s
       "$tessera" export "$2.base" -o "$2.export"
       "$python" "$here/bench/validation/tall_block.py" "$2.export/layout.json" "$2.layout.json"
       "$tessera" tile --layout "$2.layout.json" -o "$2" --replace
-      case_options=(--element-size 0.15) ;;  # of the tall block's 2 h: 0.3 of the neighbours' h
+      case_options=(--element-size 0.15 "${mirror[@]}") ;;  # of the tall block's 2 h: 0.3 of the neighbours' h
     *) echo "run.sh: unknown case $1 (square3, square5, hex5, tet3, tet5, tall3)" >&2; exit 2 ;;
   esac
 }

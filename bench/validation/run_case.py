@@ -3,14 +3,17 @@
 
 Usage: run_case.py BUNDLE -o DIR [--youngs-modulus PA] [--poisson NU] [--friction MU]
                    [--element-size F] [--deflection F] [--punch-radius F] [--increments N]
-                   [--penalty F] [--threads N]
+                   [--penalty F] [--stick F] [--threads N] [--mirror]
 Lengths F are fractions of the loaded block's thickness h (its z-extent), as Tessera's own
 protocol lengths are. Writes DIR/curve.csv (per converged increment: delta_mm, the patch's downward
 displacement; load_N, the force on it; block_displacement_mm, the mean downward displacement of
 the loaded block's nodes, Tessera's delta_b), DIR/summary.json (the model, counts, time) and
 DIR/slab.inp with CalculiX's own files beside it. A step that stops early (past a limit load, ccx
 cannot find a balance) keeps its converged increments; summary.json says where and why. Exit 1
-when ccx solves no increment (its log named).
+when ccx solves no increment (its log named). --mirror models the half or quarter of a slab on the
+positive side of its mirror planes x = x_c and y = y_c through the loaded block's centre (blocks
+across them cut, their nodes there held normal to the plane) and reports the whole slab's load;
+exit 2 for a slab with neither plane.
 """
 import argparse
 import json
@@ -45,7 +48,14 @@ def main() -> int:
     parser.add_argument("--increments", type=int, default=40)
     parser.add_argument("--penalty", type=float, default=50.0,
                         help="contact slope K = PENALTY x E / element size (default 50)")
+    parser.add_argument("--stick", type=float, default=0.1,
+                        help="friction's stick slope = STICK x the contact slope (default 0.1)")
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--mirror", action="store_true",
+                        help="model the slab's part x >= x_c and/or y >= y_c (x_c, y_c: the loaded block's "
+                             "centre) for each of these planes the slab is its own mirror image about, with "
+                             "symmetry conditions there (a slab with neither: refused); the load is "
+                             "2 or 4 x the part's")
     args = parser.parse_args()
 
     out = Path(args.out)
@@ -53,11 +63,24 @@ def main() -> int:
     blocks = fe.read_bundle(args.bundle)
     loaded = central_free_block(blocks)
     h = float(np.ptp(blocks[loaded].vertices[:, 2]))
+    centre = blocks[loaded].vertices.mean(axis=0)
+    axes = []
+    if args.mirror:
+        name = blocks[loaded].name
+        try:
+            blocks, axes = fe.mirror_part(blocks, centre)
+        except ValueError as e:
+            print(f"run_case: {e}", file=sys.stderr)
+            return 2
+        loaded = next(k for k, b in enumerate(blocks) if b.name == name)
+    share = 2 ** len(axes)  # the whole slab's load per the model's
     model = fe.Model(youngs_modulus=args.youngs_modulus / 1e6, poisson=args.poisson, friction=args.friction,
-                     increments=args.increments, element_size=args.element_size * h, penalty_factor=args.penalty)
+                     increments=args.increments, element_size=args.element_size * h, penalty_factor=args.penalty,
+                     stick_factor=args.stick)
     start = time.time()
     mesh = fe.mesh_blocks(blocks, model.element_size)
-    held, pressed = fe.slab_supports(mesh, loaded, args.punch_radius * h, args.deflection * h)
+    held, pressed = fe.slab_supports(mesh, loaded, args.punch_radius * h, args.deflection * h, centre)
+    held += fe.symmetry_constraints(mesh, centre, axes)
     inp = out / "slab.inp"
     fe.write_input(inp, mesh, model, held, pressed,
                    watch=mesh.node_ids(loaded, np.ones(len(mesh.meshes[loaded].nodes), bool)))
@@ -69,7 +92,7 @@ def main() -> int:
         print(f"run_case: ccx solved no increment ({out / 'slab.log'}): {stopped}", file=sys.stderr)
         return 1
     mean = fe.mean_displacements(printed)
-    curve = [(0.0, 0.0, 0.0)] + [(t / model.increments * args.deflection * h, -force[2], -mean[t][2])
+    curve = [(0.0, 0.0, 0.0)] + [(t / model.increments * args.deflection * h, -share * force[2], -mean[t][2])
                                  for t, force in totals]
     (out / "curve.csv").write_text("delta_mm,load_N,block_displacement_mm\n" +
                                    "".join(f"{d:.9g},{p:.9g},{b:.9g}\n" for d, p, b in curve))
@@ -77,10 +100,11 @@ def main() -> int:
         "bundle": str(Path(args.bundle).resolve()), "loaded_block": blocks[loaded].name, "thickness_mm": h,
         "youngs_modulus_MPa": model.youngs_modulus, "poisson": model.poisson, "friction": model.friction,
         "element_size_mm": model.element_size, "contact_slope_MPa_per_mm": model.contact_slope(),
+        "stick_slope_MPa_per_mm": model.stick_factor * model.contact_slope(),
         "punch_radius_mm": args.punch_radius * h, "deflection_mm": args.deflection * h,
         "nodes": int(sum(len(m.nodes) for m in mesh.meshes)),
         "elements": int(sum(len(m.tets) for m in mesh.meshes)), "contact_pairs": len(mesh.pairs),
-        "patch_nodes": len(pressed[0].nodes), "increments": len(totals),
+        "patch_nodes": len(pressed[0].nodes), "increments": len(totals), "mirror_planes": ["xy"[a] for a in axes],
         # ccx may end a step on a sliver of an increment (rounding) that fails: the step counts as
         # completed where its converged increments reached its end.
         "completed": not stopped or totals[-1][0] >= model.increments * (1 - 1e-4), "stopped": stopped,

@@ -8,6 +8,9 @@
    for a linear field, which quadratic tetrahedra represent exactly).
 2. On a 3 x 3 slab made by `tessera tile`, the faces found in contact are the loaded block's four
    lateral faces, each sharing with its neighbour's the area the trapezoids' closed form gives.
+3. The quarter model of that slab (run_case.py --mirror): four blocks, of a quarter, a half, a half
+   and the whole of a block's volume; the loaded block's two faces in contact share half the area of
+   2.; a centre off the slab's mirror planes is refused.
 
 Usage: fe_prism.py TESSERA_EXE WORK_DIR. Exit 77 (skipped) where ccx or gmsh is not installed.
 """
@@ -75,6 +78,44 @@ def slab_contacts(tessera: str, work: Path) -> None:
     print(f"slab: {len(pairs)} contact pairs, each sharing {shared:.4f} of {whole:.4f} mm^2 as the closed form says")
 
 
+def volume(block) -> float:
+    """The volume of a closed, outward triangle mesh (the divergence theorem), mm^3."""
+    v, t = block.vertices, block.triangles
+    return float(np.einsum("ij,ij->i", v[t[:, 0]], np.cross(v[t[:, 1]], v[t[:, 2]])).sum() / 6)
+
+
+def slab_quarter(work: Path) -> None:
+    import fe_model as fe
+    blocks = fe.read_bundle(work / "slab3")
+    loaded = next(k for k, b in enumerate(blocks) if not b.fixed)
+    centre = blocks[loaded].vertices.mean(axis=0)
+    whole = volume(blocks[loaded])
+    quarter, axes = fe.mirror_part(blocks, centre)
+    assert axes == [0, 1], f"the 3 x 3 slab's mirror planes: {axes}"
+    shares = sorted(volume(b) / whole for b in quarter)
+    assert np.allclose(shares, [0.25, 0.5, 0.5, 1.0], rtol=1e-9), f"quarter's volumes {shares} of a block's"
+    faces = [fe.planar_faces(b) for b in quarter]
+    pairs = fe.shared_faces(quarter, faces, 1e-6)
+    side, h, tilt = 10.0, 3.18, np.radians(5.0)
+    shared = (side * h - np.tan(tilt) * h * h / 2) / np.cos(tilt)
+    cut = next(k for k, b in enumerate(quarter) if b.name == blocks[loaded].name)
+    assert len(pairs) == 2 and all(cut in (a, b) for a, _, b, _ in pairs), f"pairs {pairs}"
+    for a, i, b, j in pairs:
+        common = fe.overlap_area(quarter[a].vertices[faces[a][i].loop], quarter[b].vertices[faces[b][j].loop],
+                                 faces[a][i].normal)
+        assert abs(common / (shared / 2) - 1) < 1e-6, f"the quarter's faces share {common} mm^2, not {shared / 2}"
+    # Off centre along x only the plane y = y_c remains a mirror plane: a half.
+    half, axes = fe.mirror_part(blocks, centre + [1.0, 0, 0])
+    assert axes == [1] and len(half) == 6, f"a half about y = y_c: {len(half)} blocks, axes {axes}"
+    try:
+        fe.mirror_part(blocks, centre + [1.0, 1.0, 0])
+    except ValueError:
+        pass
+    else:
+        raise AssertionError("a part about planes the slab is not symmetric about was accepted")
+    print(f"quarter: {len(quarter)} blocks ({', '.join(f'{x:g}' for x in shares)} of a block), {len(pairs)} contact pairs")
+
+
 def main() -> int:
     try:
         import gmsh  # noqa: F401
@@ -88,6 +129,7 @@ def main() -> int:
     work.mkdir(parents=True, exist_ok=True)
     prism(work)
     slab_contacts(tessera, work)
+    slab_quarter(work)
     return 0
 
 
