@@ -117,11 +117,12 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   r.atPeak = contactStateAt(c[peak]);
   // The peak range: where the highest sample could be were the loads 1 % (peakRangeFraction)
   // otherwise. Near a smooth peak it is |delta - delta(P_max)| <= (2 fraction P_max / -P'')^1/2; on a
-  // flat peak it is the plateau, and a second maximum nearly as high extends it.
+  // flat peak it is the plateau, and a second maximum nearly as high extends it. (No load: the
+  // peak's sample alone.)
   const double nearPeak = (1 - settings.peakRangeFraction) * r.peakLoad;
   r.peakRangeFrom = r.peakRangeTo = r.deltaAtPeak;
   for (const CurveSample& s : c)
-    if (s.load >= nearPeak) {
+    if (r.peakLoad > 0 && s.load >= nearPeak) {
       r.peakRangeFrom = std::min(r.peakRangeFrom, s.delta);
       r.peakRangeTo = std::max(r.peakRangeTo, s.delta);
     }

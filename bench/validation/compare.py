@@ -47,6 +47,16 @@ def difference(fe: float, tessera: float) -> str:
 RULES = ("span", "bars", "sections")
 
 
+def save(fig, rows: list[str], out: Path, figure: str) -> None:
+    """The figure as OUT/figure and the table's rows as OUT/table.md, and the table printed."""
+    import matplotlib.pyplot as plt
+    fig.tight_layout()
+    fig.savefig(out / figure, dpi=100)
+    plt.close(fig)
+    (out / "table.md").write_text("\n".join(rows) + "\n")
+    print("\n".join(rows))
+
+
 def main() -> int:
     import matplotlib
     matplotlib.use("Agg")
@@ -101,11 +111,7 @@ def main() -> int:
         ax.grid(alpha=0.3)
     for ax in axes.flat[len(cases):]:
         ax.set_visible(False)
-    fig.tight_layout()
-    fig.savefig(out / "curves.png", dpi=100)
-    plt.close(fig)
-    (out / "table.md").write_text("\n".join(rows) + "\n")
-    print("\n".join(rows))
+    save(fig, rows, out, "curves.png")
     return 0
 
 

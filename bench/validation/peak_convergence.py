@@ -13,6 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from compare import save  # noqa: E402
+
 
 def secant(displacement, load, at):
     """P / delta_b at delta_b = at (the curve interpolated)."""
@@ -79,11 +82,7 @@ def main() -> int:
     for ax in (left, right):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=6)
-    fig.tight_layout()
-    fig.savefig(out / "peak_convergence.png", dpi=100)
-    plt.close(fig)
-    (out / "table.md").write_text("\n".join(rows) + "\n")
-    print("\n".join(rows))
+    save(fig, rows, out, "peak_convergence.png")
     return 0
 
 

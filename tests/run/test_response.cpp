@@ -182,4 +182,8 @@ TEST_CASE("response: the peak range spans the samples within 1 % of P_max, a sec
   REQUIRE(h.deltaAtPeak == Approx(1e-3).epsilon(1e-12));
   REQUIRE(h.peakRangeFrom == Approx(0.96e-3).epsilon(1e-12));
   REQUIRE(h.peakRangeTo == Approx(2.04e-3).epsilon(1e-12));
+  // No load at all: the range is the peak's sample (the first), not the whole run.
+  const ResponseParameters none = analyseResponse(recordOf(75, [](double) { return 0.0; }), ResponseSettings{});
+  REQUIRE(none.peakRangeFrom == none.deltaAtPeak);
+  REQUIRE(none.peakRangeTo == none.deltaAtPeak);
 }
