@@ -121,11 +121,12 @@ ResponseParameters analyseResponse(const IndentationRecord& record, const Respon
   // peak's sample alone.)
   const double nearPeak = (1 - settings.peakRangeFraction) * r.peakLoad;
   r.peakRangeFrom = r.peakRangeTo = r.deltaAtPeak;
-  for (const CurveSample& s : c)
-    if (r.peakLoad > 0 && s.load >= nearPeak) {
-      r.peakRangeFrom = std::min(r.peakRangeFrom, s.delta);
-      r.peakRangeTo = std::max(r.peakRangeTo, s.delta);
-    }
+  if (r.peakLoad > 0)
+    for (const CurveSample& s : c)
+      if (s.load >= nearPeak) {
+        r.peakRangeFrom = std::min(r.peakRangeFrom, s.delta);
+        r.peakRangeTo = std::max(r.peakRangeTo, s.delta);
+      }
 
   fitInitialStiffness(c, record.thickness, settings, r);
 

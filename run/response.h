@@ -38,7 +38,7 @@ struct ContactState {
 struct ResponseParameters {
   double peakLoad = 0;            ///< N, P_max
   double deltaAtPeak = 0;         ///< m
-  /// m, the peak range: from the first to the last sample where P is within
+  /// m, the peak range: the least and the greatest delta of the samples where P is within
   /// ResponseSettings::peakRangeFraction of P_max, where delta at P_max could be were the loads that
   /// much otherwise (on a flat peak, anywhere on it).
   double peakRangeFrom = 0, peakRangeTo = 0;

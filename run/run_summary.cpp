@@ -40,6 +40,10 @@ struct JsonOut {
     const double s = units ? unitScale(unit) : 1.0;
     j[key(name, unit)] = {from * s, to * s};
   }
+  bool optionalRange(const char* name, const char* unit, double& from, double& to) const {
+    range(name, unit, from, to);
+    return true;
+  }
   void value(const char* name, std::string& v) const { j[name] = v; }
   void value(const char* name, long& v) const { j[name] = v; }
   void value(const char* name, bool& v) const { j[name] = v; }
@@ -100,6 +104,12 @@ struct JsonIn {
     from = a[0].get<double>() / unitScale(unit);
     to = a[1].get<double>() / unitScale(unit);
   }
+  // A range a summary of an older version lacks: false (from and to left alone) where it is absent.
+  bool optionalRange(const char* name, const char* unit, double& from, double& to) const {
+    if (!j.contains(key(name, unit))) return false;
+    range(name, unit, from, to);
+    return true;
+  }
   void value(const char* name, std::string& v) const { v = at(name, &nlohmann::json::is_string, "a string").get<std::string>(); }
   void value(const char* name, long& v) const { v = at(name, &nlohmann::json::is_number_integer, "a whole number").get<long>(); }
   void value(const char* name, bool& v) const { v = at(name, &nlohmann::json::is_boolean, "true or false").get<bool>(); }
@@ -139,7 +149,8 @@ void serializeResponse(const Io& io, RunSummary& s) {
   const bool failed = r.failureDeflection >= 0;  // (writing; a reader finds null)
   io.number("peak_load", "N", r.peakLoad);
   io.number("delta_at_peak", "mm", r.deltaAtPeak);
-  io.range("peak_range", "mm", r.peakRangeFrom, r.peakRangeTo);
+  // (Added 2026-11-27: an older summary has none, and reads back the peak's delta alone.)
+  if (!io.optionalRange("peak_range", "mm", r.peakRangeFrom, r.peakRangeTo)) r.peakRangeFrom = r.peakRangeTo = r.deltaAtPeak;
   io.number("stiffness", "N_per_mm", r.stiffness);
   io.range("stiffness_fit_window", "mm", r.fitFrom, r.fitTo);
   io.optionalNumber("failure_deflection", "mm", r.failureDeflection, failed);

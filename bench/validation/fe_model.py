@@ -386,6 +386,19 @@ def mirror_part(blocks: list[Block], centre: np.ndarray) -> tuple[list[Block], l
     return [c for c in (clipped(b, cuts) for b in blocks) if c is not None], axes
 
 
+def symmetry_weights(mesh: Mesh, centre: np.ndarray, axes: list[int]) -> dict[int, float]:
+    """Node id -> 1/2 per mirror plane (mirror_part's axes) the node lies on: the whole slab's mean
+    over a block's nodes is the part's mean with these weights (a node on a plane is one node of the
+    whole slab, every other one of the part stands for 2 or 4)."""
+    size = np.ptp(np.vstack([b.vertices for b in mesh.blocks]), axis=0).max()
+    weights = {}
+    for k, m in enumerate(mesh.meshes):
+        on = sum((np.abs(m.nodes[:, axis] - centre[axis]) <= 1e-6 * size).astype(int) for axis in axes)
+        for i in np.flatnonzero(on if axes else np.zeros(len(m.nodes), bool)):
+            weights[mesh.node_offset[k] + int(i) + 1] = 0.5 ** int(on[i])
+    return weights
+
+
 def symmetry_constraints(mesh: Mesh, centre: np.ndarray, axes: list[int]) -> list[Constraint]:
     """The symmetric part's planes (mirror_part's axes): nodes on x_a = centre_a held in x_a."""
     size = np.ptp(np.vstack([b.vertices for b in mesh.blocks]), axis=0).max()
@@ -485,7 +498,12 @@ def totals(blocks) -> list[tuple[float, np.ndarray]]:
     return [(time, rows[0]) for what, _, time, rows in blocks if what.startswith("total force")]
 
 
-def mean_displacements(blocks) -> dict[float, np.ndarray]:
-    """Step time -> mean displacement mm of the WATCH nodes, per converged increment (read_dat's blocks)."""
-    return {time: rows[:, 1:4].mean(axis=0) for what, name, time, rows in blocks
-            if what.startswith("displacements") and name == "WATCH"}
+def mean_displacements(blocks, weights: dict[int, float] | None = None) -> dict[float, np.ndarray]:
+    """Step time -> mean displacement mm of the WATCH nodes, per converged increment (read_dat's
+    blocks), each node weighted by weights[its id] (default 1: symmetry_weights for a mirror part)."""
+    means = {}
+    for what, name, time, rows in blocks:
+        if what.startswith("displacements") and name == "WATCH":
+            w = np.array([1.0 if weights is None else weights.get(int(i), 1.0) for i in rows[:, 0]])
+            means[time] = (w[:, None] * rows[:, 1:4]).sum(axis=0) / w.sum()
+    return means

@@ -18,8 +18,9 @@ from compare import save  # noqa: E402
 
 
 def secant(displacement, load, at):
-    """P / delta_b at delta_b = at (the curve interpolated)."""
-    return float(np.interp(at, displacement, load)) / at
+    """P / delta_b at delta_b = at: the curve interpolated where delta_b first reaches `at` (delta_b
+    taken as its running maximum, so that a step back does not fold the curve)."""
+    return float(np.interp(at, np.maximum.accumulate(displacement), load)) / at
 
 
 def main() -> int:
@@ -51,9 +52,11 @@ def main() -> int:
              + " | ".join(name for name, _ in tessera) + " |", "|---" * (3 + len(runs) + len(tessera)) + "|"]
     starts = [f["load_N"][1] / f["block_displacement_mm"][1] for _, _, _, f, _ in runs]
     tstarts = []
-    for _, t in tessera:
-        k = int(np.argmax(t["block_displacement_mm"] > 0.05))
-        tstarts.append(t["load_N"][k] / t["block_displacement_mm"][k])
+    for name, t in tessera:
+        past = np.flatnonzero(t["block_displacement_mm"] > 0.05)
+        if not past.size:
+            raise SystemExit(f"peak_convergence: {name}: the loaded block never moved 0.05 mm")
+        tstarts.append(t["load_N"][past[0]] / t["block_displacement_mm"][past[0]])
     for x in at:
         f_left = 1 - x / h
         cells = [f"{secant(f['block_displacement_mm'], f['load_N'], x) / s0:.3f}" for (_, _, _, f, _), s0 in zip(runs, starts)]

@@ -91,7 +91,7 @@ def main() -> int:
     if not totals:
         print(f"run_case: ccx solved no increment ({out / 'slab.log'}): {stopped}", file=sys.stderr)
         return 1
-    mean = fe.mean_displacements(printed)
+    mean = fe.mean_displacements(printed, fe.symmetry_weights(mesh, centre, axes))
     curve = [(0.0, 0.0, 0.0)] + [(t / model.increments * args.deflection * h, -share * force[2], -mean[t][2])
                                  for t, force in totals]
     (out / "curve.csv").write_text("delta_mm,load_N,block_displacement_mm\n" +

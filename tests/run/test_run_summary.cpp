@@ -143,7 +143,7 @@ TEST_CASE("summary.json: a value that is not finite is written as null and read 
   REQUIRE(read.stopReason == StopReason::Failure);
 }
 
-TEST_CASE("a summary.json with a key missing, of the wrong type, or not JSON is refused naming the key") {
+TEST_CASE("a summary.json with a key missing, of the wrong type, or not JSON is refused naming the key, but for keys added later") {
   const nlohmann::json good = runSummaryJson(filled(true));
   nlohmann::json missing = good;
   missing["response"]["at_peak"].erase("indenter_speed_mm_per_s");
@@ -157,6 +157,12 @@ TEST_CASE("a summary.json with a key missing, of the wrong type, or not JSON is 
   nlohmann::json reason = good;
   reason["stop_reason"] = "finished";
   REQUIRE_THROWS_WITH(parseRunSummary(reason.dump()), Contains("which no run writes"));
+  // peak_range_mm came later: a summary without it reads back with the peak's delta alone.
+  nlohmann::json older = good;
+  older["response"].erase("peak_range_mm");
+  const RunSummary read = parseRunSummary(older.dump());
+  REQUIRE(read.response.peakRangeFrom == read.response.deltaAtPeak);
+  REQUIRE(read.response.peakRangeTo == read.response.deltaAtPeak);
   REQUIRE_THROWS_AS(parseRunSummary("{\"stop_reason\": "), InputError);
   REQUIRE_THROWS_AS(parseRunSummary("[1, 2]"), InputError);
 }

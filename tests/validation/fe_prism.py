@@ -11,6 +11,9 @@
 3. The quarter model of that slab (run_case.py --mirror): four blocks, of a quarter, a half, a half
    and the whole of a block's volume; the loaded block's two faces in contact share half the area of
    2.; a centre off the slab's mirror planes is refused.
+4. Two 2a x 2a x h prisms pressed as in 1. (bottom clamped, top held laterally), whole and by their
+   quarter (mirror_part, symmetry_constraints, symmetry_weights): 4 x the quarter's force and its
+   weighted mean displacement are the whole model's, to 1 %.
 
 Usage: fe_prism.py TESSERA_EXE WORK_DIR. Exit 77 (skipped) where ccx or gmsh is not installed.
 """
@@ -116,6 +119,37 @@ def slab_quarter(work: Path) -> None:
     print(f"quarter: {len(quarter)} blocks ({', '.join(f'{x:g}' for x in shares)} of a block), {len(pairs)} contact pairs")
 
 
+def mirror_press(work: Path) -> None:
+    import fe_model as fe
+    a, h, delta = 10.0, 4.0, 0.01
+    model = fe.Model(friction=0.0, element_size=2.0, increments=1)
+    whole = [fe.box("lower", [-a, -a, 0], [a, a, h]), fe.box("upper", [-a, -a, h], [a, a, 2 * h])]
+    centre = np.zeros(3)
+    answers = []
+    for name, (blocks, axes) in (("whole", (whole, [])), ("quarter", fe.mirror_part(whole, centre))):
+        mesh = fe.mesh_blocks(blocks, model.element_size)
+        upper = next(k for k, b in enumerate(blocks) if b.name == "upper")
+
+        def on(k, axis, value):
+            return mesh.node_ids(k, np.abs(mesh.meshes[k].nodes[:, axis] - value) < 1e-9)
+
+        held = [fe.Constraint("BOTTOM", on(1 - upper, 2, 0), 1, 3)] + fe.symmetry_constraints(mesh, centre, axes)
+        top = on(upper, 2, 2 * h)
+        pressed = [fe.Constraint("TOP", top, 1, 2), fe.Constraint("TOP", top, 3, 3, -delta)]
+        watch = mesh.node_ids(upper, np.ones(len(mesh.meshes[upper].nodes), bool))
+        fe.write_input(work / f"{name}.inp", mesh, model, held, pressed, watch=watch)
+        stopped = fe.run_ccx(work / f"{name}.inp")
+        assert not stopped, f"ccx stopped on the {name} model: {stopped}"
+        printed = fe.read_dat(work / f"{name}.dat")
+        time, force = fe.totals(printed)[-1]
+        mean = fe.mean_displacements(printed, fe.symmetry_weights(mesh, centre, axes))[time]
+        answers.append((-force[2] * 2 ** len(axes), -mean[2]))
+    (f_whole, u_whole), (f_part, u_part) = answers
+    print(f"mirror: whole {f_whole:.6g} N, mean {u_whole:.6g} mm; quarter x 4 {f_part:.6g} N, mean {u_part:.6g} mm")
+    assert abs(f_part / f_whole - 1) < 0.01, "4 x the quarter's force is not the whole model's"
+    assert abs(u_part / u_whole - 1) < 0.01, "the quarter's weighted mean displacement is not the whole model's"
+
+
 def main() -> int:
     try:
         import gmsh  # noqa: F401
@@ -130,6 +164,7 @@ def main() -> int:
     prism(work)
     slab_contacts(tessera, work)
     slab_quarter(work)
+    mirror_press(work)
     return 0
 
 
