@@ -68,6 +68,11 @@ def box(name: str, lo, hi, fixed: bool = False) -> Block:
     return Block(name, fixed, corners, np.array(triangles))
 
 
+def slab_size(blocks: list[Block]) -> float:
+    """The slab's largest extent, mm: the scale of its tolerances."""
+    return float(np.ptp(np.vstack([b.vertices for b in blocks]), axis=0).max())
+
+
 # --- faces --------------------------------------------------------------------------------------
 
 @dataclasses.dataclass
@@ -278,7 +283,7 @@ def mesh_blocks(blocks: list[Block], element_size: float) -> Mesh:
         meshes = [mesh_block(b, f, element_size) for b, f in zip(blocks, faces)]
     finally:
         gmsh.finalize()
-    size = np.ptp(np.vstack([b.vertices for b in blocks]), axis=0).max()
+    size = slab_size(blocks)
     counts = np.cumsum([0] + [len(m.nodes) for m in meshes])
     elements = np.cumsum([0] + [len(m.tets) for m in meshes])
     return Mesh(blocks, faces, meshes, list(counts[:-1]), list(elements[:-1]),
@@ -321,7 +326,7 @@ def slab_supports(mesh: Mesh, loaded: int, punch_radius: float, deflection: floa
 def mirrored(blocks: list[Block], centre: np.ndarray, axis: int) -> bool:
     """Whether the slab is its own mirror image in the plane x_axis = centre[axis]: every block's
     vertices, mirrored, are those of a block with the same fixity (to 1e-6 of the slab)."""
-    size = np.ptp(np.vstack([b.vertices for b in blocks]), axis=0).max()
+    size = slab_size(blocks)
 
     def key(v):
         return np.array(sorted(map(tuple, np.round(v / (1e-6 * size)))))
@@ -386,30 +391,34 @@ def mirror_part(blocks: list[Block], centre: np.ndarray) -> tuple[list[Block], l
     return [c for c in (clipped(b, cuts) for b in blocks) if c is not None], axes
 
 
+def on_mirror_plane(mesh: Mesh, k: int, centre: np.ndarray, axis: int) -> np.ndarray:
+    """Which of block k's nodes lie on the plane x_axis = centre[axis] (to 1e-6 of the slab)."""
+    return np.abs(mesh.meshes[k].nodes[:, axis] - centre[axis]) <= 1e-6 * slab_size(mesh.blocks)
+
+
 def symmetry_weights(mesh: Mesh, centre: np.ndarray, axes: list[int]) -> dict[int, float]:
     """Node id -> 1/2 per mirror plane (mirror_part's axes) the node lies on: the whole slab's mean
     over a block's nodes is the part's mean with these weights (a node on a plane is one node of the
     whole slab, every other one of the part stands for 2 or 4)."""
-    size = np.ptp(np.vstack([b.vertices for b in mesh.blocks]), axis=0).max()
     weights = {}
     for k, m in enumerate(mesh.meshes):
-        on = sum((np.abs(m.nodes[:, axis] - centre[axis]) <= 1e-6 * size).astype(int) for axis in axes)
-        for i in np.flatnonzero(on if axes else np.zeros(len(m.nodes), bool)):
-            weights[mesh.node_offset[k] + int(i) + 1] = 0.5 ** int(on[i])
+        planes = np.zeros(len(m.nodes), int)
+        for axis in axes:
+            planes += on_mirror_plane(mesh, k, centre, axis)
+        for i in np.flatnonzero(planes):
+            weights[mesh.node_offset[k] + int(i) + 1] = 0.5 ** int(planes[i])
     return weights
 
 
 def symmetry_constraints(mesh: Mesh, centre: np.ndarray, axes: list[int]) -> list[Constraint]:
     """The symmetric part's planes (mirror_part's axes): nodes on x_a = centre_a held in x_a."""
-    size = np.ptp(np.vstack([b.vertices for b in mesh.blocks]), axis=0).max()
     held = []
     for axis in axes:
-        name = "SYM" + "XY"[axis]
         ids = []
-        for k, m in enumerate(mesh.meshes):
-            ids += mesh.node_ids(k, np.abs(m.nodes[:, axis] - centre[axis]) <= 1e-6 * size)
+        for k in range(len(mesh.meshes)):
+            ids += mesh.node_ids(k, on_mirror_plane(mesh, k, centre, axis))
         if ids:
-            held.append(Constraint(name, ids, axis + 1, axis + 1))
+            held.append(Constraint("SYM" + "XY"[axis], ids, axis + 1, axis + 1))
     return held
 
 

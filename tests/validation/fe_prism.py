@@ -27,6 +27,11 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench" / "validation"))
 
 
+def on(mesh, k: int, axis: int, value: float) -> list[int]:
+    """Global ids of block k's nodes with coordinate `axis` at `value` (mm)."""
+    return mesh.node_ids(k, np.abs(mesh.meshes[k].nodes[:, axis] - value) < 1e-9)
+
+
 def prism(work: Path) -> None:
     import fe_model as fe
     a, h, delta = 10.0, 4.0, 0.01
@@ -35,13 +40,10 @@ def prism(work: Path) -> None:
     mesh = fe.mesh_blocks(blocks, model.element_size)
     assert len(mesh.pairs) == 1, f"expected one contact pair, found {mesh.pairs}"
 
-    def on(k, axis, value):
-        return mesh.node_ids(k, np.abs(mesh.meshes[k].nodes[:, axis] - value) < 1e-9)
-
-    held = [fe.Constraint("SYMX", on(0, 0, 0) + on(1, 0, 0), 1, 1),
-            fe.Constraint("SYMY", on(0, 1, 0) + on(1, 1, 0), 2, 2),
-            fe.Constraint("BOTTOM", on(0, 2, 0), 3, 3)]
-    pressed = [fe.Constraint("TOP", on(1, 2, 2 * h), 3, 3, -delta)]
+    held = [fe.Constraint("SYMX", on(mesh, 0, 0, 0) + on(mesh, 1, 0, 0), 1, 1),
+            fe.Constraint("SYMY", on(mesh, 0, 1, 0) + on(mesh, 1, 1, 0), 2, 2),
+            fe.Constraint("BOTTOM", on(mesh, 0, 2, 0), 3, 3)]
+    pressed = [fe.Constraint("TOP", on(mesh, 1, 2, 2 * h), 3, 3, -delta)]
     fe.write_input(work / "prism.inp", mesh, model, held, pressed)
     stopped = fe.run_ccx(work / "prism.inp")
     assert not stopped, f"ccx stopped: {stopped}"
@@ -130,11 +132,8 @@ def mirror_press(work: Path) -> None:
         mesh = fe.mesh_blocks(blocks, model.element_size)
         upper = next(k for k, b in enumerate(blocks) if b.name == "upper")
 
-        def on(k, axis, value):
-            return mesh.node_ids(k, np.abs(mesh.meshes[k].nodes[:, axis] - value) < 1e-9)
-
-        held = [fe.Constraint("BOTTOM", on(1 - upper, 2, 0), 1, 3)] + fe.symmetry_constraints(mesh, centre, axes)
-        top = on(upper, 2, 2 * h)
+        held = [fe.Constraint("BOTTOM", on(mesh, 1 - upper, 2, 0), 1, 3)] + fe.symmetry_constraints(mesh, centre, axes)
+        top = on(mesh, upper, 2, 2 * h)
         pressed = [fe.Constraint("TOP", top, 1, 2), fe.Constraint("TOP", top, 3, 3, -delta)]
         watch = mesh.node_ids(upper, np.ones(len(mesh.meshes[upper].nodes), bool))
         fe.write_input(work / f"{name}.inp", mesh, model, held, pressed, watch=watch)
