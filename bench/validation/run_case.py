@@ -59,7 +59,6 @@ def main() -> int:
     args = parser.parse_args()
 
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
     blocks = fe.read_bundle(args.bundle)
     loaded = central_free_block(blocks)
     h = float(np.ptp(blocks[loaded].vertices[:, 2]))
@@ -74,6 +73,7 @@ def main() -> int:
             return 2
         loaded = next(k for k, b in enumerate(blocks) if b.name == name)
     share = 2 ** len(axes)  # the whole slab's load per the model's
+    out.mkdir(parents=True, exist_ok=True)  # (after the refusals: none leaves an empty folder)
     model = fe.Model(youngs_modulus=args.youngs_modulus / 1e6, poisson=args.poisson, friction=args.friction,
                      increments=args.increments, element_size=args.element_size * h, penalty_factor=args.penalty,
                      stick_factor=args.stick)
