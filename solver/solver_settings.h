@@ -28,7 +28,7 @@ struct ImplicitSettings {
   /// While the obstacles' reactions change smoothly (by at most smoothReactionChange of
   /// themselves over an increment, converged easily), the travel limit grows by doubling to this
   /// many times maxTravel; a change above 4 x smoothReactionChange sets it back.
-  double maxTravelGrowth = 4.0;
+  double maxTravelGrowth = 2.0;
   double smoothReactionChange = 0.01;
   /// Where equilibrium is lost (an obstacle's reaction drops by more than 4 x smoothReactionChange
   /// of itself in one increment: a slip, a block pushed through), the increment is cut until it is

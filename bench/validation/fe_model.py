@@ -251,6 +251,8 @@ class Model:
     stick_factor: float = 0.1          # stick slope = factor * K
     increments: int = 20               # the step in this many increments (more where ccx cuts them)
     element_size: float = 1.0          # mm
+    contact: str = "SURFACE TO SURFACE"  # CalculiX's contact pair type: or "MORTAR"
+    large_displacements: bool = False  # NLGEOM: the equations on the deformed geometry
 
     def contact_slope(self) -> float:
         """Penalty slope of the contact pressure against overclosure, MPa/mm."""
@@ -453,7 +455,7 @@ def write_input(path: Path, mesh: Mesh, model: Model, held: list[Constraint],
         # The slave side: a free block's face (a clamped block cannot follow the master's nodes).
         slave, master = ((a, i), (b, j)) if not blocks[a].fixed else ((b, j), (a, i))
         s, m = surface(*slave), surface(*master)
-        lines += ["*CONTACT PAIR, INTERACTION=BLOCKS, TYPE=SURFACE TO SURFACE", f"{s}, {m}"]
+        lines += [f"*CONTACT PAIR, INTERACTION=BLOCKS, TYPE={model.contact}", f"{s}, {m}"]
 
     sets = {c.name: c.nodes for c in held + pressed}
     if watch:
@@ -465,7 +467,8 @@ def write_input(path: Path, mesh: Mesh, model: Model, held: list[Constraint],
         lines += ["*BOUNDARY"] + [f"{c.name}, {c.first}, {c.last}" for c in held]
     # The step lasts `increments` (time units), in increments of 1 at most: the pressed values are
     # reached at its end, step time t gives t / increments of them (whole numbers, exact in ccx's input).
-    lines += ["*STEP, NLGEOM=NO, INC=10000", "*STATIC", f"1.0, {model.increments}, 1e-4, 1.0", "*BOUNDARY"]
+    nlgeom = "NLGEOM" if model.large_displacements else "NLGEOM=NO"
+    lines += [f"*STEP, {nlgeom}, INC=10000", "*STATIC", f"1.0, {model.increments}, 1e-4, 1.0", "*BOUNDARY"]
     lines += [f"{c.name}, {c.first}, {c.last}, {c.value:.12g}" for c in pressed]
     lines += [f"*NODE PRINT, NSET={pressed[0].name}, TOTALS=ONLY", "RF"]
     if watch:

@@ -50,6 +50,10 @@ def main() -> int:
                         help="contact slope K = PENALTY x E / element size (default 50)")
     parser.add_argument("--stick", type=float, default=0.1,
                         help="friction's stick slope = STICK x the contact slope (default 0.1)")
+    parser.add_argument("--contact", choices=["surface", "mortar"], default="surface",
+                        help="CalculiX's contact pairs: surface to surface (penalty, default) or mortar")
+    parser.add_argument("--large-displacements", action="store_true",
+                        help="NLGEOM: equilibrium on the deformed geometry (default: small displacements)")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--mirror", action="store_true",
                         help="model the slab's part x >= x_c and/or y >= y_c (x_c, y_c: the loaded block's "
@@ -76,7 +80,8 @@ def main() -> int:
     out.mkdir(parents=True, exist_ok=True)  # (after the refusals: none leaves an empty folder)
     model = fe.Model(youngs_modulus=args.youngs_modulus / 1e6, poisson=args.poisson, friction=args.friction,
                      increments=args.increments, element_size=args.element_size * h, penalty_factor=args.penalty,
-                     stick_factor=args.stick)
+                     stick_factor=args.stick, contact={"surface": "SURFACE TO SURFACE", "mortar": "MORTAR"}[args.contact],
+                     large_displacements=args.large_displacements)
     start = time.time()
     mesh = fe.mesh_blocks(blocks, model.element_size)
     held, pressed = fe.slab_supports(mesh, loaded, args.punch_radius * h, args.deflection * h, centre)
@@ -101,6 +106,7 @@ def main() -> int:
         "youngs_modulus_MPa": model.youngs_modulus, "poisson": model.poisson, "friction": model.friction,
         "element_size_mm": model.element_size, "contact_slope_MPa_per_mm": model.contact_slope(),
         "stick_slope_MPa_per_mm": model.stick_factor * model.contact_slope(),
+        "contact": args.contact, "large_displacements": model.large_displacements,
         "punch_radius_mm": args.punch_radius * h, "deflection_mm": args.deflection * h,
         "nodes": int(sum(len(m.nodes) for m in mesh.meshes)),
         "elements": int(sum(len(m.tets) for m in mesh.meshes)), "contact_pairs": len(mesh.pairs),
