@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Tables and figure of the 3 x 3 slab's peak (peak_convergence.sh): FE P_max against the contact
-penalty, and the secant stiffness P / delta_b over its start against the overlap left,
-f = 1 - delta_b / h (a penalty layer's law) and sqrt(f) (an elastic solid's, a flat punch).
+penalty and the increments, in small and large displacements, and the secant stiffness
+P / delta_b over its start against the overlap left, f = 1 - delta_b / h (a penalty layer's law)
+and sqrt(f) (an elastic solid's, a flat punch).
 
-Usage: peak_convergence.py OUT   (OUT/fe_cC_iN: run_case.py outputs; OUT/tessera_RULE: tessera run)
+Usage: peak_convergence.py OUT   (OUT/fe_cC_iN, OUT/fe_cC_iN_large: run_case.py outputs, the second
+       with --large-displacements; OUT/tessera_RULE: tessera run)
 Writes OUT/table.md and OUT/peak_convergence.png.
 """
 import json
@@ -30,25 +32,29 @@ def main() -> int:
 
     out = Path(sys.argv[1])
     runs = []
-    for d in sorted(out.glob("fe_c*_i*"), key=lambda p: tuple(map(int, re.findall(r"\d+", p.name)))):
-        c, n = map(int, re.findall(r"\d+", d.name))
-        runs.append((f"FE, C = {c}, {n} increments", c, n, np.genfromtxt(d / "curve.csv", delimiter=",", names=True),
+    folders = [(m, d) for d in out.glob("fe_c*_i*") if (m := re.fullmatch(r"fe_c(\d+)_i(\d+)(_large)?", d.name))]
+    for m, d in sorted(folders, key=lambda md: (bool(md[0][3]), int(md[0][1]), int(md[0][2]))):
+        c, n, large = int(m[1]), int(m[2]), bool(m[3])
+        name = f"FE, C = {c}, {n}" + (", large" if large else "")
+        runs.append((name, c, n, np.genfromtxt(d / "curve.csv", delimiter=",", names=True),
                      json.loads((d / "summary.json").read_text())))
     h = runs[0][4]["thickness_mm"]
-    rows = ["| penalty C | increments | FE P_max | δ_b(P_max) | K, first increment | FE run |", "|---|---|---|---|---|---|"]
+    rows = ["| penalty C | displacements | increments | FE P_max | δ_b(P_max) | K, first increment | FE run |",
+            "|---|---|---|---|---|---|---|"]
     for _, c, n, f, s in runs:
         k = int(np.argmax(f["load_N"]))
-        rows.append(f"| {c} | {n} | {f['load_N'][k]:.0f} N | {f['block_displacement_mm'][k]:.2f} mm "
+        geometry = "large" if s.get("large_displacements") else "small"
+        rows.append(f"| {c} | {geometry} | {n} | {f['load_N'][k]:.0f} N | {f['block_displacement_mm'][k]:.2f} mm "
                     f"| {f['load_N'][1] / f['block_displacement_mm'][1]:.0f} N/mm | {s['total_seconds'] / 60:.1f} min |")
     tessera = []
     for rule in ("span", "bars", "sections"):
         t = np.genfromtxt(out / f"tessera_{rule}" / "curve.csv", delimiter=",", names=True)
         r = json.loads((out / f"tessera_{rule}" / "summary.json").read_text())["response"]
         tessera.append((f"Tessera, {rule} rule", t))
-        rows.append(f"| Tessera, {rule} | | {r['peak_load_N']:.0f} N | {r['at_peak']['block_displacement_mm']:.2f} mm | | |")
+        rows.append(f"| Tessera, {rule} | | | {r['peak_load_N']:.0f} N | {r['at_peak']['block_displacement_mm']:.2f} mm | | |")
     # The secants over their start: the FE's first increment, Tessera's first sample past 0.05 mm.
     at = (0.5, 1.0, 1.5, 1.8)
-    rows += ["", "| δ_b | f | √f | " + " | ".join(f"C = {c}, {n}" for _, c, n, _, _ in runs) + " | "
+    rows += ["", "| δ_b | f | √f | " + " | ".join(name[4:] for name, _, _, _, _ in runs) + " | "
              + " | ".join(name for name, _ in tessera) + " |", "|---" * (3 + len(runs) + len(tessera)) + "|"]
     starts = [f["load_N"][1] / f["block_displacement_mm"][1] for _, _, _, f, _ in runs]
     tstarts = []
