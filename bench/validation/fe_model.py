@@ -241,6 +241,10 @@ def overlap_area(p: np.ndarray, q: np.ndarray, normal: np.ndarray) -> float:
 
 # --- the CalculiX input --------------------------------------------------------------------------
 
+# CalculiX's contact pair types by the names the scripts take (--contact).
+CONTACT_TYPES = {"surface": "SURFACE TO SURFACE", "mortar": "MORTAR"}
+
+
 @dataclasses.dataclass
 class Model:
     """Material, contact and load of one FE run (mm, N, MPa)."""
@@ -251,7 +255,7 @@ class Model:
     stick_factor: float = 0.1          # stick slope = factor * K
     increments: int = 20               # the step in this many increments (more where ccx cuts them)
     element_size: float = 1.0          # mm
-    contact: str = "SURFACE TO SURFACE"  # CalculiX's contact pair type: or "MORTAR"
+    contact: str = "surface"           # a key of CONTACT_TYPES
     large_displacements: bool = False  # NLGEOM: the equations on the deformed geometry
 
     def contact_slope(self) -> float:
@@ -272,6 +276,10 @@ class Mesh:
     def node_ids(self, k: int, select: np.ndarray) -> list[int]:
         """Global ids of block k's nodes where select (a mask over its nodes) holds."""
         return [self.node_offset[k] + i + 1 for i in np.flatnonzero(select)]
+
+    def nodes_at(self, k: int, axis: int, value: float) -> list[int]:
+        """Global ids of block k's nodes whose coordinate `axis` is `value` (mm, to 1e-9)."""
+        return self.node_ids(k, np.abs(self.meshes[k].nodes[:, axis] - value) < 1e-9)
 
 
 def mesh_blocks(blocks: list[Block], element_size: float) -> Mesh:
@@ -455,7 +463,7 @@ def write_input(path: Path, mesh: Mesh, model: Model, held: list[Constraint],
         # The slave side: a free block's face (a clamped block cannot follow the master's nodes).
         slave, master = ((a, i), (b, j)) if not blocks[a].fixed else ((b, j), (a, i))
         s, m = surface(*slave), surface(*master)
-        lines += [f"*CONTACT PAIR, INTERACTION=BLOCKS, TYPE={model.contact}", f"{s}, {m}"]
+        lines += [f"*CONTACT PAIR, INTERACTION=BLOCKS, TYPE={CONTACT_TYPES[model.contact]}", f"{s}, {m}"]
 
     sets = {c.name: c.nodes for c in held + pressed}
     if watch:

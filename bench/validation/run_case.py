@@ -50,7 +50,7 @@ def main() -> int:
                         help="contact slope K = PENALTY x E / element size (default 50)")
     parser.add_argument("--stick", type=float, default=0.1,
                         help="friction's stick slope = STICK x the contact slope (default 0.1)")
-    parser.add_argument("--contact", choices=["surface", "mortar"], default="surface",
+    parser.add_argument("--contact", choices=list(fe.CONTACT_TYPES), default="surface",
                         help="CalculiX's contact pairs: surface to surface (penalty, default) or mortar")
     parser.add_argument("--large-displacements", action="store_true",
                         help="NLGEOM: equilibrium on the deformed geometry (default: small displacements)")
@@ -80,7 +80,7 @@ def main() -> int:
     out.mkdir(parents=True, exist_ok=True)  # (after the refusals: none leaves an empty folder)
     model = fe.Model(youngs_modulus=args.youngs_modulus / 1e6, poisson=args.poisson, friction=args.friction,
                      increments=args.increments, element_size=args.element_size * h, penalty_factor=args.penalty,
-                     stick_factor=args.stick, contact={"surface": "SURFACE TO SURFACE", "mortar": "MORTAR"}[args.contact],
+                     stick_factor=args.stick, contact=args.contact,
                      large_displacements=args.large_displacements)
     start = time.time()
     mesh = fe.mesh_blocks(blocks, model.element_size)

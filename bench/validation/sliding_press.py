@@ -16,16 +16,11 @@ import argparse
 import sys
 from pathlib import Path
 
-import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import fe_model as fe  # noqa: E402
 
 SIDE, HEIGHT, PRESS, SLIDE, START = 4.0, 4.0, 0.01, 14.0, -8.0  # mm
-
-
-def on(mesh, k: int, axis: int, value: float) -> list[int]:
-    return mesh.node_ids(k, np.abs(mesh.meshes[k].nodes[:, axis] - value) < 1e-9)
 
 
 def normal_force(work: Path, start: float, slide: float, model: fe.Model) -> float:
@@ -35,8 +30,8 @@ def normal_force(work: Path, start: float, slide: float, model: fe.Model) -> flo
     blocks = [fe.box("block", [-12, -10, 0], [8, 10, HEIGHT]),
               fe.box("prism", [start, -SIDE / 2, HEIGHT], [start + SIDE, SIDE / 2, 2 * HEIGHT])]
     mesh = fe.mesh_blocks(blocks, model.element_size)
-    held = [fe.Constraint("BOTTOM", on(mesh, 0, 2, 0), 1, 3)]
-    top = on(mesh, 1, 2, 2 * HEIGHT)
+    held = [fe.Constraint("BOTTOM", mesh.nodes_at(0, 2, 0), 1, 3)]
+    top = mesh.nodes_at(1, 2, 2 * HEIGHT)
     pressed = [fe.Constraint("TOPZ", top, 3, 3, -PRESS), fe.Constraint("TOPX", top, 1, 1, slide),
                fe.Constraint("TOPY", top, 2, 2, 0.0)]
     fe.write_input(work / "press.inp", mesh, model, held, pressed)
@@ -52,14 +47,13 @@ def main() -> int:
     parser.add_argument("out")
     parser.add_argument("--increments", type=int, nargs="+", default=[10, 40])
     parser.add_argument("--large-displacements", action="store_true")
-    parser.add_argument("--contact", choices=["surface", "mortar"], default="surface")
+    parser.add_argument("--contact", choices=list(fe.CONTACT_TYPES), default="surface")
     args = parser.parse_args()
     out = Path(args.out)
 
     def model(increments):
         return fe.Model(friction=0.0, element_size=1.0, increments=increments, penalty_factor=200,
-                        large_displacements=args.large_displacements,
-                        contact={"surface": "SURFACE TO SURFACE", "mortar": "MORTAR"}[args.contact])
+                        large_displacements=args.large_displacements, contact=args.contact)
     in_place = normal_force(out / "in_place", START + SLIDE, 0.0, model(2))
     geometry = "large" if args.large_displacements else "small"
     print(f"pressed in place, half over the edge: {in_place:.4g} N ({args.contact} contact, {geometry} displacements)")

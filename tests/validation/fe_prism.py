@@ -27,11 +27,6 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench" / "validation"))
 
 
-def on(mesh, k: int, axis: int, value: float) -> list[int]:
-    """Global ids of block k's nodes with coordinate `axis` at `value` (mm)."""
-    return mesh.node_ids(k, np.abs(mesh.meshes[k].nodes[:, axis] - value) < 1e-9)
-
-
 def prism(work: Path) -> None:
     import fe_model as fe
     a, h, delta = 10.0, 4.0, 0.01
@@ -40,10 +35,10 @@ def prism(work: Path) -> None:
     mesh = fe.mesh_blocks(blocks, model.element_size)
     assert len(mesh.pairs) == 1, f"expected one contact pair, found {mesh.pairs}"
 
-    held = [fe.Constraint("SYMX", on(mesh, 0, 0, 0) + on(mesh, 1, 0, 0), 1, 1),
-            fe.Constraint("SYMY", on(mesh, 0, 1, 0) + on(mesh, 1, 1, 0), 2, 2),
-            fe.Constraint("BOTTOM", on(mesh, 0, 2, 0), 3, 3)]
-    pressed = [fe.Constraint("TOP", on(mesh, 1, 2, 2 * h), 3, 3, -delta)]
+    held = [fe.Constraint("SYMX", mesh.nodes_at(0, 0, 0) + mesh.nodes_at(1, 0, 0), 1, 1),
+            fe.Constraint("SYMY", mesh.nodes_at(0, 1, 0) + mesh.nodes_at(1, 1, 0), 2, 2),
+            fe.Constraint("BOTTOM", mesh.nodes_at(0, 2, 0), 3, 3)]
+    pressed = [fe.Constraint("TOP", mesh.nodes_at(1, 2, 2 * h), 3, 3, -delta)]
     fe.write_input(work / "prism.inp", mesh, model, held, pressed)
     stopped = fe.run_ccx(work / "prism.inp")
     assert not stopped, f"ccx stopped: {stopped}"
@@ -132,8 +127,8 @@ def mirror_press(work: Path) -> None:
         mesh = fe.mesh_blocks(blocks, model.element_size)
         upper = next(k for k, b in enumerate(blocks) if b.name == "upper")
 
-        held = [fe.Constraint("BOTTOM", on(mesh, 1 - upper, 2, 0), 1, 3)] + fe.symmetry_constraints(mesh, centre, axes)
-        top = on(mesh, upper, 2, 2 * h)
+        held = [fe.Constraint("BOTTOM", mesh.nodes_at(1 - upper, 2, 0), 1, 3)] + fe.symmetry_constraints(mesh, centre, axes)
+        top = mesh.nodes_at(upper, 2, 2 * h)
         pressed = [fe.Constraint("TOP", top, 1, 2), fe.Constraint("TOP", top, 3, 3, -delta)]
         watch = mesh.node_ids(upper, np.ones(len(mesh.meshes[upper].nodes), bool))
         fe.write_input(work / f"{name}.inp", mesh, model, held, pressed, watch=watch)
