@@ -34,10 +34,10 @@ def main() -> int:
     runs = []
     folders = [(m, d) for d in out.glob("fe_c*_i*") if (m := re.fullmatch(r"fe_c(\d+)_i(\d+)(_large)?", d.name))]
     for m, d in sorted(folders, key=lambda md: (bool(md[0][3]), int(md[0][1]), int(md[0][2]))):
-        c, n, large = int(m[1]), int(m[2]), bool(m[3])
-        name = f"FE, C = {c}, {n}" + (", large" if large else "")
-        runs.append((name, c, n, np.genfromtxt(d / "curve.csv", delimiter=",", names=True),
-                     json.loads((d / "summary.json").read_text())))
+        c, n = int(m[1]), int(m[2])
+        s = json.loads((d / "summary.json").read_text())
+        name = f"FE, C = {c}, {n}" + (", large" if s.get("large_displacements") else "")
+        runs.append((name, c, n, np.genfromtxt(d / "curve.csv", delimiter=",", names=True), s))
     h = runs[0][4]["thickness_mm"]
     rows = ["| penalty C | displacements | increments | FE P_max | δ_b(P_max) | K, first increment | FE run |",
             "|---|---|---|---|---|---|---|"]

@@ -16,7 +16,6 @@ import argparse
 import sys
 from pathlib import Path
 
-
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import fe_model as fe  # noqa: E402
 
