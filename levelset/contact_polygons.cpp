@@ -61,6 +61,28 @@ void touchingNodes(const Bundle& bundle, const AssemblyLevelSets& levelSets, int
 
 }  // namespace
 
+std::vector<ContactNode> contactNodes(const Bundle& bundle, const AssemblyLevelSets& levelSets, double touchDistance) {
+  std::vector<ContactNode> springs;
+  for (const auto& [a, b] : nearbyPairs(bundle, touchDistance)) {
+    if (bundle.bodies[a].fixed && bundle.bodies[b].fixed) continue;
+    for (const auto& [from, to] : {std::pair<int, int>{a, b}, std::pair<int, int>{b, a}}) {
+      const Body& p = bundle.bodies[from];
+      const Body& q = bundle.bodies[to];
+      const Eigen::Matrix3d rp = p.orientation.toRotationMatrix(), rq = q.orientation.toRotationMatrix();
+      const SurfaceNodes& nodes = bundle.shapes[p.shape].nodes;
+      for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const Eigen::Vector3d world = rp * nodes.positions[i] + p.position;
+        Eigen::Vector3d gradient;
+        if (std::abs(levelSets.phi(q.shape, rq.transpose() * (world - q.position), gradient)) > touchDistance) continue;
+        const Eigen::Vector3d outward = (rq * gradient).normalized();  // out of `to`
+        const double area = 0.5 * nodes.areas[i] * std::max(0.0, -(rp * nodes.normals[i]).dot(outward));
+        if (area > 0) springs.push_back({a, b, world, from == a ? Eigen::Vector3d(-outward) : outward, area});
+      }
+    }
+  }
+  return springs;
+}
+
 std::vector<ContactCorner> contactPolygons(const Bundle& bundle, const AssemblyLevelSets& levelSets, double touchDistance) {
   std::vector<ContactCorner> corners;
   int polygons = 0;

@@ -1,5 +1,7 @@
 #include "levelset/rigid_block_analysis.h"
 
+#include "levelset/elastic_settling.h"
+#include "levelset/rigid_block_freedoms.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Sparse>
@@ -15,57 +17,12 @@
 
 namespace tessera {
 
+using rigid_blocks::Entry;
+using rigid_blocks::Freedoms;
+using rigid_blocks::motionOf;
+using rigid_blocks::wrench;
+
 namespace {
-
-// The free bodies' degrees of freedom: body k's (v, L w) at columns 6 f(k) .. 6 f(k) + 5, with L
-// the bodies' median size so that every column has the unit of a velocity.
-struct Freedoms {
-  std::vector<int> index;  // per body: its rank among the free bodies, or -1
-  int count = 0;           // free bodies
-  double length = 1;       // m, L
-  std::vector<Eigen::Vector3d> position;  // m, per body: the point its rotation turns about
-
-  Freedoms(const std::vector<Eigen::Vector3d>& bodyPosition, const std::vector<char>& fixed, double bodyLength)
-      : length(bodyLength), position(bodyPosition) {
-    for (char f : fixed) {
-      index.push_back(f ? -1 : count);
-      count += !f;
-    }
-  }
-  explicit Freedoms(const Bundle& bundle) {
-    std::vector<double> sizes;
-    for (const Body& b : bundle.bodies) {
-      index.push_back(b.fixed ? -1 : count);
-      count += !b.fixed;
-      position.push_back(b.position);
-      sizes.push_back(boundingBox(bundle.shapes[b.shape].mesh.vertices).diagonal().norm());
-    }
-    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
-    if (!sizes.empty()) length = sizes[sizes.size() / 2];
-  }
-};
-
-struct Entry {
-  int column;
-  double value;
-};
-
-// The wrench a unit force `direction` at `point` on the corner's bodies exerts on their freedoms:
-// + on `second`, - on `first` (column, value), forces then moments / L. The same numbers are
-// row c of A for the corner's normal: the relative normal velocity n . (u_2(p) - u_1(p)).
-std::vector<Entry> wrench(const Freedoms& freedoms, const ContactCorner& c, const Eigen::Vector3d& direction) {
-  std::vector<Entry> entries;
-  for (const auto& [body, sign] : {std::pair<int, double>{c.second, 1.0}, std::pair<int, double>{c.first, -1.0}}) {
-    const int k = freedoms.index[body];
-    if (k < 0) continue;
-    const Eigen::Vector3d moment = (c.point - freedoms.position[body]).cross(direction) / freedoms.length;
-    for (int i = 0; i < 3; ++i) {  // rounding noise (1e-17 of a unit normal) left out: it only stalls the simplex
-      if (std::abs(direction[i]) > 1e-12) entries.push_back({6 * k + i, sign * direction[i]});
-      if (std::abs(moment[i]) > 1e-12) entries.push_back({6 * k + 3 + i, sign * moment[i]});
-    }
-  }
-  return entries;
-}
 
 // A GLPK problem, deleted with it.
 struct LinearProgram {
@@ -126,20 +83,6 @@ struct LinearProgram {
     return glp_get_status(get()) == GLP_OPT;
   }
 };
-
-std::vector<BodyMotion> motionOf(const Freedoms& freedoms, const Eigen::VectorXd& x) {
-  std::vector<BodyMotion> motion;
-  const double largest = x.cwiseAbs().maxCoeff();
-  if (!(largest > 0)) return motion;
-  for (int body = 0; body < static_cast<int>(freedoms.index.size()); ++body) {
-    const int k = freedoms.index[body];
-    if (k < 0) continue;
-    const Eigen::Matrix<double, 6, 1> u = x.segment<6>(6 * k) / largest;
-    if (u.cwiseAbs().maxCoeff() < 1e-3) continue;
-    motion.push_back({body, u.head<3>(), u.tail<3>()});
-  }
-  return motion;
-}
 
 // The motions with A x = 0 (sliding along every contact): their number, from the eigenvalues of
 // A^T A below 1e-12 of the largest (singular values below 1e-6), and one of them.
@@ -269,7 +212,7 @@ public:
   static constexpr int kSides = 8;  // of the friction pyramid
 
   EquilibriumProgram(const Bundle& bundle, const Freedoms& freedoms, const std::vector<ContactCorner>& corners)
-      : equations_(6 * freedoms.count), count_(static_cast<int>(corners.size())), open_(corners.size(), 0) {
+      : equations_(6 * freedoms.count), count_(static_cast<int>(corners.size())) {
     glp_add_rows(lp_.get(), equations_ + count_);
     // Equilibrium: the contact forces balance the weight (volume / L^3: density and g factored out).
     for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body) {
@@ -298,9 +241,6 @@ public:
     lp_.load(ri, ci, vi);
   }
 
-  /// Corners that carry nothing from now on.
-  void setOpen(const std::vector<char>& open) { open_ = open; }
-
   /// Feasible at friction mu? At 0 the friction columns are held at 0 (the presolver drops them).
   bool feasibleAt(double mu) {
     std::vector<int> index(kSides + 2);
@@ -309,7 +249,7 @@ public:
       for (int j = 0; j <= kSides; ++j) {
         index[j + 1] = column(c, j) + 1;
         value[j + 1] = j == 0 ? -mu : 1.0;
-        const bool held = open_[c] || (j > 0 && mu == 0);
+        const bool held = j > 0 && mu == 0;
         glp_set_col_bnds(lp_.get(), index[j + 1], held ? GLP_FX : GLP_LO, 0, 0);
       }
       glp_set_mat_row(lp_.get(), equations_ + c + 1, kSides + 1, index.data(), value.data());
@@ -333,62 +273,40 @@ private:
   static int column(int corner, int j) { return corner * (kSides + 1) + j; }
   LinearProgram lp_;
   int equations_, count_;
-  std::vector<char> open_;
 };
-
-// The admissible motion that lowers the weights most (max weight . x down over A x >= 0, |x| <= 1)
-// and the corners it opens ((A x)_c above 1e-6 of a motion whose largest velocity is 1).
-std::pair<Eigen::VectorXd, std::vector<char>> steepestFall(const Bundle& bundle, const Freedoms& freedoms,
-                                                           const std::vector<ContactCorner>& corners) {
-  const int count = static_cast<int>(corners.size()), columns = 6 * freedoms.count;
-  const std::vector<Eigen::Triplet<double>> triplets = contactMatrix(freedoms, corners);
-  Eigen::VectorXd lowering = Eigen::VectorXd::Zero(columns);
-  for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body)
-    if (freedoms.index[body] >= 0) lowering[6 * freedoms.index[body] + 2] = -bundle.shapes[bundle.bodies[body].shape].mass.volume;
-  const Eigen::VectorXd fall = bestMotion(triplets, count, columns, lowering, 0.0).first;
-  Eigen::VectorXd opening = Eigen::VectorXd::Zero(count);
-  for (const auto& t : triplets) opening[t.row()] += t.value() * fall[t.col()];
-  std::vector<char> open(count, 0);
-  for (int c = 0; c < count; ++c) open[c] = opening[c] > 1e-6;
-  return {fall, open};
-}
 
 }  // namespace
 
-StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction,
-                                bool findLeastFriction) {
-  const Freedoms freedoms(bundle);
+StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactNode>& nodes,
+                                const std::vector<ContactCorner>& corners, double friction, bool findLeastFriction) {
   StabilityVerdict verdict;
-  verdict.stable = true;
-  verdict.leastFriction = 0;
+  const ElasticSettling elastic = settleElastically(bundle, nodes, friction, findLeastFriction);
+  verdict.stable = elastic.stands;
+  verdict.leastFriction = elastic.leastFriction;
+  verdict.searched = elastic.searched;
+  verdict.falling = elastic.falling;
+  // Rigid-block equilibrium: below its least friction nothing, not even a prestress, holds it.
+  const Freedoms freedoms(bundle);
+  verdict.rigidLeastFriction = 0;
   if (freedoms.count == 0) return verdict;
   EquilibriumProgram program(bundle, freedoms, corners);
   if (program.feasibleAt(0)) return verdict;  // frictionless: no admissible motion lowers the weights (Farkas)
-  verdict.leastFriction.reset();
-  // Some admissible motion lowers the weights. The one that lowers them most opens some contacts:
-  // those carry nothing along it, so only the others may hold the bodies by friction. (Equilibrium
-  // with every contact would also accept forces the blocks could only get from a prestress they do
-  // not have: a triangle slab that so "stands" falls in a run.)
-  const auto [fall, open] = steepestFall(bundle, freedoms, corners);
-  program.setOpen(open);
-  verdict.falling = motionOf(freedoms, fall);
-  verdict.stable = friction > 0 && program.feasibleAt(friction);
+  verdict.rigidLeastFriction.reset();
   if (!findLeastFriction) return verdict;
-  verdict.searched = true;
-  double low = verdict.stable ? 0 : friction, high = verdict.stable ? friction : 10;
-  if (!verdict.stable && !program.feasibleAt(high)) return verdict;
+  double low = 0, high = 10;
+  if (!program.feasibleAt(high)) return verdict;
   high = std::min(high, program.frictionUsed());  // the solution at `high` is the last one solved
   if (program.feasibleAt(1e-3)) {  // wedged rigid blocks: any friction will do
-    verdict.leastFriction = 1e-3;
+    verdict.rigidLeastFriction = 1e-3;
     return verdict;
   }
-  low = std::max(low, 1e-3);
+  low = 1e-3;
   while (high - low > std::max(1e-3, 0.01 * high)) {  // to 1 % (the pyramid is within 8 % of the cone)
     const double mid = 0.5 * (low + high);
     if (program.feasibleAt(mid)) high = std::min(mid, program.frictionUsed());
     else low = mid;
   }
-  verdict.leastFriction = high;
+  verdict.rigidLeastFriction = high;
   return verdict;
 }
 
@@ -405,7 +323,9 @@ AssemblyStatics analyseAssembly(const Bundle& bundle, const AssemblyLevelSets& l
   statics.corners = corners.size();
   statics.friction = friction;
   statics.interlocking = checkInterlocking(bundle, corners);
-  statics.stability = checkStability(bundle, corners, friction, findLeastFriction);
+  const std::vector<ContactNode> nodes = contactNodes(bundle, levelSets, kTouchFraction * Freedoms(bundle).length);
+  statics.nodes = nodes.size();
+  statics.stability = checkStability(bundle, nodes, corners, friction, findLeastFriction);
   statics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return statics;
 }

@@ -38,27 +38,31 @@ struct InterlockingVerdict {
 double largestOpening(const std::vector<Eigen::Vector3d>& position, const std::vector<char>& fixed, double length,
                       const std::vector<ContactCorner>& corners, std::vector<char>* moving = nullptr);
 
-/// Static stability under gravity (-z), rigid-block equilibrium (docs/check.md): whether contact
-/// forces at the corners, compressive and within Coulomb's cone (an inscribed pyramid of 8 faces,
-/// which needs up to 1 / cos(22.5 deg) = 1.082 times the cone's friction), balance the weight of
-/// every free body, as compas_rbe (Whiting, Ochsendorf & Durand, "Procedural modeling of
-/// structurally-sound masonry buildings", ACM TOG 28, 2009) poses it; and the smallest friction
-/// coefficient for which they do (bisection to 1 % or 1e-3, up to 10). Without friction that is
-/// exact (Farkas: no admissible motion lowers the weight). With friction, equilibrium alone would
-/// accept forces the blocks could only get from a prestress; so the admissible motion that lowers
-/// the weight most (max weight . x down over A x >= 0, |x| <= 1) is found, and the contacts it
-/// opens carry nothing.
+/// Static stability under gravity (-z), docs/check.md. Whether the assembly, built unstressed,
+/// stands when its weight comes on: the LS-DEM run's contact springs at the nodes that touch
+/// (levelset/elastic_settling.h), loaded quasi-statically, at the given friction; and the least
+/// friction at which it does. Beside it the least friction of rigid-block equilibrium, as compas_rbe
+/// (Whiting, Ochsendorf & Durand, "Procedural modeling of structurally-sound masonry buildings",
+/// ACM TOG 28, 2009) poses it: compressive corner forces within Coulomb's cone (an inscribed pyramid
+/// of 8 faces, which needs up to 1 / cos(22.5 deg) = 1.082 times the cone's friction) balance every
+/// free body's weight (bisection to 1 % or 1e-3, up to 10). Below it nothing holds the assembly, not
+/// even a prestress; above it, equilibrium alone is not enough (it accepts forces the unstressed
+/// blocks cannot get): the elastic settling decides.
 struct StabilityVerdict {
-  bool stable = false;                  ///< at the given friction
-  /// The least friction, to 1 % or 1e-3 (0: none needed; rigid wedged blocks can need arbitrarily little,
-  /// with normal forces growing without bound); none: no friction up to 10 suffices (it needs tension).
+  bool stable = false;  ///< the unstressed assembly stands at the given friction
+  /// The least friction it stands at, to 1 % (0: none needed); none: not even at 10. Known when
+  /// searched, and when it does not stand (where its branch of equilibria ended).
   std::optional<double> leastFriction;
-  bool searched = false;  ///< the least friction was looked for (else only 0 is found)
-  std::vector<BodyMotion> falling;  ///< when it needs friction: the motion that lowers the weight most
+  bool searched = false;            ///< the least friction was looked for
+  std::vector<BodyMotion> falling;  ///< when it does not stand: the way the bodies go
+  /// Rigid-block equilibrium's least friction (1e-3: rigid wedged blocks, any friction with normal
+  /// forces growing without bound); none: not up to 10, or not searched and not 0.
+  std::optional<double> rigidLeastFriction;
 };
-/// `findLeastFriction` false: the verdict at `friction` alone (and whether it stands without).
-StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactCorner>& corners, double friction,
-                                bool findLeastFriction = true);
+/// `findLeastFriction` false: the verdict at `friction` alone (and whether rigid equilibrium needs
+/// no friction). `nodes`: the contact springs (contactNodes), `corners`: the contact polygons.
+StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactNode>& nodes,
+                                const std::vector<ContactCorner>& corners, double friction, bool findLeastFriction = true);
 
 /// Surfaces within this fraction of the bodies' median size touch, for the checks below: the
 /// rounding of exported coordinates (6 decimals in metres on 0.1 m parts: 1e-5) passes, a gap of
@@ -69,6 +73,7 @@ constexpr double kTouchFraction = 1e-4;
 /// kTouchFraction of the bodies' median size, at the given friction coefficient.
 struct AssemblyStatics {
   std::size_t pairs = 0, polygons = 0, corners = 0;  ///< touching pairs, contact polygons, their corners
+  std::size_t nodes = 0;                             ///< surface nodes touching another body (both ways)
   InterlockingVerdict interlocking;
   StabilityVerdict stability;
   double friction = 0;

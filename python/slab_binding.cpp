@@ -233,12 +233,14 @@ void bindBundleQueries(py::module_& m) {
         d["friction"] = friction;
         d["least_friction"] = s.stability.leastFriction ? py::object(py::float_(*s.stability.leastFriction)) : py::object(py::none());
         d["free_motion"] = motionList(bundle, s.interlocking.motion);
+        d["rigid_least_friction"] = s.stability.rigidLeastFriction ? py::object(py::float_(*s.stability.rigidLeastFriction)) : py::object(py::none());
         d["falling_motion"] = motionList(bundle, s.stability.falling);
         d["sliding_modes"] = s.interlocking.slidingModes;
         d["sliding_motion"] = motionList(bundle, s.interlocking.sliding);
         d["contact_pairs"] = s.pairs;
         d["contact_polygons"] = s.polygons;
         d["contact_corners"] = s.corners;
+        d["contact_nodes"] = s.nodes;
         d["seconds"] = s.seconds;
         return d;
       },

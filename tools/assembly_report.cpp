@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <string>
 
 namespace tessera::tools {
 
@@ -27,8 +28,17 @@ void printAssemblySummary(const Bundle& bundle, const AssemblySummary& summary, 
                 formatMillimetres(bundle.spanLength).c_str(), bundle.spanInterfaces);
 }
 
+namespace {
+std::string format3(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", value);
+  return text;
+}
+}  // namespace
+
 void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
-  std::printf("  faces         %zu pairs with a free body touch face to face, over %zu polygons (%zu corners)\n", s.pairs, s.polygons, s.corners);
+  std::printf("  faces         %zu pairs with a free body touch face to face, over %zu polygons (%zu corners); %zu surface nodes touch\n", s.pairs,
+              s.polygons, s.corners, s.nodes);
   const auto printMotion = [&](const std::vector<BodyMotion>& motion) {
     for (std::size_t i = 0; i < motion.size() && i < 5; ++i)
       std::printf("                %s: translation (%.2f, %.2f, %.2f), rotation (%.2f, %.2f, %.2f)\n", bundle.bodies[motion[i].body].name.c_str(),
@@ -49,17 +59,20 @@ void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
     printMotion(s.interlocking.sliding);
   }
   const auto& st = s.stability;
-  char least[96] = "no friction up to 10 suffices (it needs tension)";
-  if (!st.leastFriction && !st.searched) std::snprintf(least, sizeof least, "tessera check finds the least friction");
-  if (st.leastFriction && *st.leastFriction == 0) std::snprintf(least, sizeof least, "it stands without friction");
-  else if (st.leastFriction && *st.leastFriction <= 1e-3) std::snprintf(least, sizeof least, "least friction below 0.001: the blocks wedge, standing if squeezed");
-  else if (st.leastFriction) std::snprintf(least, sizeof least, "least friction %.3f", *st.leastFriction);
-  std::printf("  stable        %s at friction %.3g: %s (%s)\n", st.stable ? "yes" : "no", s.friction,
-              st.stable ? "compressive forces within the friction cones carry every free body's weight"
-                        : "the contacts its steepest way down keeps closed cannot carry every free body's weight",
-              least);
+  std::string least = "not even at friction 10";
+  if (st.leastFriction && *st.leastFriction == 0) least = "it stands without friction";
+  else if (st.leastFriction) least = (st.stable ? "least friction " : "it stands from friction ") + format3(*st.leastFriction);
+  else if (st.stable) least = "tessera check finds the least friction";
+  std::string rigid;
+  if (st.rigidLeastFriction && *st.rigidLeastFriction == 0) rigid = "; rigid-block equilibrium without friction";
+  else if (st.rigidLeastFriction && *st.rigidLeastFriction <= 1e-3) rigid = "; rigid-block equilibrium below 0.001: wedged rigid blocks";
+  else if (st.rigidLeastFriction) rigid = "; rigid-block equilibrium from " + format3(*st.rigidLeastFriction);
+  else if (st.searched) rigid = "; no rigid-block equilibrium up to 10";
+  std::printf("  stable        %s at friction %.3g: built unstressed, %s (%s%s)\n", st.stable ? "yes" : "no", s.friction,
+              st.stable ? "it settles onto its contacts under its weight" : "its contacts cannot settle it under its weight", least.c_str(),
+              rigid.c_str());
   if (!st.stable && !st.falling.empty()) {
-    std::printf("                that way down, opening the contacts it leaves:\n");
+    std::printf("                the way it goes:\n");
     printMotion(st.falling);
   }
   std::printf("  checked in %.2f s\n", s.seconds);

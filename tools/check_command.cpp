@@ -44,12 +44,14 @@ void runCheck(const CheckArguments& a) {
                      {"friction", statics.friction},
                      {"least_friction", statics.stability.leastFriction ? nlohmann::json(*statics.stability.leastFriction) : nlohmann::json(nullptr)},
                      {"free_motion", motionJson(bundle, statics.interlocking.motion)},
+                     {"rigid_least_friction", statics.stability.rigidLeastFriction ? nlohmann::json(*statics.stability.rigidLeastFriction) : nlohmann::json(nullptr)},
                      {"falling_motion", motionJson(bundle, statics.stability.falling)},
                      {"sliding_modes", statics.interlocking.slidingModes},
                      {"sliding_motion", motionJson(bundle, statics.interlocking.sliding)},
                      {"contact_pairs", statics.pairs},
                      {"contact_polygons", statics.polygons},
                      {"contact_corners", statics.corners},
+                     {"contact_nodes", statics.nodes},
                      {"seconds", statics.seconds}};
   std::cout << out.dump(2) << "\n";
 }

@@ -1,7 +1,8 @@
-// tessera check's rigid-block analyses on closed-form cases: a wedged block is interlocked and
-// stands without friction; a box among boxes slides upwards; a block on a ramp of slope alpha
-// stands from mu = tan(alpha) on (within the friction pyramid's 1 / cos(22.5 deg)), whichever body
-// is listed first.
+// tessera check's analyses on closed-form cases: a wedged block is interlocked and stands without
+// friction; a box among boxes slides upwards and, built unstressed, sinks at any friction (its
+// vertical faces take no normal force), though rigid equilibrium accepts it; a block on a ramp of
+// slope alpha stands from mu = tan(alpha) on (rigid equilibrium within the friction pyramid's
+// 1 / cos(22.5 deg)), whichever body is listed first.
 #include "geometry/block_generators.h"
 #include "levelset/assembly_checks.h"
 #include "levelset/generated_slab.h"
@@ -59,6 +60,7 @@ TEST_CASE("rigid blocks: a planar block wedged among fixed ones is interlocked a
   REQUIRE(s.interlocking.slidingModes == 0);
   REQUIRE(s.stability.stable);
   REQUIRE(s.stability.leastFriction == Approx(0.0));
+  REQUIRE(s.stability.rigidLeastFriction == Approx(0.0));
 }
 
 namespace {
@@ -164,8 +166,12 @@ TEST_CASE("rigid blocks: a box among boxes opens no contact but slides upwards, 
   REQUIRE(m.translation.head<2>().norm() < 1e-6);
   REQUIRE(m.rotation.norm() < 1e-6);
   // Rigid and wedged, any friction holds it (the normal forces may grow without bound); none does not.
-  REQUIRE(s.stability.stable);
-  REQUIRE(*s.stability.leastFriction <= 1e-3);
+  REQUIRE(*s.stability.rigidLeastFriction <= 1e-3);
+  // Built unstressed, nothing presses its vertical faces: it sinks at any friction, as in a run.
+  REQUIRE_FALSE(s.stability.stable);
+  REQUIRE_FALSE(s.stability.leastFriction);
+  REQUIRE(s.stability.falling.size() == 1);
+  REQUIRE(s.stability.falling.front().translation.z() == Approx(-1.0));
   REQUIRE_FALSE(analysed(bundle, 0).stability.stable);
 }
 
@@ -179,9 +185,14 @@ TEST_CASE("rigid blocks: a block on a ramp stands from mu = tan(alpha), lifts of
     REQUIRE_FALSE(s.interlocking.interlocked);  // it can be lifted off
     REQUIRE(s.interlocking.motion.size() == 1);
     REQUIRE(s.stability.stable);
-    REQUIRE(*s.stability.leastFriction >= std::tan(alpha) * 0.99);
-    REQUIRE(*s.stability.leastFriction <= std::tan(alpha) * pyramid * 1.01);
-    REQUIRE_FALSE(analysed(bundle, 0.9 * std::tan(alpha)).stability.stable);
-    REQUIRE(analysed(bundle, 1.01 * pyramid * std::tan(alpha)).stability.stable);
+    REQUIRE(*s.stability.leastFriction >= std::tan(alpha) * 0.99);  // unstressed, on its nodes: the cone
+    REQUIRE(*s.stability.leastFriction <= std::tan(alpha) * 1.02);
+    REQUIRE(*s.stability.rigidLeastFriction >= std::tan(alpha) * 0.99);  // rigid: the pyramid
+    REQUIRE(*s.stability.rigidLeastFriction <= std::tan(alpha) * pyramid * 1.01);
+    const AssemblyStatics below = analysed(bundle, 0.97 * std::tan(alpha));
+    REQUIRE_FALSE(below.stability.stable);
+    REQUIRE(below.stability.falling.size() == 1);
+    REQUIRE(below.stability.falling.front().translation.normalized().dot(Eigen::Vector3d(std::cos(alpha), 0, -std::sin(alpha))) > 0.99);  // down the slope
+    REQUIRE(analysed(bundle, 1.02 * std::tan(alpha)).stability.stable);
   }
 }

@@ -1,0 +1,36 @@
+#pragma once
+#include "levelset/bundle.h"
+#include "levelset/contact_polygons.h"
+#include "levelset/rigid_block_analysis.h"
+
+#include <optional>
+#include <vector>
+
+namespace tessera {
+
+/// Whether an assembly built unstressed stands when its weight comes on (docs/check.md, "Stability
+/// under gravity"). The rigid bodies rest on the LS-DEM run's own contact springs, at the surface
+/// nodes that touch another body (contactNodes): a normal spring that carries no tension and a
+/// tangential one of the same stiffness (the run's k_t / k_n = 1), both in proportion to the
+/// node's area, the tangential force capped by Coulomb's law at mu times the normal one. The weight
+/// comes on in proportion from zero on contacts at zero gap, so the solution is radial,
+/// u(lambda) = lambda u(1): one equilibrium R(u) = 0 at the full weight (no tangential spring
+/// unloads on the way), whose existence does not depend on the stiffness's scale (forces go as k u).
+/// Infinitesimal: the contact normals and lever arms are those of the assembly as built.
+///
+/// The equilibria are followed from every tangential spring sticking down in friction (each from
+/// the last, by pseudo-transient continuation); the branch ends at the least friction, below which
+/// no equilibrium is found near it: the bodies fall.
+struct ElasticSettling {
+  bool stands = false;                  ///< at the friction asked for
+  /// The least friction it stands at (to 1 %): when searched, or when it does not stand at the
+  /// friction asked for (where its branch ended); none when it does not stand at friction 10.
+  std::optional<double> leastFriction;
+  bool searched = false;
+  std::vector<BodyMotion> falling;      ///< when it does not stand: the way the bodies go
+  int solves = 0;                       ///< equilibria attempted
+};
+ElasticSettling settleElastically(const Bundle& bundle, const std::vector<ContactNode>& nodes, double friction,
+                                  bool findLeastFriction);
+
+}  // namespace tessera
