@@ -133,13 +133,16 @@ private:
 // "Convergence analysis of pseudo-transient continuation", SIAM J. Numer. Anal. 35, 1998): steps
 // (-J + I / dt) dx = R, Newton's for long pseudo-times dt and a damped relaxation for short ones,
 // which moves a body that no spring holds by a bounded amount. 1/dt starts at 1e-2 of the
-// largest stiffness; it shrinks as |R| falls (by the ratio of |R|, at least halving: switched
-// evolution relaxation), grows fourfold that ratio when |R| rises (so that a corner chattering
-// between two states is damped onto the kink), and a step that raises |R| tenfold is taken back
+// largest stiffness and follows |R| (switched evolution relaxation): it shrinks with |R| (at least
+// halving), grows fourfold the ratio when |R| rises by more than 5 % (a node chattering between
+// sticking and slipping, or open and closed, is damped onto the kink), and shrinks fourfold when
+// |R| stays (a damped step stuck at a kink is freed); a step that raises |R| tenfold is taken back
 // with 1/dt ten times larger. True when every component of R is below 1e-9 of the weight plus the
-// normal forces; false after kMostSteps steps, or kStall steps without halving |R|.
-constexpr int kMostSteps = 80;
-constexpr int kStall = 15;
+// normal forces; false after kMostSteps steps, or kStall steps without halving |R|. (At 80 and 15
+// the friction at which the 7 x 7 triangle slabs' branches ended was 15-370 % higher, and the
+// 15 x 15 square slab's at 4.4 instead of 0.066, with the old rule for a stalled |R|.)
+constexpr int kMostSteps = 400;
+constexpr int kStall = 60;
 
 bool equilibrium(const NodeSprings& springs, double mu, Eigen::VectorXd& x) {
   std::vector<Eigen::Triplet<double>> triplets;
@@ -170,7 +173,7 @@ bool equilibrium(const NodeSprings& springs, double mu, Eigen::VectorXd& x) {
       continue;
     }
     const double ratio = next.norm() / norm;
-    shift *= ratio < 1 ? std::min(0.5, ratio) : 4 * ratio;  // chattering damps it
+    shift *= ratio < 1 ? std::min(0.5, ratio) : ratio > 1.05 ? 4 * ratio : 0.25;
     x = trial;
     r = std::move(next);
     triplets = std::move(nextTriplets);
@@ -199,8 +202,13 @@ ElasticSettling settleElastically(const Bundle& bundle, const std::vector<Contac
   double mu = start, factor = 0.5;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(springs.columns()), y = x;
   if (!equilibrium(springs, -1, y)) y = x;  // started from every tangential spring sticking
-  bool going = equilibrium(springs, mu, y);  // false: the branch has ended (at mu)
   result.solves += 2;
+  // Without friction straight from there first: an assembly that stands so needs no path (the
+  // frictionless equilibrium, a convex problem's minimum, is unique in its forces).
+  Eigen::VectorXd frictionless = y;
+  ++result.solves;
+  if (equilibrium(springs, 0, frictionless)) return result;  // stands, least friction 0
+  bool going = equilibrium(springs, mu, y);  // false: the branch has ended (at mu)
   const bool startsStanding = going;
   while (going && mu > target) {
     x = y;

@@ -277,36 +277,52 @@ private:
 
 }  // namespace
 
-StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactNode>& nodes,
-                                const std::vector<ContactCorner>& corners, double friction, bool findLeastFriction) {
-  StabilityVerdict verdict;
-  const ElasticSettling elastic = settleElastically(bundle, nodes, friction, findLeastFriction);
-  verdict.stable = elastic.stands;
-  verdict.leastFriction = elastic.leastFriction;
-  verdict.searched = elastic.searched;
-  verdict.falling = elastic.falling;
-  // Rigid-block equilibrium: below its least friction nothing, not even a prestress, holds it.
-  const Freedoms freedoms(bundle);
-  verdict.rigidLeastFriction = 0;
-  if (freedoms.count == 0) return verdict;
-  EquilibriumProgram program(bundle, freedoms, corners);
-  if (program.feasibleAt(0)) return verdict;  // frictionless: no admissible motion lowers the weights (Farkas)
-  verdict.rigidLeastFriction.reset();
-  if (!findLeastFriction) return verdict;
-  double low = 0, high = 10;
-  if (!program.feasibleAt(high)) return verdict;
+namespace {
+
+// Rigid-block equilibrium's least friction, by bisection to 1 % or 1e-3 (the pyramid is within 8 %
+// of the cone): 1e-3 for wedged rigid blocks (any friction, with normal forces growing without
+// bound); none when friction 10 does not suffice.
+std::optional<double> rigidLeastFriction(EquilibriumProgram& program) {
+  double low = 1e-3, high = 10;
+  if (!program.feasibleAt(high)) return std::nullopt;
   high = std::min(high, program.frictionUsed());  // the solution at `high` is the last one solved
-  if (program.feasibleAt(1e-3)) {  // wedged rigid blocks: any friction will do
-    verdict.rigidLeastFriction = 1e-3;
-    return verdict;
-  }
-  low = 1e-3;
-  while (high - low > std::max(1e-3, 0.01 * high)) {  // to 1 % (the pyramid is within 8 % of the cone)
+  if (program.feasibleAt(low)) return low;
+  while (high - low > std::max(1e-3, 0.01 * high)) {
     const double mid = 0.5 * (low + high);
     if (program.feasibleAt(mid)) high = std::min(mid, program.frictionUsed());
     else low = mid;
   }
-  verdict.rigidLeastFriction = high;
+  return high;
+}
+
+}  // namespace
+
+StabilityVerdict checkStability(const Bundle& bundle, const AssemblyLevelSets& levelSets, const std::vector<ContactCorner>& corners,
+                                bool interlocked, double friction, bool findLeastFriction) {
+  StabilityVerdict verdict;
+  verdict.stable = true;
+  verdict.leastFriction = verdict.rigidLeastFriction = 0;
+  const Freedoms freedoms(bundle);
+  if (freedoms.count == 0) return verdict;
+  EquilibriumProgram program(bundle, freedoms, corners);
+  if (program.feasibleAt(0)) return verdict;  // frictionless: no admissible motion lowers the weights (Farkas)
+  verdict.searched = findLeastFriction;
+  verdict.rigidLeastFriction.reset();
+  if (findLeastFriction) verdict.rigidLeastFriction = rigidLeastFriction(program);
+  if (interlocked) {  // every admissible motion slides: friction holds it once the blocks wedge
+    verdict.stable = friction > 0 && program.feasibleAt(friction);
+    verdict.leastFriction = verdict.rigidLeastFriction;
+    return verdict;
+  }
+  // A way out, and friction needed: equilibrium alone would accept forces the unstressed blocks
+  // cannot get. The settling on the run's contact springs decides.
+  const std::vector<ContactNode> nodes = contactNodes(bundle, levelSets, kTouchFraction * freedoms.length);
+  const ElasticSettling settling = settleElastically(bundle, nodes, friction, findLeastFriction);
+  verdict.settled = true;
+  verdict.nodes = nodes.size();
+  verdict.stable = settling.stands;
+  verdict.leastFriction = settling.leastFriction;
+  verdict.falling = settling.falling;
   return verdict;
 }
 
@@ -323,9 +339,7 @@ AssemblyStatics analyseAssembly(const Bundle& bundle, const AssemblyLevelSets& l
   statics.corners = corners.size();
   statics.friction = friction;
   statics.interlocking = checkInterlocking(bundle, corners);
-  const std::vector<ContactNode> nodes = contactNodes(bundle, levelSets, kTouchFraction * Freedoms(bundle).length);
-  statics.nodes = nodes.size();
-  statics.stability = checkStability(bundle, nodes, corners, friction, findLeastFriction);
+  statics.stability = checkStability(bundle, levelSets, corners, statics.interlocking.interlocked, friction, findLeastFriction);
   statics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return statics;
 }

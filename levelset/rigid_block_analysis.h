@@ -38,31 +38,33 @@ struct InterlockingVerdict {
 double largestOpening(const std::vector<Eigen::Vector3d>& position, const std::vector<char>& fixed, double length,
                       const std::vector<ContactCorner>& corners, std::vector<char>* moving = nullptr);
 
-/// Static stability under gravity (-z), docs/check.md. Whether the assembly, built unstressed,
-/// stands when its weight comes on: the LS-DEM run's contact springs at the nodes that touch
-/// (levelset/elastic_settling.h), loaded quasi-statically, at the given friction; and the least
-/// friction at which it does. Beside it the least friction of rigid-block equilibrium, as compas_rbe
+/// Static stability under gravity (-z), docs/check.md. Rigid-block equilibrium, as compas_rbe
 /// (Whiting, Ochsendorf & Durand, "Procedural modeling of structurally-sound masonry buildings",
 /// ACM TOG 28, 2009) poses it: compressive corner forces within Coulomb's cone (an inscribed pyramid
 /// of 8 faces, which needs up to 1 / cos(22.5 deg) = 1.082 times the cone's friction) balance every
-/// free body's weight (bisection to 1 % or 1e-3, up to 10). Below it nothing holds the assembly, not
-/// even a prestress; above it, equilibrium alone is not enough (it accepts forces the unstressed
-/// blocks cannot get): the elastic settling decides.
+/// free body's weight; its least friction by bisection (to 1 % or 1e-3, up to 10). Without friction
+/// that decides (Farkas: no admissible motion lowers the weights), and for an interlocked assembly
+/// (every admissible motion slides; friction holds it once the blocks wedge). For an assembly with
+/// a way out that needs friction, equilibrium alone would accept forces the unstressed blocks cannot
+/// get: the verdict is then the elastic settling's (levelset/elastic_settling.h), on the run's
+/// contact springs, and so is the least friction.
 struct StabilityVerdict {
-  bool stable = false;  ///< the unstressed assembly stands at the given friction
-  /// The least friction it stands at, to 1 % (0: none needed); none: not even at 10. Known when
-  /// searched, and when it does not stand (where its branch of equilibria ended).
+  bool stable = false;  ///< at the given friction
+  /// The least friction it stands at (0: none needed; 1e-3: wedged rigid blocks, any friction);
+  /// none: not up to 10, or not searched.
   std::optional<double> leastFriction;
   bool searched = false;            ///< the least friction was looked for
-  std::vector<BodyMotion> falling;  ///< when it does not stand: the way the bodies go
-  /// Rigid-block equilibrium's least friction (1e-3: rigid wedged blocks, any friction with normal
-  /// forces growing without bound); none: not up to 10, or not searched and not 0.
+  bool settled = false;             ///< decided by the elastic settling
+  std::size_t nodes = 0;            ///< its contact springs (surface nodes touching, both ways)
+  std::vector<BodyMotion> falling;  ///< settled and not standing: the way the bodies go
+  /// Rigid-block equilibrium's least friction, when searched or 0: below it nothing, not even a
+  /// prestress, holds the assembly.
   std::optional<double> rigidLeastFriction;
 };
-/// `findLeastFriction` false: the verdict at `friction` alone (and whether rigid equilibrium needs
-/// no friction). `nodes`: the contact springs (contactNodes), `corners`: the contact polygons.
-StabilityVerdict checkStability(const Bundle& bundle, const std::vector<ContactNode>& nodes,
-                                const std::vector<ContactCorner>& corners, double friction, bool findLeastFriction = true);
+/// `findLeastFriction` false: the verdict at `friction` alone (and whether it stands without).
+/// `interlocked`: the interlocking verdict on the same corners.
+StabilityVerdict checkStability(const Bundle& bundle, const AssemblyLevelSets& levelSets, const std::vector<ContactCorner>& corners,
+                                bool interlocked, double friction, bool findLeastFriction = true);
 
 /// Surfaces within this fraction of the bodies' median size touch, for the checks below: the
 /// rounding of exported coordinates (6 decimals in metres on 0.1 m parts: 1e-5) passes, a gap of
@@ -73,7 +75,6 @@ constexpr double kTouchFraction = 1e-4;
 /// kTouchFraction of the bodies' median size, at the given friction coefficient.
 struct AssemblyStatics {
   std::size_t pairs = 0, polygons = 0, corners = 0;  ///< touching pairs, contact polygons, their corners
-  std::size_t nodes = 0;                             ///< surface nodes touching another body (both ways)
   InterlockingVerdict interlocking;
   StabilityVerdict stability;
   double friction = 0;

@@ -240,7 +240,8 @@ void bindBundleQueries(py::module_& m) {
         d["contact_pairs"] = s.pairs;
         d["contact_polygons"] = s.polygons;
         d["contact_corners"] = s.corners;
-        d["contact_nodes"] = s.nodes;
+        d["settled"] = s.stability.settled;
+        d["contact_nodes"] = s.stability.nodes;
         d["seconds"] = s.seconds;
         return d;
       },

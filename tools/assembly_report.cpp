@@ -37,8 +37,7 @@ std::string format3(double value) {
 }  // namespace
 
 void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
-  std::printf("  faces         %zu pairs with a free body touch face to face, over %zu polygons (%zu corners); %zu surface nodes touch\n", s.pairs,
-              s.polygons, s.corners, s.nodes);
+  std::printf("  faces         %zu pairs with a free body touch face to face, over %zu polygons (%zu corners)\n", s.pairs, s.polygons, s.corners);
   const auto printMotion = [&](const std::vector<BodyMotion>& motion) {
     for (std::size_t i = 0; i < motion.size() && i < 5; ++i)
       std::printf("                %s: translation (%.2f, %.2f, %.2f), rotation (%.2f, %.2f, %.2f)\n", bundle.bodies[motion[i].body].name.c_str(),
@@ -59,21 +58,28 @@ void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
     printMotion(s.interlocking.sliding);
   }
   const auto& st = s.stability;
-  std::string least = "not even at friction 10";
+  std::string least = "no friction up to 10 suffices";
   if (st.leastFriction && *st.leastFriction == 0) least = "it stands without friction";
-  else if (st.leastFriction) least = (st.stable ? "least friction " : "it stands from friction ") + format3(*st.leastFriction);
-  else if (st.stable) least = "tessera check finds the least friction";
-  std::string rigid;
-  if (st.rigidLeastFriction && *st.rigidLeastFriction == 0) rigid = "; rigid-block equilibrium without friction";
-  else if (st.rigidLeastFriction && *st.rigidLeastFriction <= 1e-3) rigid = "; rigid-block equilibrium below 0.001: wedged rigid blocks";
-  else if (st.rigidLeastFriction) rigid = "; rigid-block equilibrium from " + format3(*st.rigidLeastFriction);
-  else if (st.searched) rigid = "; no rigid-block equilibrium up to 10";
-  std::printf("  stable        %s at friction %.3g: built unstressed, %s (%s%s)\n", st.stable ? "yes" : "no", s.friction,
-              st.stable ? "it settles onto its contacts under its weight" : "its contacts cannot settle it under its weight", least.c_str(),
-              rigid.c_str());
-  if (!st.stable && !st.falling.empty()) {
-    std::printf("                the way it goes:\n");
-    printMotion(st.falling);
+  else if (st.leastFriction && *st.leastFriction <= 1e-3) least = "least friction below 0.001: the blocks wedge, standing if squeezed";
+  else if (st.leastFriction) least = (st.stable || st.searched ? "least friction " : "it stands from friction ") + format3(*st.leastFriction);
+  else if (!st.searched && (st.stable || !st.settled)) least = "tessera check finds the least friction";
+  if (!st.settled) {
+    std::printf("  stable        %s at friction %.3g: %s (%s)\n", st.stable ? "yes" : "no", s.friction,
+                st.stable ? "compressive forces within the friction cones carry every free body's weight"
+                          : "compressive forces within the friction cones cannot carry every free body's weight",
+                least.c_str());
+  } else {
+    std::string rigid = st.rigidLeastFriction ? "rigid-block equilibrium from " + format3(*st.rigidLeastFriction)
+                        : st.searched         ? "no rigid-block equilibrium up to 10"
+                                              : "";
+    std::printf("  stable        %s at friction %.3g: it has a way out and needs friction; built unstressed, %s (%s%s%s)\n",
+                st.stable ? "yes" : "no", s.friction,
+                st.stable ? "it settles onto the run's contact springs under its weight" : "the run's contact springs cannot settle it under its weight",
+                least.c_str(), rigid.empty() ? "" : "; ", rigid.c_str());
+    if (!st.stable && !st.falling.empty()) {
+      std::printf("                the way it goes:\n");
+      printMotion(st.falling);
+    }
   }
   std::printf("  checked in %.2f s\n", s.seconds);
 }

@@ -51,7 +51,8 @@ void runCheck(const CheckArguments& a) {
                      {"contact_pairs", statics.pairs},
                      {"contact_polygons", statics.polygons},
                      {"contact_corners", statics.corners},
-                     {"contact_nodes", statics.nodes},
+                     {"settled", statics.stability.settled},
+                     {"contact_nodes", statics.stability.nodes},
                      {"seconds", statics.seconds}};
   std::cout << out.dump(2) << "\n";
 }
