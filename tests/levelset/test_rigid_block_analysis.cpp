@@ -196,7 +196,7 @@ TEST_CASE("rigid blocks: a block on a ramp stands from mu = tan(alpha), lifts of
   }
 }
 
-TEST_CASE("stability: a triangle slab has a way out; rigid equilibrium holds it at mu = 0.23, the settling of the unstressed slab does not") {
+TEST_CASE("stability: a triangle slab has a way out, and rigid equilibrium holds it at mu = 0.23 but the settling of the unstressed slab does not") {
   const Bundle bundle = assembled(generatedSlabParts(slabOptions("triangle", 5, 10)));
   const AssemblyStatics s = analysed(bundle, 0.23);
   INFO("least friction " << s.stability.leastFriction.value_or(-1) << ", rigid " << s.stability.rigidLeastFriction.value_or(-1) << ", " << s.seconds << " s");
