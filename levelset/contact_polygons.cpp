@@ -38,10 +38,10 @@ struct TouchingNode {
   Eigen::Vector3d point, normal;  // world; normal from the pair's first body into its second
 };
 
-// The nodes of body `from` within `touch` of body `to`'s surface, with `to`'s outward normal there
-// (turned, if `flip`, so that it points from the pair's first body into its second).
-void touchingNodes(const Bundle& bundle, const AssemblyLevelSets& levelSets, int from, int to, double touch, bool flip,
-                   std::vector<TouchingNode>& out) {
+// Calls visit(i, point, own, outward) for every surface node i of body `from` within `touch` of
+// body `to`'s surface: its world point, its own outward normal and `to`'s outward normal there.
+template <class Visit>
+void forTouchingNodes(const Bundle& bundle, const AssemblyLevelSets& levelSets, int from, int to, double touch, Visit&& visit) {
   const Body& a = bundle.bodies[from];
   const Body& b = bundle.bodies[to];
   const Eigen::Matrix3d ra = a.orientation.toRotationMatrix(), rb = b.orientation.toRotationMatrix();
@@ -49,14 +49,20 @@ void touchingNodes(const Bundle& bundle, const AssemblyLevelSets& levelSets, int
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const Eigen::Vector3d world = ra * nodes.positions[i] + a.position;
     Eigen::Vector3d gradient;
-    const double phi = levelSets.phi(b.shape, rb.transpose() * (world - b.position), gradient);
-    if (std::abs(phi) > touch) continue;
-    const Eigen::Vector3d normal = (rb * gradient).normalized();
-    // Face against face: the node's own normal opposes the other surface's (not an edge of one
-    // resting against the other's face, nor a node beside the contact).
-    if ((ra * nodes.normals[i]).dot(normal) > -kSameNormal) continue;
-    out.push_back({world, flip ? Eigen::Vector3d(-normal) : normal});
+    if (std::abs(levelSets.phi(b.shape, rb.transpose() * (world - b.position), gradient)) > touch) continue;
+    visit(i, world, Eigen::Vector3d(ra * nodes.normals[i]), Eigen::Vector3d((rb * gradient).normalized()));
   }
+}
+
+// The nodes of body `from` touching body `to` face against face: the node's own normal opposes the
+// other surface's (not an edge of one resting against the other's face, nor a node beside the
+// contact), with `to`'s outward normal there (turned, if `flip`, so that it points from the pair's
+// first body into its second).
+void touchingNodes(const Bundle& bundle, const AssemblyLevelSets& levelSets, int from, int to, double touch, bool flip,
+                   std::vector<TouchingNode>& out) {
+  forTouchingNodes(bundle, levelSets, from, to, touch, [&](std::size_t, const Eigen::Vector3d& point, const Eigen::Vector3d& own, const Eigen::Vector3d& outward) {
+    if (own.dot(outward) <= -kSameNormal) out.push_back({point, flip ? Eigen::Vector3d(-outward) : outward});
+  });
 }
 
 }  // namespace
@@ -66,18 +72,12 @@ std::vector<ContactNode> contactNodes(const Bundle& bundle, const AssemblyLevelS
   for (const auto& [a, b] : nearbyPairs(bundle, touchDistance)) {
     if (bundle.bodies[a].fixed && bundle.bodies[b].fixed) continue;
     for (const auto& [from, to] : {std::pair<int, int>{a, b}, std::pair<int, int>{b, a}}) {
-      const Body& p = bundle.bodies[from];
-      const Body& q = bundle.bodies[to];
-      const Eigen::Matrix3d rp = p.orientation.toRotationMatrix(), rq = q.orientation.toRotationMatrix();
-      const SurfaceNodes& nodes = bundle.shapes[p.shape].nodes;
-      for (std::size_t i = 0; i < nodes.size(); ++i) {
-        const Eigen::Vector3d world = rp * nodes.positions[i] + p.position;
-        Eigen::Vector3d gradient;
-        if (std::abs(levelSets.phi(q.shape, rq.transpose() * (world - q.position), gradient)) > touchDistance) continue;
-        const Eigen::Vector3d outward = (rq * gradient).normalized();  // out of `to`
-        const double area = 0.5 * nodes.areas[i] * std::max(0.0, -(rp * nodes.normals[i]).dot(outward));
-        if (area > 0) springs.push_back({a, b, world, from == a ? Eigen::Vector3d(-outward) : outward, area});
-      }
+      const SurfaceNodes& nodes = bundle.shapes[bundle.bodies[from].shape].nodes;
+      forTouchingNodes(bundle, levelSets, from, to, touchDistance,
+                       [&, a = a, b = b, from = from](std::size_t i, const Eigen::Vector3d& point, const Eigen::Vector3d& own, const Eigen::Vector3d& outward) {
+                         const double area = 0.5 * nodes.areas[i] * std::max(0.0, -own.dot(outward));  // out of `to`
+                         if (area > 0) springs.push_back({a, b, point, from == a ? Eigen::Vector3d(-outward) : outward, area});
+                       });
     }
   }
   return springs;
