@@ -3,11 +3,9 @@
 #include "levelset/rigid_block_freedoms.h"
 
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace tessera {
 
@@ -25,10 +23,7 @@ using Matrix12 = Eigen::Matrix<double, 12, 12>;
 class NodeSprings {
 public:
   NodeSprings(const Bundle& bundle, const Freedoms& freedoms, const std::vector<ContactNode>& nodes)
-      : columns_(6 * freedoms.count), weight_(Eigen::VectorXd::Zero(6 * freedoms.count)) {
-    for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body)
-      if (freedoms.index[body] >= 0)
-        weight_[6 * freedoms.index[body] + 2] = bundle.shapes[bundle.bodies[body].shape].mass.volume / std::pow(freedoms.length, 3);
+      : columns_(6 * freedoms.count), weight_(rigid_blocks::weights(bundle, freedoms)) {
     for (const ContactNode& node : nodes) {
       if (pairs_.empty() || pairs_.back().first != node.first || pairs_.back().second != node.second)
         pairs_.push_back({node.first, node.second, freedoms.index[node.first], freedoms.index[node.second], springs_.size(), springs_.size()});
@@ -182,8 +177,6 @@ bool equilibrium(const NodeSprings& springs, double mu, Eigen::VectorXd& x) {
   return false;
 }
 
-constexpr double kMostFriction = 10;  // the highest friction tried
-
 }  // namespace
 
 ElasticSettling settleElastically(const Bundle& bundle, const std::vector<ContactNode>& nodes, double friction, bool findLeastFriction) {
@@ -191,29 +184,27 @@ ElasticSettling settleElastically(const Bundle& bundle, const std::vector<Contac
   ElasticSettling result;
   result.stands = true;
   result.leastFriction = 0;
-  result.searched = findLeastFriction;
   if (freedoms.count == 0) return result;
   const NodeSprings springs(bundle, freedoms, nodes);
-  // From every tangential spring sticking (a convex start), then friction 10 (or the one asked
-  // for, if higher), down: each friction's solution starts from the last one's, the step shrinking
-  // where the solution fails, until it is within 1 % (there the branch ends: with less friction the
-  // bodies fall) or the friction asked for is reached, or 0 when the least is searched.
-  const double target = findLeastFriction ? 0.0 : friction, start = std::max(kMostFriction, friction);
-  double mu = start, factor = 0.5;
+  // From every tangential spring sticking (a convex start), without friction straight from there:
+  // an assembly that stands so needs no path (a convex problem's minimum). Else from friction 10
+  // (or the one asked for, if higher) down: each friction's solution starts from the last one's,
+  // the step shrinking where the solution fails, until the last failed step is within 2 % (there
+  // the branch ends: with less friction the bodies fall) or 0 is reached; unless the least is
+  // searched, the same steps stop once the friction asked for is passed, so that both give one
+  // verdict.
   Eigen::VectorXd x = Eigen::VectorXd::Zero(springs.columns()), y = x;
-  if (!equilibrium(springs, -1, y)) y = x;  // started from every tangential spring sticking
-  result.solves += 2;
-  // Without friction straight from there first: an assembly that stands so needs no path (the
-  // frictionless equilibrium, a convex problem's minimum, is unique in its forces).
-  Eigen::VectorXd frictionless = y;
-  ++result.solves;
+  if (equilibrium(springs, -1, y)) x = y;  // every tangential spring sticking
+  Eigen::VectorXd frictionless = x;
   if (equilibrium(springs, 0, frictionless)) return result;  // stands, least friction 0
+  const double start = std::max(rigid_blocks::kMostFriction, friction);
+  double mu = start, factor = 0.5;
+  y = x;
   bool going = equilibrium(springs, mu, y);  // false: the branch has ended (at mu)
   const bool startsStanding = going;
-  while (going && mu > target) {
+  while (going && mu > 0 && (findLeastFriction || mu > friction)) {
     x = y;
-    const double next = mu * factor < 1e-3 ? target : std::max(target, mu * factor);
-    ++result.solves;
+    const double next = mu * factor < 1e-3 ? 0.0 : mu * factor;
     if (equilibrium(springs, next, y)) {
       mu = next;
       factor = std::max(0.5, factor * factor);
@@ -224,9 +215,9 @@ ElasticSettling settleElastically(const Bundle& bundle, const std::vector<Contac
     }
   }
   result.stands = startsStanding && mu <= friction;
-  if (!startsStanding) result.leastFriction.reset();  // not even at the start
+  if (!startsStanding) result.leastFriction.reset();                // not even at the start
   else if (findLeastFriction || !going) result.leastFriction = mu;  // where the branch ended (or 0)
-  else result.leastFriction.reset();  // stands at `friction`; the least not looked for
+  else result.leastFriction.reset();                                // stands at `friction`; the least not looked for
   if (!result.stands) result.falling = rigid_blocks::motionOf(freedoms, y - x);  // the last attempt's way down
   return result;
 }

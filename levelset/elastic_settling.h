@@ -20,15 +20,15 @@ namespace tessera {
 ///
 /// The equilibria are followed from every tangential spring sticking down in friction (each from
 /// the last, by pseudo-transient continuation); the branch ends at the least friction, below which
-/// no equilibrium is found near it: the bodies fall.
+/// no equilibrium is found near it: the bodies fall. `findLeastFriction` false: the same steps,
+/// stopped once `friction` is passed.
 struct ElasticSettling {
-  bool stands = false;                  ///< at the friction asked for
-  /// The least friction it stands at (to 1 %): when searched, or when it does not stand at the
-  /// friction asked for (where its branch ended); none when it does not stand at friction 10.
+  bool stands = false;  ///< at the friction asked for
+  /// The least friction it stands at (the last failed step within 2 % below it): 0 when it stands
+  /// without friction; else when searched, or where its branch ended when it does not stand at the
+  /// friction asked for; none when it does not stand at the start, max(10, friction).
   std::optional<double> leastFriction;
-  bool searched = false;
-  std::vector<BodyMotion> falling;      ///< when it does not stand: the way the bodies go
-  int solves = 0;                       ///< equilibria attempted
+  std::vector<BodyMotion> falling;  ///< when it does not stand: the last failed step, the bodies' way down
 };
 ElasticSettling settleElastically(const Bundle& bundle, const std::vector<ContactNode>& nodes, double friction,
                                   bool findLeastFriction);

@@ -115,15 +115,16 @@ std::vector<Eigen::Triplet<double>> contactMatrix(const Freedoms& freedoms, cons
   return triplets;
 }
 
-// The motion that opens the contacts most and closes none: max objective . x subject to A x >= 0
-// (rows bounded by `rowUpper` above: 0 none), |x| <= 1. Always feasible (x = 0) and bounded.
-// Returns x and the optimum.
-std::pair<Eigen::VectorXd, double> bestMotion(const std::vector<Eigen::Triplet<double>>& triplets, int rows, int columns,
-                                              const Eigen::VectorXd& objective, double rowUpper) {
+// The motion that opens the contacts most: max sum_c s_c, s = A x, 0 <= s <= 1, |x| <= 1 (always
+// feasible, x = 0, and bounded); an optimum above kOpen is a way out. Returns x and the optimum.
+constexpr double kOpen = 1e-6;
+std::pair<Eigen::VectorXd, double> mostOpening(const std::vector<Eigen::Triplet<double>>& triplets, int rows, int columns) {
   LinearProgram lp;
   glp_set_obj_dir(lp.get(), GLP_MAX);
   if (rows > 0) glp_add_rows(lp.get(), rows);
-  for (int c = 1; c <= rows; ++c) glp_set_row_bnds(lp.get(), c, rowUpper > 0 ? GLP_DB : GLP_LO, 0, rowUpper);
+  for (int c = 1; c <= rows; ++c) glp_set_row_bnds(lp.get(), c, GLP_DB, 0, 1);
+  Eigen::VectorXd objective = Eigen::VectorXd::Zero(columns);  // sum_c (A x)_c
+  for (const auto& t : triplets) objective[t.col()] += t.value();
   glp_add_cols(lp.get(), columns);
   for (int d = 1; d <= columns; ++d) {
     glp_set_col_bnds(lp.get(), d, GLP_DB, -1, 1);
@@ -141,15 +142,6 @@ std::pair<Eigen::VectorXd, double> bestMotion(const std::vector<Eigen::Triplet<d
   Eigen::VectorXd x(columns);
   for (int d = 0; d < columns; ++d) x[d] = glp_get_col_prim(lp.get(), d + 1);
   return {x, glp_get_obj_val(lp.get())};
-}
-
-// The motion that opens the contacts most: max sum_c s_c, s = A x, 0 <= s <= 1, |x| <= 1; an
-// optimum above kOpen is a way out.
-constexpr double kOpen = 1e-6;
-std::pair<Eigen::VectorXd, double> mostOpening(const std::vector<Eigen::Triplet<double>>& triplets, int rows, int columns) {
-  Eigen::VectorXd objective = Eigen::VectorXd::Zero(columns);
-  for (const auto& t : triplets) objective[t.col()] += t.value();
-  return bestMotion(triplets, rows, columns, objective, 1.0);
 }
 
 // The free bodies that touch nothing: each moves freely (lifted off, say).
@@ -214,13 +206,9 @@ public:
   EquilibriumProgram(const Bundle& bundle, const Freedoms& freedoms, const std::vector<ContactCorner>& corners)
       : equations_(6 * freedoms.count), count_(static_cast<int>(corners.size())) {
     glp_add_rows(lp_.get(), equations_ + count_);
-    // Equilibrium: the contact forces balance the weight (volume / L^3: density and g factored out).
-    for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body) {
-      const int k = freedoms.index[body];
-      if (k < 0) continue;
-      const double weight = bundle.shapes[bundle.bodies[body].shape].mass.volume / std::pow(freedoms.length, 3);
-      for (int i = 0; i < 6; ++i) glp_set_row_bnds(lp_.get(), 6 * k + i + 1, GLP_FX, i == 2 ? weight : 0.0, i == 2 ? weight : 0.0);
-    }
+    // Equilibrium: the contact forces balance the weight.
+    const Eigen::VectorXd weight = rigid_blocks::weights(bundle, freedoms);
+    for (int row = 0; row < equations_; ++row) glp_set_row_bnds(lp_.get(), row + 1, GLP_FX, weight[row], weight[row]);
     for (int c = 0; c < count_; ++c) glp_set_row_bnds(lp_.get(), equations_ + c + 1, GLP_UP, 0, 0);
     if (count_ > 0) glp_add_cols(lp_.get(), count_ * (kSides + 1));
     std::vector<int> ri, ci;
@@ -275,15 +263,11 @@ private:
   int equations_, count_;
 };
 
-}  // namespace
-
-namespace {
-
 // Rigid-block equilibrium's least friction, by bisection to 1 % or 1e-3 (the pyramid is within 8 %
 // of the cone): 1e-3 for wedged rigid blocks (any friction, with normal forces growing without
 // bound); none when friction 10 does not suffice.
 std::optional<double> rigidLeastFriction(EquilibriumProgram& program) {
-  double low = 1e-3, high = 10;
+  double low = 1e-3, high = rigid_blocks::kMostFriction;
   if (!program.feasibleAt(high)) return std::nullopt;
   high = std::min(high, program.frictionUsed());  // the solution at `high` is the last one solved
   if (program.feasibleAt(low)) return low;
@@ -301,12 +285,12 @@ StabilityVerdict checkStability(const Bundle& bundle, const AssemblyLevelSets& l
                                 bool interlocked, double friction, bool findLeastFriction) {
   StabilityVerdict verdict;
   verdict.stable = true;
+  verdict.searched = findLeastFriction;
   verdict.leastFriction = verdict.rigidLeastFriction = 0;
   const Freedoms freedoms(bundle);
   if (freedoms.count == 0) return verdict;
   EquilibriumProgram program(bundle, freedoms, corners);
   if (program.feasibleAt(0)) return verdict;  // frictionless: no admissible motion lowers the weights (Farkas)
-  verdict.searched = findLeastFriction;
   verdict.rigidLeastFriction.reset();
   if (findLeastFriction) verdict.rigidLeastFriction = rigidLeastFriction(program);
   if (interlocked) {  // every admissible motion slides: friction holds it once the blocks wedge

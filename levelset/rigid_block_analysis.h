@@ -51,7 +51,7 @@ double largestOpening(const std::vector<Eigen::Vector3d>& position, const std::v
 struct StabilityVerdict {
   bool stable = false;  ///< at the given friction
   /// The least friction it stands at (0: none needed; 1e-3: wedged rigid blocks, any friction);
-  /// none: not up to 10, or not searched.
+  /// none: not up to 10, or not searched (settled and not standing: where its branch ended).
   std::optional<double> leastFriction;
   bool searched = false;            ///< the least friction was looked for
   bool settled = false;             ///< decided by the elastic settling
@@ -78,7 +78,7 @@ struct AssemblyStatics {
   InterlockingVerdict interlocking;
   StabilityVerdict stability;
   double friction = 0;
-  double seconds = 0;  ///< wall-clock time of the contacts and the linear programs
+  double seconds = 0;  ///< wall-clock time of the contacts, the linear programs and the settling
 };
 AssemblyStatics analyseAssembly(const Bundle& bundle, const AssemblyLevelSets& levelSets, double friction, bool findLeastFriction = true);
 

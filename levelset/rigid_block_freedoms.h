@@ -13,6 +13,8 @@
 
 namespace tessera::rigid_blocks {
 
+constexpr double kMostFriction = 10;  // the highest friction coefficient the checks try
+
 // The free bodies' degrees of freedom: body k's (v, L w) at columns 6 f(k) .. 6 f(k) + 5, with L
 // the bodies' median size so that every column has the unit of a velocity.
 struct Freedoms {
@@ -40,6 +42,16 @@ struct Freedoms {
     if (!sizes.empty()) length = sizes[sizes.size() / 2];
   }
 };
+
+// Each free body's weight in the columns' units, volume / L^3 (density and g factored out), at
+// its column 6 f + 2 (the force along z).
+inline Eigen::VectorXd weights(const Bundle& bundle, const Freedoms& freedoms) {
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(6 * freedoms.count);
+  for (int body = 0; body < static_cast<int>(bundle.bodies.size()); ++body)
+    if (freedoms.index[body] >= 0)
+      w[6 * freedoms.index[body] + 2] = bundle.shapes[bundle.bodies[body].shape].mass.volume / std::pow(freedoms.length, 3);
+  return w;
+}
 
 struct Entry {
   int column;

@@ -72,7 +72,7 @@ void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
     std::string rigid = st.rigidLeastFriction ? "rigid-block equilibrium from " + format3(*st.rigidLeastFriction)
                         : st.searched         ? "no rigid-block equilibrium up to 10"
                                               : "";
-    std::printf("  stable        %s at friction %.3g: it has a way out and needs friction; built unstressed, %s (%s%s%s)\n",
+    std::printf("  stable        %s at friction %.3g: it has a way out, and rigid equilibrium needs friction; built unstressed, %s (%s%s%s)\n",
                 st.stable ? "yes" : "no", s.friction,
                 st.stable ? "it settles onto the run's contact springs under its weight" : "the run's contact springs cannot settle it under its weight",
                 least.c_str(), rigid.empty() ? "" : "; ", rigid.c_str());
