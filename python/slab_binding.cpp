@@ -228,6 +228,7 @@ void bindBundleQueries(py::module_& m) {
         if (!(friction >= 0)) throw InputError("friction must be a Coulomb coefficient >= 0");
         const AssemblyStatics s = analyseAssembly(bundle, AssemblyLevelSets(bundle), friction);
         py::dict d;
+        d["bundle"] = path;
         d["interlocked"] = s.interlocking.interlocked;
         d["stable"] = s.stability.stable;
         d["friction"] = friction;
