@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tessera {
 
@@ -46,48 +47,85 @@ public:
   int columns() const { return columns_; }
   double totalWeight() const { return weight_.sum(); }
 
-  /// The out-of-balance force R = sum (f_n n + T^T f_t) - W at x and friction mu, and its
-  /// Jacobian dR/dx as triplets (if asked for); the sum of the normal forces in `normalSum`.
-  /// Normal: f_n = k max(0, -n.x) (a closed spring at zero gap counts as loaded, so that the first
-  /// step from x = 0 sees every contact). Tangential: f_t = -k s (s = T x, sticking) or
-  /// -mu f_n s/|s| (slipping, when k |s| > mu f_n); none where the spring is open. mu < 0: every
-  /// tangential spring sticks, open or not (a convex problem, the start of the others).
-  Eigen::VectorXd residual(const Eigen::VectorXd& x, double mu, std::vector<Eigen::Triplet<double>>* jacobian, double* normalSum = nullptr) const {
-    Eigen::VectorXd r = -weight_;
-    if (jacobian) jacobian->clear();
+  /// Every spring's cap on its tangential force at x: Coulomb's mu f_n, f_n = k max(0, -n.x), so
+  /// none where the spring is open; mu < 0: no cap (every tangential spring sticks, open or not:
+  /// a convex problem, the start of the others).
+  Eigen::VectorXd caps(const Eigen::VectorXd& x, double mu) const {
+    Eigen::VectorXd c(springs_.size());
+    for (const Pair& pair : pairs_) {
+      const Vector12 local = gather(pair, x);
+      for (std::size_t i = pair.begin; i < pair.end; ++i)
+        c[i] = mu < 0 ? std::numeric_limits<double>::infinity() : mu * springs_[i].stiffness * std::max(0.0, -springs_[i].normal.dot(local));
+    }
+    return c;
+  }
+
+  /// With the tangential caps c held (Tresca's law), the springs store a convex energy
+  ///   Phi(x) = sum_i k/2 min(0, g)^2 + psi(|s|) + W.x,   g = n.x, s = T x,
+  ///   psi(r) = k r^2 / 2 (r <= c / k: sticking),  c r - c^2 / (2k) (beyond: slipping at the cap),
+  /// continuously differentiable, its gradient the out-of-balance force with the sign turned,
+  /// -R(x) = W - sum (f_n n + T^T f_t). Returns Phi, and, if asked for, the gradient, the
+  /// Hessian (triplets; at g = 0 the normal spring counts as closed, so the first step from x = 0
+  /// sees every contact) and the sum of the normal forces.
+  double energy(const Eigen::VectorXd& x, const Eigen::VectorXd& caps, Eigen::VectorXd* gradient,
+                std::vector<Eigen::Triplet<double>>* hessian, double* normalSum, double coulomb = -1) const {
+    double phi = weight_.dot(x);  // the weights' potential: W is the lift that holds them
+    if (gradient) *gradient = weight_;
+    if (hessian) hessian->clear();
     if (normalSum) *normalSum = 0;
     for (const Pair& pair : pairs_) {
       const Vector12 local = gather(pair, x);
-      Vector12 force = Vector12::Zero();
-      Matrix12 stiffness = Matrix12::Zero();
-      for (std::size_t c = pair.begin; c < pair.end; ++c) {
-        const Spring& s = springs_[c];
-        const double k = s.stiffness, gap = s.normal.dot(local);
-        if (gap > 0 && mu >= 0) continue;  // open: no force
-        const double normal = gap > 0 ? 0.0 : -k * gap;
-        if (normalSum) *normalSum += normal;
-        force += normal * s.normal;
-        if (jacobian && gap <= 0) stiffness.noalias() -= k * s.normal * s.normal.transpose();
+      Vector12 slope = Vector12::Zero();
+      Matrix12 curvature = Matrix12::Zero();
+      for (std::size_t i = pair.begin; i < pair.end; ++i) {
+        const Spring& s = springs_[i];
+        const double k = s.stiffness, gap = s.normal.dot(local), cap = caps[i];
+        if (gap <= 0) {
+          phi += 0.5 * k * gap * gap;
+          slope += k * gap * s.normal;
+          if (hessian) curvature.noalias() += k * s.normal * s.normal.transpose();
+          if (normalSum) *normalSum -= k * gap;
+        }
+        if (cap <= 0) continue;
         const Eigen::Vector2d slide(s.tangent[0].dot(local), s.tangent[1].dot(local));
         const double length = slide.norm();
-        if (mu < 0 || k * length <= mu * normal) {  // sticking: a linear spring
-          force -= k * (slide[0] * s.tangent[0] + slide[1] * s.tangent[1]);
-          if (jacobian) stiffness.noalias() -= k * (s.tangent[0] * s.tangent[0].transpose() + s.tangent[1] * s.tangent[1].transpose());
+        if (k * length <= cap) {  // sticking: a linear spring
+          phi += 0.5 * k * length * length;
+          slope += k * (slide[0] * s.tangent[0] + slide[1] * s.tangent[1]);
+          if (hessian) curvature.noalias() += k * (s.tangent[0] * s.tangent[0].transpose() + s.tangent[1] * s.tangent[1].transpose());
           continue;
         }
-        // Slipping: f_t = -mu k p s^ with p = -gap; df_t/dx = mu k s^ n^T - (mu f_n / |s|) (I - s^ s^T) T.
+        // Slipping: the force c s^ along the slide; its derivative (c / |s|) (I - s^ s^T) across it.
         const Eigen::Vector2d along = slide / length;
-        const Vector12 slideRow = along[0] * s.tangent[0] + along[1] * s.tangent[1];
-        force -= mu * normal * slideRow;
-        if (!jacobian) continue;
-        stiffness.noalias() += mu * k * slideRow * s.normal.transpose();
+        phi += cap * length - 0.5 * cap * cap / k;
+        slope += cap * (along[0] * s.tangent[0] + along[1] * s.tangent[1]);
+        if (!hessian) continue;
         const Vector12 across = -along[1] * s.tangent[0] + along[0] * s.tangent[1];
-        stiffness.noalias() -= mu * normal / length * across * across.transpose();
+        curvature.noalias() += cap / length * across * across.transpose();
+        if (coulomb > 0 && gap < 0)  // the cap's own change, c = mu k (-g): not symmetric
+          curvature.noalias() -= coulomb * k * (along[0] * s.tangent[0] + along[1] * s.tangent[1]) * s.normal.transpose();
       }
-      scatter(pair, force, r);
-      if (jacobian) scatterMatrix(pair, stiffness, *jacobian);
+      if (gradient) scatter(pair, slope, *gradient);
+      if (hessian) scatterMatrix(pair, curvature, *hessian);
     }
-    return r;
+    return phi;
+  }
+
+  /// The displacement of a body under its own weight on its own springs, the largest: the scale
+  /// against which a motion that grows without bound is told (a fall).
+  double displacementScale() const {
+    Eigen::VectorXd held = Eigen::VectorXd::Zero(weight_.size());
+    for (const Pair& pair : pairs_)
+      for (std::size_t i = pair.begin; i < pair.end; ++i) {
+        if (pair.freeFirst >= 0) held[6 * pair.freeFirst] += springs_[i].stiffness;
+        if (pair.freeSecond >= 0) held[6 * pair.freeSecond] += springs_[i].stiffness;
+      }
+    double scale = 0;
+    for (int b = 0; b < weight_.size(); b += 6) {
+      const double w = weight_.segment<6>(b).norm();
+      if (held[b] > 0) scale = std::max(scale, w / held[b]);
+    }
+    return scale > 0 ? scale : 1.0;
   }
 
 private:
@@ -124,45 +162,79 @@ private:
   std::vector<Pair> pairs_;
 };
 
-// R(x) = 0 at friction mu, from x, by pseudo-transient continuation (C. T. Kelley & D. E. Keyes,
-// "Convergence analysis of pseudo-transient continuation", SIAM J. Numer. Anal. 35, 1998): steps
-// (-J + I / dt) dx = R, Newton's for long pseudo-times dt and a damped relaxation for short ones,
-// which moves a body that no spring holds by a bounded amount. 1/dt starts at 1e-2 of the
-// largest stiffness and follows |R| (switched evolution relaxation): it shrinks with |R| (at least
-// halving), grows fourfold the ratio when |R| rises by more than 5 % (a node chattering between
-// sticking and slipping, or open and closed, is damped onto the kink), and shrinks fourfold when
-// |R| stays (a damped step stuck at a kink is freed); a step that raises |R| tenfold is taken back
-// with 1/dt ten times larger. True when every component of R is below 1e-9 of the weight plus the
-// normal forces; false after kMostSteps steps, or kStall steps without halving |R|. (At 80 and 15
-// the friction at which the 7 x 7 triangle slabs' branches ended was 15-370 % higher, and the
-// 15 x 15 square slab's at 4.4 instead of 0.066, with the old rule for a stalled |R|.)
-constexpr int kMostSteps = 400;
-constexpr int kStall = 60;
+// Every solver below stops when each component of the out-of-balance force is within kTolerance
+// of the weight plus the normal forces.
+constexpr double kTolerance = 1e-9;
 
-bool equilibrium(const NodeSprings& springs, double mu, Eigen::VectorXd& x) {
+// Phi's minimum with the caps held, by Newton's method on the convex energy with a backtracking
+// (Armijo) line search (J. Nocedal & S. J. Wright, "Numerical Optimization", 2nd ed., 2006, ch. 3):
+// each step solves (H + delta I) d = -grad Phi, delta = 1e-12 of H's largest diagonal (a motion no
+// spring holds gets a long step, not a singular matrix). Unbounded when x grows past 1e6 times the
+// displacement scale: the energy falls without end, the weights doing more work along a motion
+// than its springs can store or the held caps dissipate. Stalled after budget.newtonSteps.
+enum class Outcome { stands, falls, stalled };
+
+Outcome minimise(const NodeSprings& springs, const SettlingBudget& budget, const Eigen::VectorXd& caps, Eigen::VectorXd& x) {
+  const double bound = 1e6 * springs.displacementScale();
   std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+  Eigen::VectorXd gradient;
+  for (int step = 0; step < budget.newtonSteps; ++step) {
+    double normalSum = 0;
+    const double phi = springs.energy(x, caps, &gradient, &triplets, &normalSum);
+    if (gradient.cwiseAbs().maxCoeff() <= kTolerance * (springs.totalWeight() + normalSum)) return Outcome::stands;
+    Eigen::SparseMatrix<double> h(springs.columns(), springs.columns());
+    h.setFromTriplets(triplets.begin(), triplets.end());
+    const double delta = 1e-12 * std::max(h.diagonal().maxCoeff(), 1e-300);
+    for (int i = 0; i < springs.columns(); ++i) h.coeffRef(i, i) += delta;
+    solver.compute(h);
+    if (solver.info() != Eigen::Success) return Outcome::stalled;
+    const Eigen::VectorXd d = -solver.solve(gradient);
+    const double descent = gradient.dot(d), rounding = 1e-13 * std::abs(phi);  // below it, energies tie
+    double t = 1;
+    while (springs.energy(x + t * d, caps, nullptr, nullptr, nullptr) > phi + 1e-4 * t * descent + rounding)
+      if ((t *= 0.5) < 1e-12) return Outcome::stalled;
+    x += t * d;
+    if (x.cwiseAbs().maxCoeff() > bound) return Outcome::falls;
+  }
+  return Outcome::stalled;
+}
+
+// Coulomb's law itself, R(x) = 0 with the caps mu f_n(x), by pseudo-transient continuation (C. T.
+// Kelley & D. E. Keyes, "Convergence analysis of pseudo-transient continuation", SIAM J. Numer.
+// Anal. 35, 1998): steps (J + I / dt) dx = -grad, J the Jacobian of the out-of-balance force with
+// the sign turned (not symmetric: the caps move with x), Newton's for long pseudo-times dt and a
+// damped relaxation for short ones, which moves a body that no spring holds by a bounded amount.
+// 1/dt starts at `shift` times J's largest diagonal and follows |grad| (switched evolution
+// relaxation): it shrinks with |grad| (at least halving), grows fourfold the ratio when |grad|
+// rises by more than 5 % (a node chattering between sticking and slipping, or open and closed, is
+// damped onto the kink), and shrinks fourfold when |grad| stays (a damped step stuck at a kink is
+// freed); a step that raises |grad| tenfold is taken back with 1/dt ten times larger. False after
+// budget.relaxSteps steps, or budget.stall steps without halving |grad|.
+
+bool relax(const NodeSprings& springs, const SettlingBudget& budget, double mu, double shift, Eigen::VectorXd& x) {
+  std::vector<Eigen::Triplet<double>> triplets, nextTriplets;
   Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
-  double normalSum = 0, shift = -1, best = 1e300;
-  int improved = 0;  // the step at which |R| last fell below half its best
-  Eigen::VectorXd r = springs.residual(x, mu, &triplets, &normalSum);
-  for (int iteration = 0; iteration < kMostSteps && iteration - improved <= kStall; ++iteration) {
-    const double norm = r.norm();
-    if (norm < 0.5 * best) best = norm, improved = iteration;
-    if (r.cwiseAbs().maxCoeff() <= 1e-9 * (springs.totalWeight() + normalSum)) return true;
+  Eigen::VectorXd gradient, next;
+  double normalSum = 0, best = 1e300;
+  int improved = 0;  // the step at which |grad| last fell below half its best
+  springs.energy(x, springs.caps(x, mu), &gradient, &triplets, &normalSum, mu);
+  for (int step = 0; step < budget.relaxSteps && step - improved <= budget.stall; ++step) {
+    const double norm = gradient.norm();
+    if (norm < 0.5 * best) best = norm, improved = step;
+    if (gradient.cwiseAbs().maxCoeff() <= kTolerance * (springs.totalWeight() + normalSum)) return true;
     Eigen::SparseMatrix<double> j(springs.columns(), springs.columns());
     j.setFromTriplets(triplets.begin(), triplets.end());
-    j = -j;
     const double largest = std::max(j.diagonal().cwiseAbs().maxCoeff(), 1e-300);
-    if (shift < 0) shift = 1e-2 * largest;
+    if (step == 0) shift *= largest;
     shift = std::max(shift, 1e-10 * largest);
     for (int i = 0; i < springs.columns(); ++i) j.coeffRef(i, i) += shift;
     j.makeCompressed();
     solver.compute(j);
     if (solver.info() != Eigen::Success) return false;
-    const Eigen::VectorXd trial = x + solver.solve(r);
-    std::vector<Eigen::Triplet<double>> nextTriplets;
+    const Eigen::VectorXd trial = x - solver.solve(gradient);
     double nextNormal = 0;
-    Eigen::VectorXd next = springs.residual(trial, mu, &nextTriplets, &nextNormal);
+    springs.energy(trial, springs.caps(trial, mu), &next, &nextTriplets, &nextNormal, mu);
     if (!(next.norm() < 10 * norm)) {  // taken back
       shift *= 10;
       continue;
@@ -170,16 +242,79 @@ bool equilibrium(const NodeSprings& springs, double mu, Eigen::VectorXd& x) {
     const double ratio = next.norm() / norm;
     shift *= ratio < 1 ? std::min(0.5, ratio) : ratio > 1.05 ? 4 * ratio : 0.25;
     x = trial;
-    r = std::move(next);
-    triplets = std::move(nextTriplets);
+    std::swap(gradient, next);
+    std::swap(triplets, nextTriplets);
     normalSum = nextNormal;
   }
   return false;
 }
 
+// Coulomb's law as a fixed point of Tresca's (P. D. Panagiotopoulos, "A nonlinear programming
+// approach to the unilateral contact- and friction-boundary value problem", Ing.-Arch. 44, 1975):
+// the caps mu f_n taken from x, Phi minimised with them held (a convex problem: its minimum is
+// found or shown unbounded), again, each round's caps extrapolated from the last kMemory rounds'
+// (Anderson mixing: H. F. Walker & P. Ni, "Anderson acceleration for fixed-point iterations",
+// SIAM J. Numer. Anal. 49, 2011), for budget.rounds or until the out-of-balance force with the minimum's
+// own caps is within kNear of the loads; then relaxed to the tolerance from the closest round.
+// Falls when a minimum is unbounded with the caps of the last minimum itself (not extrapolated).
+constexpr int kMemory = 5;
+constexpr double kNear = 1e-3;
+
+Outcome tresca(const NodeSprings& springs, const SettlingBudget& budget, double mu, Eigen::VectorXd& x) {
+  Eigen::VectorXd caps = springs.caps(x, mu), held = caps, gradient, last, lastOff, closest = x, before;
+  std::vector<Eigen::VectorXd> dCaps, dOff;  // the last rounds' changes of g(c) and of g(c) - c
+  double closestResidual = 1e300;
+  for (int round = 0; round < budget.rounds; ++round) {
+    before = x;
+    const Outcome minimum = minimise(springs, budget, held, x);
+    if (minimum == Outcome::falls && !dOff.empty()) {  // perhaps the extrapolation: again with plain caps
+      x = before;
+      held = caps;
+      dCaps.clear(), dOff.clear();
+      --round;
+      continue;
+    }
+    if (minimum != Outcome::stands) return minimum;
+    caps = springs.caps(x, mu);
+    double normalSum = 0;
+    springs.energy(x, caps, &gradient, nullptr, &normalSum);
+    const double residual = gradient.cwiseAbs().maxCoeff();
+    if (residual < closestResidual) closestResidual = residual, closest = x;
+    if (residual <= kNear * (springs.totalWeight() + normalSum)) break;
+    const Eigen::VectorXd off = caps - held;
+    if (round > 0) {
+      dCaps.push_back(caps - last);
+      dOff.push_back(off - lastOff);
+      if (static_cast<int>(dOff.size()) > kMemory) dCaps.erase(dCaps.begin()), dOff.erase(dOff.begin());
+    }
+    last = caps;
+    lastOff = off;
+    held = caps;
+    if (dOff.empty()) continue;
+    Eigen::MatrixXd offs(off.size(), dOff.size()), capss(off.size(), dOff.size());
+    for (std::size_t j = 0; j < dOff.size(); ++j) offs.col(j) = dOff[j], capss.col(j) = dCaps[j];
+    held = (caps - capss * offs.colPivHouseholderQr().solve(off)).cwiseMax(0.0);
+  }
+  x = closest;
+  return relax(springs, budget, mu, 1e-6, x) ? Outcome::stands : Outcome::stalled;
+}
+
+// R(x) = 0 at friction mu from the equilibrium x of a neighbouring friction: first relaxed from
+// there, damped (the solution that the bodies, slowly let go, would settle into); failing that,
+// by Tresca's fixed point, which also tells a fall. x: the solution, or the last attempt.
+Outcome equilibrium(const NodeSprings& springs, const SettlingBudget& budget, double mu, Eigen::VectorXd& x) {
+  Eigen::VectorXd y = x;
+  if (relax(springs, budget, mu, 1e-2, y)) {
+    x = y;
+    return Outcome::stands;
+  }
+  return tresca(springs, budget, mu, x);
+}
+
 }  // namespace
 
-ElasticSettling settleElastically(const Bundle& bundle, const std::vector<ContactNode>& nodes, double friction, bool findLeastFriction) {
+ElasticSettling settleElastically(const Bundle& bundle, const std::vector<ContactNode>& nodes, double friction, bool findLeastFriction,
+                                  const SettlingBudget& budget) {
   const Freedoms freedoms(bundle);
   ElasticSettling result;
   result.stands = true;
@@ -194,18 +329,28 @@ ElasticSettling settleElastically(const Bundle& bundle, const std::vector<Contac
   // searched, the same steps stop once the friction asked for is passed, so that both give one
   // verdict.
   Eigen::VectorXd x = Eigen::VectorXd::Zero(springs.columns()), y = x;
-  if (equilibrium(springs, -1, y)) x = y;  // every tangential spring sticking
+  const Outcome sticking = minimise(springs, budget, springs.caps(x, -1), y);  // every tangential spring sticking
+  if (sticking != Outcome::stands) {  // unbounded: a body no contact holds; stalled: undecided
+    result.stands = false;
+    result.leastFriction.reset();
+    result.decided = sticking == Outcome::falls;
+    result.falling = rigid_blocks::motionOf(freedoms, y);
+    return result;
+  }
+  x = y;
   Eigen::VectorXd frictionless = x;
-  if (equilibrium(springs, 0, frictionless)) return result;  // stands, least friction 0
+  if (minimise(springs, budget, springs.caps(x, 0), frictionless) == Outcome::stands) return result;  // least friction 0
   const double start = std::max(rigid_blocks::kMostFriction, friction);
   double mu = start, factor = 0.5;
   y = x;
-  bool going = equilibrium(springs, mu, y);  // false: the branch has ended (at mu)
+  const Outcome first = equilibrium(springs, budget, mu, y);
+  result.decided = first != Outcome::stalled;
+  bool going = first == Outcome::stands;  // false: the branch has ended (at mu)
   const bool startsStanding = going;
   while (going && mu > 0 && (findLeastFriction || mu > friction)) {
     x = y;
     const double next = mu * factor < 1e-3 ? 0.0 : mu * factor;
-    if (equilibrium(springs, next, y)) {
+    if (equilibrium(springs, budget, next, y) == Outcome::stands) {
       mu = next;
       factor = std::max(0.5, factor * factor);
     } else if ((factor = std::sqrt(factor)) > 0.99) {

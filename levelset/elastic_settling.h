@@ -18,10 +18,11 @@ namespace tessera {
 /// unloads on the way), whose existence does not depend on the stiffness's scale (forces go as k u).
 /// Infinitesimal: the contact normals and lever arms are those of the assembly as built.
 ///
-/// The equilibria are followed from every tangential spring sticking down in friction (each from
-/// the last, by pseudo-transient continuation); the branch ends at the least friction, below which
-/// no equilibrium is found near it: the bodies fall. `findLeastFriction` false: the same steps,
-/// stopped once `friction` is passed.
+/// The equilibria are followed from every tangential spring sticking down in friction, each from
+/// the last: relaxed from it by pseudo-transient continuation, or else by Tresca's fixed point,
+/// whose convex minima also show a fall (the weights' work unbounded); the branch ends at the
+/// least friction, below which no equilibrium is found near it: the bodies fall.
+/// `findLeastFriction` false: the same steps, stopped once `friction` is passed.
 struct ElasticSettling {
   bool stands = false;  ///< at the friction asked for
   /// The least friction it stands at (the last failed step within 2 % below it): 0 when it stands
@@ -29,8 +30,20 @@ struct ElasticSettling {
   /// friction asked for; none when it does not stand at the start, max(10, friction).
   std::optional<double> leastFriction;
   std::vector<BodyMotion> falling;  ///< when it does not stand: the last failed step, the bodies' way down
+  /// False when at the start (friction max(10, friction)) neither an equilibrium was found nor a fall
+  /// shown (every solver stalled): then `stands` false says only that none was found.
+  bool decided = true;
+};
+/// The solvers' step limits (docs/check.md, "The elastic settling"): Newton steps per convex
+/// minimum, relaxation steps per equilibrium and those without halving the out-of-balance force,
+/// rounds of Tresca's fixed point.
+struct SettlingBudget {
+  int newtonSteps = 100;
+  int relaxSteps = 100;
+  int stall = 15;
+  int rounds = 20;
 };
 ElasticSettling settleElastically(const Bundle& bundle, const std::vector<ContactNode>& nodes, double friction,
-                                  bool findLeastFriction);
+                                  bool findLeastFriction, const SettlingBudget& budget = {});
 
 }  // namespace tessera

@@ -293,17 +293,20 @@ StabilityVerdict checkStability(const Bundle& bundle, const AssemblyLevelSets& l
   if (program.feasibleAt(0)) return verdict;  // frictionless: no admissible motion lowers the weights (Farkas)
   verdict.rigidLeastFriction.reset();
   if (findLeastFriction) verdict.rigidLeastFriction = rigidLeastFriction(program);
-  if (interlocked) {  // every admissible motion slides: friction holds it once the blocks wedge
+  // Friction needed: equilibrium alone would accept forces the unstressed blocks cannot get (a
+  // prestress: any friction holds a box between fixed boxes). The settling on the run's contact
+  // springs decides; where it neither stands nor shows a fall at the start (its solvers stall, as
+  // on the 31 x 31 slab), rigid equilibrium decides an interlocked assembly, whose every
+  // admissible motion slides (once the blocks wedge, friction holds them).
+  const std::vector<ContactNode> nodes = contactNodes(bundle, levelSets, kTouchFraction * freedoms.length);
+  const ElasticSettling settling = settleElastically(bundle, nodes, friction, findLeastFriction);
+  verdict.nodes = nodes.size();
+  if (!settling.decided && interlocked) {
     verdict.stable = friction > 0 && program.feasibleAt(friction);
     verdict.leastFriction = verdict.rigidLeastFriction;
     return verdict;
   }
-  // A way out, and friction needed: equilibrium alone would accept forces the unstressed blocks
-  // cannot get. The settling on the run's contact springs decides.
-  const std::vector<ContactNode> nodes = contactNodes(bundle, levelSets, kTouchFraction * freedoms.length);
-  const ElasticSettling settling = settleElastically(bundle, nodes, friction, findLeastFriction);
   verdict.settled = true;
-  verdict.nodes = nodes.size();
   verdict.stable = settling.stands;
   verdict.leastFriction = settling.leastFriction;
   verdict.falling = settling.falling;

@@ -68,11 +68,15 @@ void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
                 st.stable ? "compressive forces within the friction cones carry every free body's weight"
                           : "compressive forces within the friction cones cannot carry every free body's weight",
                 least.c_str());
+    if (st.nodes > 0)
+      std::printf("                rigid equilibrium decided: settling on the run's contact springs, no equilibrium and no fall\n"
+                  "                was found at friction %.3g (the solvers stalled); confirm with a run\n",
+                  std::max(10.0, s.friction));
   } else {
     std::string rigid = st.rigidLeastFriction ? "rigid-block equilibrium from " + format3(*st.rigidLeastFriction)
                         : st.searched         ? "no rigid-block equilibrium up to 10"
                                               : "";
-    std::printf("  stable        %s at friction %.3g: it has a way out, and rigid equilibrium needs friction; built unstressed, %s (%s%s%s)\n",
+    std::printf("  stable        %s at friction %.3g: rigid equilibrium needs friction; built unstressed, %s (%s%s%s)\n",
                 st.stable ? "yes" : "no", s.friction,
                 st.stable ? "it settles onto the run's contact springs under its weight" : "the run's contact springs cannot settle it under its weight",
                 least.c_str(), rigid.empty() ? "" : "; ", rigid.c_str());

@@ -1,11 +1,13 @@
 // tessera check's analyses on closed-form cases: a wedged block is interlocked and stands without
-// friction; a box among boxes slides upwards and, rigid and wedged, stands at any friction; a block
+// friction; a box among boxes slides upwards and down, rigid equilibrium holds it at any friction,
+// yet built unstressed it sinks at any friction up to 10, as in its run; a block
 // on a ramp of slope alpha (a way out, friction needed: the elastic settling decides) stands from
 // mu = tan(alpha) on (rigid equilibrium within the friction pyramid's 1 / cos(22.5 deg)),
 // whichever body is listed first; a triangle slab, which rigid equilibrium holds at mu = 0.23,
 // does not settle there built unstressed, as in its run.
 #include "geometry/block_generators.h"
 #include "levelset/assembly_checks.h"
+#include "levelset/elastic_settling.h"
 #include "levelset/generated_slab.h"
 #include "levelset/interlocking_signs.h"
 #include "levelset/rigid_block_analysis.h"
@@ -155,7 +157,7 @@ TEST_CASE("rigid blocks: a block whose faces all lean out rests on its neighbour
   REQUIRE(s.stability.leastFriction == Approx(0.0));
 }
 
-TEST_CASE("rigid blocks: a box among boxes opens no contact but slides upwards, held by friction alone") {
+TEST_CASE("rigid blocks: a box among boxes opens no contact but slides, and built unstressed no friction holds it") {
   const Bundle bundle = squareSlab(0);
   const AssemblyStatics s = analysed(bundle, 0.23);
   REQUIRE(s.interlocking.interlocked);
@@ -166,11 +168,20 @@ TEST_CASE("rigid blocks: a box among boxes opens no contact but slides upwards, 
   REQUIRE(std::abs(m.translation.z()) == Approx(1.0));
   REQUIRE(m.translation.head<2>().norm() < 1e-6);
   REQUIRE(m.rotation.norm() < 1e-6);
-  // Rigid and wedged, any friction holds it (the normal forces may grow without bound); none does not.
-  REQUIRE(s.stability.stable);
-  REQUIRE_FALSE(s.stability.settled);
-  REQUIRE(*s.stability.leastFriction <= 1e-3);
-  REQUIRE_FALSE(analysed(bundle, 0).stability.stable);
+  // Rigid equilibrium holds it with any friction, by a prestress (the normal forces may grow
+  // without bound). Built unstressed it gets none: sliding down presses no face, so no friction
+  // holds it, as in a run, where it sinks.
+  REQUIRE(*s.stability.rigidLeastFriction <= 1e-3);
+  for (double mu : {0.0, 0.23, 10.0}) {
+    const StabilityVerdict v = mu == 0.23 ? s.stability : analysed(bundle, mu).stability;
+    INFO("friction " << mu);
+    REQUIRE_FALSE(v.stable);
+    if (mu == 0) continue;  // no friction: rigid equilibrium already says no
+    REQUIRE(v.settled);
+    REQUIRE_FALSE(v.leastFriction);
+    REQUIRE(v.falling.size() == 1);
+    REQUIRE(v.falling.front().translation.normalized().z() < -0.999);  // straight down
+  }
 }
 
 TEST_CASE("rigid blocks: a block on a ramp stands from mu = tan(alpha), lifts off, either order") {
@@ -214,4 +225,27 @@ TEST_CASE("stability: a triangle slab has a way out, and rigid equilibrium holds
   const AssemblyLevelSets levelSets(bundle);
   REQUIRE_FALSE(analyseAssembly(bundle, levelSets, 0.9 * *s.stability.leastFriction, false).stability.stable);
   REQUIRE(analyseAssembly(bundle, levelSets, 1.1 * *s.stability.leastFriction, false).stability.stable);
+}
+
+TEST_CASE("stability: a square slab's sliding modes need friction once the unstressed blocks settle, not just any") {
+  const Bundle bundle = assembled(generatedSlabParts(slabOptions("square", 5, 5)));
+  const AssemblyStatics s = analysed(bundle, 0.23);
+  INFO("least friction " << s.stability.leastFriction.value_or(-1) << ", " << s.seconds << " s");
+  REQUIRE(s.interlocking.interlocked);
+  REQUIRE(s.interlocking.slidingModes > 0);
+  REQUIRE(*s.stability.rigidLeastFriction <= 1e-3);  // rigid: squeezed, any friction
+  REQUIRE(s.stability.settled);
+  REQUIRE(s.stability.stable);
+  REQUIRE(s.stability.leastFriction);
+  REQUIRE(*s.stability.leastFriction > 0.05);  // the 7 x 7 slab's run: from (0.10, 0.125] (docs/check.md)
+  REQUIRE(*s.stability.leastFriction < 0.2);
+  REQUIRE_FALSE(analysed(bundle, 0.9 * *s.stability.leastFriction).stability.stable);
+  // Solvers starved of steps neither find the equilibrium nor show a fall: undecided, and then
+  // rigid equilibrium decides an interlocked assembly (checkStability).
+  const AssemblyLevelSets levelSets(bundle);
+  const std::vector<ContactNode> nodes = contactNodes(bundle, levelSets, kTouchFraction * 0.1);
+  REQUIRE(settleElastically(bundle, nodes, 0.23, true).decided);
+  const ElasticSettling starved = settleElastically(bundle, nodes, 0.23, true, SettlingBudget{1, 1, 0, 1});
+  REQUIRE_FALSE(starved.decided);
+  REQUIRE_FALSE(starved.stands);
 }
