@@ -252,28 +252,16 @@ bool relax(const NodeSprings& springs, const SettlingBudget& budget, double mu, 
 // Coulomb's law as a fixed point of Tresca's (P. D. Panagiotopoulos, "A nonlinear programming
 // approach to the unilateral contact- and friction-boundary value problem", Ing.-Arch. 44, 1975):
 // the caps mu f_n taken from x, Phi minimised with them held (a convex problem: its minimum is
-// found or shown unbounded), again, each round's caps extrapolated from the last kMemory rounds'
-// (Anderson mixing: H. F. Walker & P. Ni, "Anderson acceleration for fixed-point iterations",
-// SIAM J. Numer. Anal. 49, 2011), for budget.rounds or until the out-of-balance force with the minimum's
-// own caps is within kNear of the loads; then relaxed to the tolerance from the closest round.
-// Falls when a minimum is unbounded with the caps of the last minimum itself (not extrapolated).
-constexpr int kMemory = 5;
+// found or shown unbounded), again, for budget.rounds or until the out-of-balance force with the
+// minimum's own caps is within kNear of the loads; then relaxed to the tolerance from the closest
+// round (near a kink the rounds cycle). Falls when a minimum is unbounded.
 constexpr double kNear = 1e-3;
 
 Outcome tresca(const NodeSprings& springs, const SettlingBudget& budget, double mu, Eigen::VectorXd& x) {
-  Eigen::VectorXd caps = springs.caps(x, mu), held = caps, gradient, last, lastOff, closest = x, before;
-  std::vector<Eigen::VectorXd> dCaps, dOff;  // the last rounds' changes of g(c) and of g(c) - c
+  Eigen::VectorXd caps = springs.caps(x, mu), gradient, closest = x;
   double closestResidual = 1e300;
   for (int round = 0; round < budget.rounds; ++round) {
-    before = x;
-    const Outcome minimum = minimise(springs, budget, held, x);
-    if (minimum == Outcome::falls && !dOff.empty()) {  // perhaps the extrapolation: again with plain caps
-      x = before;
-      held = caps;
-      dCaps.clear(), dOff.clear();
-      --round;
-      continue;
-    }
+    const Outcome minimum = minimise(springs, budget, caps, x);
     if (minimum != Outcome::stands) return minimum;
     caps = springs.caps(x, mu);
     double normalSum = 0;
@@ -281,19 +269,6 @@ Outcome tresca(const NodeSprings& springs, const SettlingBudget& budget, double 
     const double residual = gradient.cwiseAbs().maxCoeff();
     if (residual < closestResidual) closestResidual = residual, closest = x;
     if (residual <= kNear * (springs.totalWeight() + normalSum)) break;
-    const Eigen::VectorXd off = caps - held;
-    if (round > 0) {
-      dCaps.push_back(caps - last);
-      dOff.push_back(off - lastOff);
-      if (static_cast<int>(dOff.size()) > kMemory) dCaps.erase(dCaps.begin()), dOff.erase(dOff.begin());
-    }
-    last = caps;
-    lastOff = off;
-    held = caps;
-    if (dOff.empty()) continue;
-    Eigen::MatrixXd offs(off.size(), dOff.size()), capss(off.size(), dOff.size());
-    for (std::size_t j = 0; j < dOff.size(); ++j) offs.col(j) = dOff[j], capss.col(j) = dCaps[j];
-    held = (caps - capss * offs.colPivHouseholderQr().solve(off)).cwiseMax(0.0);
   }
   x = closest;
   return relax(springs, budget, mu, 1e-6, x) ? Outcome::stands : Outcome::stalled;

@@ -60,7 +60,8 @@ void printAssemblyStatics(const Bundle& bundle, const AssemblyStatics& s) {
   const auto& st = s.stability;
   std::string least = "no friction up to 10 suffices";
   if (st.leastFriction && *st.leastFriction == 0) least = "it stands without friction";
-  else if (st.leastFriction && *st.leastFriction <= 1e-3) least = "least friction below 0.001: the blocks wedge, standing if squeezed";
+  else if (st.leastFriction && *st.leastFriction <= 1e-3)
+    least = st.settled ? "least friction below 0.001" : "least friction below 0.001: the blocks wedge, standing if squeezed";
   else if (st.leastFriction) least = (st.stable || st.searched ? "least friction " : "it stands from friction ") + format3(*st.leastFriction);
   else if (!st.searched && (st.stable || !st.settled)) least = "tessera check finds the least friction";
   if (!st.settled) {
