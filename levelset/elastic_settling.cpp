@@ -66,7 +66,9 @@ public:
   /// continuously differentiable, its gradient the out-of-balance force with the sign turned,
   /// -R(x) = W - sum (f_n n + T^T f_t). Returns Phi, and, if asked for, the gradient, the
   /// Hessian (triplets; at g = 0 the normal spring counts as closed, so the first step from x = 0
-  /// sees every contact) and the sum of the normal forces.
+  /// sees every contact) and the sum of the normal forces. `coulomb` = mu > 0: the caps passed are
+  /// Coulomb's, mu f_n(x), and the matrix is the gradient's Jacobian with their change (not
+  /// symmetric), for solving Coulomb's law itself.
   double energy(const Eigen::VectorXd& x, const Eigen::VectorXd& caps, Eigen::VectorXd* gradient,
                 std::vector<Eigen::Triplet<double>>* hessian, double* normalSum, double coulomb = -1) const {
     double phi = weight_.dot(x);  // the weights' potential: W is the lift that holds them
@@ -211,7 +213,6 @@ Outcome minimise(const NodeSprings& springs, const SettlingBudget& budget, const
 // damped onto the kink), and shrinks fourfold when |grad| stays (a damped step stuck at a kink is
 // freed); a step that raises |grad| tenfold is taken back with 1/dt ten times larger. False after
 // budget.relaxSteps steps, or budget.stall steps without halving |grad|.
-
 bool relax(const NodeSprings& springs, const SettlingBudget& budget, double mu, double shift, Eigen::VectorXd& x) {
   std::vector<Eigen::Triplet<double>> triplets, nextTriplets;
   Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;

@@ -41,7 +41,7 @@ struct SettlingBudget {
   int newtonSteps = 100;
   int relaxSteps = 100;
   int stall = 15;
-  int rounds = 20;
+  int rounds = 5;
 };
 ElasticSettling settleElastically(const Bundle& bundle, const std::vector<ContactNode>& nodes, double friction,
                                   bool findLeastFriction, const SettlingBudget& budget = {});
