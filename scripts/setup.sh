@@ -35,6 +35,7 @@ packages=(
   python3-pytest python3-h5py                   # its tests; tessera.open_run reads results.h5
   libbenchmark-dev                              # benchmarks (bench/)
   calculix-ccx python3-gmsh                     # finite-element references (bench/validation)
+  python3-getfem                                # their large-sliding contact (bench/validation/getfem_*.py)
 )
 for option in "$@"; do
   case "$option" in
