@@ -134,27 +134,32 @@ def main() -> int:
 
     rows = []
     status = "reached the deflection"
+    curve = open(out / "curve.csv", "w")  # written as it goes: a stopped run keeps its increments
+    curve.write("delta_mm,load_N,block_displacement_mm\n")
+    stepping = time.time()
     for step in range(1, args.increments + 1):
         delta = deflection * step / args.increments
         md.set_variable("pressed", [0.0, 0.0, -delta])
         try:
-            iterations = md.solve("max_res", 1e-8, "max_iter", 80, "lsearch", "simplest", "lsolver", "mumps")
+            iterations, converged = md.solve("max_res", 1e-8, "max_iter", 80, "lsearch", "simplest", "lsolver", "mumps")
         except RuntimeError as error:  # GetFEM raises when Newton diverges
             status = f"stopped at increment {step}: {error}"
             break
-        if iterations[0] >= 80:
-            status = f"stopped at increment {step}: no convergence in 80 Newton iterations"
+        if not converged:
+            status = f"stopped at increment {step}: Newton did not converge (80 iterations, or a singular tangent)"
             break
         load = sum(gf.asm_generic(parts[k][2], 0, f"{parts[k][5]}(3)", SURFACE, md) for k in free)
         sink = -gf.asm_generic(mim, 0, f"{u}(3)", -1, md) / volume
         rows.append((delta, load, sink))
+        curve.write(f"{delta:.9g},{load:.9g},{sink:.9g}\n")
+        curve.flush()
+        left = (time.time() - stepping) / step * (args.increments - step)
         print(f"  increment {step}/{args.increments}: delta {delta:.4f} mm, load {load:.2f} N, "
-              f"block {sink:.4f} mm ({iterations[0]} iterations)", flush=True)
+              f"block {sink:.4f} mm ({iterations} iterations; about {left / 60:.0f} min left)", flush=True)
         for k in free:
             md.set_variable(parts[k][4], md.variable(parts[k][3]))
 
-    np.savetxt(out / "curve.csv", np.array(rows).reshape(-1, 3), delimiter=",", fmt="%.9g",
-               header="delta_mm,load_N,block_displacement_mm", comments="")
+    curve.close()
     peak = max(rows, key=lambda r: r[1]) if rows else (0.0, 0.0, 0.0)
     summary = {"solver": "GetFEM " + gf.__version__ if hasattr(gf, "__version__") else "GetFEM",
                "contact": "integral large sliding contact (raytracing, augmented Lagrangian)",
