@@ -31,7 +31,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import fe_model as fe  # noqa: E402
-from run_case import central_free_block  # noqa: E402
+from run_case import add_slab_arguments, central_free_block  # noqa: E402
 
 
 def convex_points(nodes, corners):
@@ -42,15 +42,7 @@ def convex_points(nodes, corners):
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("bundle")
-    parser.add_argument("-o", "--out", required=True)
-    parser.add_argument("--youngs-modulus", type=float, default=4.2e9, help="Pa (default 4.2e9)")
-    parser.add_argument("--poisson", type=float, default=0.2)
-    parser.add_argument("--friction", type=float, default=0.23)
-    parser.add_argument("--element-size", type=float, default=0.3, help="fraction of h (default 0.3)")
-    parser.add_argument("--deflection", type=float, default=0.8, help="fraction of h (default 0.8)")
-    parser.add_argument("--punch-radius", type=float, default=0.3, help="fraction of h (default 0.3)")
-    parser.add_argument("--increments", type=int, default=40)
+    add_slab_arguments(parser)
     args = parser.parse_args()
     import getfem as gf
     gf.util_trace_level(0)

@@ -35,8 +35,8 @@ def central_free_block(blocks) -> int:
     return min(free, key=lambda k: np.linalg.norm(centres[k] - mean))
 
 
-def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def add_slab_arguments(parser: argparse.ArgumentParser) -> None:
+    """The bundle, the output folder, the material and the loading, as every FE run here takes them."""
     parser.add_argument("bundle")
     parser.add_argument("-o", "--out", required=True)
     parser.add_argument("--youngs-modulus", type=float, default=4.2e9, help="Pa (default 4.2e9)")
@@ -46,6 +46,11 @@ def main() -> int:
     parser.add_argument("--deflection", type=float, default=0.8, help="fraction of h (default 0.8)")
     parser.add_argument("--punch-radius", type=float, default=0.3, help="fraction of h (default 0.3)")
     parser.add_argument("--increments", type=int, default=40)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_slab_arguments(parser)
     parser.add_argument("--penalty", type=float, default=50.0,
                         help="contact slope K = PENALTY x E / element size (default 50)")
     parser.add_argument("--stick", type=float, default=0.1,
