@@ -94,8 +94,8 @@ def main() -> int:
             md.add_slave_contact_boundary_to_large_sliding_contact_brick
         add(contact, mim, SURFACE, u, multiplier, w)
         parts[k] = (m, mfu, mim, u, w, multiplier)
-    faces = [fe.planar_faces(b) for b in blocks]
-    touching = {k for a, _, b, _ in fe.shared_faces(blocks, faces, 1e-6 * fe.slab_size(blocks)) for k in (a, b)}
+    planes = [fe.planar_faces(b) for b in blocks]
+    touching = {k for a, _, b, _ in fe.shared_faces(blocks, planes, 1e-6 * fe.slab_size(blocks)) for k in (a, b)}
     for k, b in enumerate(blocks):  # those that share a face with a free block (not a line, as corner neighbours)
         if b.fixed and k in touching:
             m = gf.Mesh("empty", 3)
@@ -124,6 +124,24 @@ def main() -> int:
     md.add_Dirichlet_condition_with_multipliers(mim, u, mfu, PATCH, "pressed")
     volume = gf.asm_generic(mim, 0, "1", -1, md)
 
+    def reach(start: float, end: float, depth: int = 0) -> bool:
+        """Newton from the converged state at the patch's displacement `start` to `end`; where it
+        fails, the state is restored and the way there halved, at most three times. After each
+        converged step friction's reference (w) moves to the displacement reached."""
+        saved = md.from_variables()
+        md.set_variable("pressed", [0.0, 0.0, -end])
+        try:
+            converged = md.solve("max_res", 1e-8, "max_iter", 80, "lsearch", "simplest", "lsolver", "mumps")[1]
+        except RuntimeError:  # GetFEM raises where Newton diverges or the tangent is singular
+            converged = False
+        if not converged:
+            md.to_variables(saved)
+            middle = 0.5 * (start + end)
+            return depth < 3 and reach(start, middle, depth + 1) and reach(middle, end, depth + 1)
+        for k in free:
+            md.set_variable(parts[k][4], md.variable(parts[k][3]))
+        return True
+
     rows = []
     status = "reached the deflection"
     curve = open(out / "curve.csv", "w")  # written as it goes: a stopped run keeps its increments
@@ -131,14 +149,8 @@ def main() -> int:
     stepping = time.time()
     for step in range(1, args.increments + 1):
         delta = deflection * step / args.increments
-        md.set_variable("pressed", [0.0, 0.0, -delta])
-        try:
-            iterations, converged = md.solve("max_res", 1e-8, "max_iter", 80, "lsearch", "simplest", "lsolver", "mumps")
-        except RuntimeError as error:  # GetFEM raises when Newton diverges
-            status = f"stopped at increment {step}: {error}"
-            break
-        if not converged:
-            status = f"stopped at increment {step}: Newton did not converge (80 iterations, or a singular tangent)"
+        if not reach(deflection * (step - 1) / args.increments, delta):
+            status = f"stopped at increment {step}: Newton did not converge, the increment halved three times"
             break
         load = sum(gf.asm_generic(parts[k][2], 0, f"{parts[k][5]}(3)", SURFACE, md) for k in free)
         sink = -gf.asm_generic(mim, 0, f"{u}(3)", -1, md) / volume
@@ -147,9 +159,7 @@ def main() -> int:
         curve.flush()
         left = (time.time() - stepping) / step * (args.increments - step)
         print(f"  increment {step}/{args.increments}: delta {delta:.4f} mm, load {load:.2f} N, "
-              f"block {sink:.4f} mm ({iterations} iterations; about {left / 60:.0f} min left)", flush=True)
-        for k in free:
-            md.set_variable(parts[k][4], md.variable(parts[k][3]))
+              f"block {sink:.4f} mm (about {left / 60:.0f} min left)", flush=True)
 
     curve.close()
     peak = max(rows, key=lambda r: r[1]) if rows else (0.0, 0.0, 0.0)
