@@ -104,7 +104,7 @@ public:
         if (!hessian) continue;
         const Vector12 across = -along[1] * s.tangent[0] + along[0] * s.tangent[1];
         curvature.noalias() += cap / length * across * across.transpose();
-        if (coulomb > 0 && gap < 0)  // the cap's own change, c = mu k (-g): not symmetric
+        if (coulomb > 0)  // the cap's own change, c = mu k (-g) > 0 (so g < 0): not symmetric
           curvature.noalias() -= coulomb * k * (along[0] * s.tangent[0] + along[1] * s.tangent[1]) * s.normal.transpose();
       }
       if (gradient) scatter(pair, slope, *gradient);
@@ -168,13 +168,15 @@ private:
 // of the weight plus the normal forces.
 constexpr double kTolerance = 1e-9;
 
+enum class Outcome { stands, falls, stalled };
+
 // Phi's minimum with the caps held, by Newton's method on the convex energy with a backtracking
 // (Armijo) line search (J. Nocedal & S. J. Wright, "Numerical Optimization", 2nd ed., 2006, ch. 3):
 // each step solves (H + delta I) d = -grad Phi, delta = 1e-12 of H's largest diagonal (a motion no
-// spring holds gets a long step, not a singular matrix). Unbounded when x grows past 1e6 times the
-// displacement scale: the energy falls without end, the weights doing more work along a motion
-// than its springs can store or the held caps dissipate. Stalled after budget.newtonSteps.
-enum class Outcome { stands, falls, stalled };
+// spring holds gets a long step, not a singular matrix). Unbounded (falls) when x grows past 1e6
+// times the displacement scale: the energy falls without end, the weights doing more work along a
+// motion than its springs can store or the held caps dissipate; at once when no spring holds
+// anything. Stalled after budget.newtonSteps.
 
 Outcome minimise(const NodeSprings& springs, const SettlingBudget& budget, const Eigen::VectorXd& caps, Eigen::VectorXd& x) {
   const double bound = 1e6 * springs.displacementScale();
@@ -187,7 +189,11 @@ Outcome minimise(const NodeSprings& springs, const SettlingBudget& budget, const
     if (gradient.cwiseAbs().maxCoeff() <= kTolerance * (springs.totalWeight() + normalSum)) return Outcome::stands;
     Eigen::SparseMatrix<double> h(springs.columns(), springs.columns());
     h.setFromTriplets(triplets.begin(), triplets.end());
-    const double delta = 1e-12 * std::max(h.diagonal().maxCoeff(), 1e-300);
+    if (!(h.diagonal().maxCoeff() > 0)) {  // nothing holds the bodies: they go the weights' way
+      x -= 2 * bound / gradient.cwiseAbs().maxCoeff() * gradient;
+      return Outcome::falls;
+    }
+    const double delta = 1e-12 * h.diagonal().maxCoeff();
     for (int i = 0; i < springs.columns(); ++i) h.coeffRef(i, i) += delta;
     solver.compute(h);
     if (solver.info() != Eigen::Success) return Outcome::stalled;
@@ -255,7 +261,7 @@ bool relax(const NodeSprings& springs, const SettlingBudget& budget, double mu, 
 // the caps mu f_n taken from x, Phi minimised with them held (a convex problem: its minimum is
 // found or shown unbounded), again, for budget.rounds or until the out-of-balance force with the
 // minimum's own caps is within kNear of the loads; then relaxed to the tolerance from the closest
-// round (near a kink the rounds cycle). Falls when a minimum is unbounded.
+// round (near a kink the rounds cycle). Falls when the first round's minimum is unbounded.
 constexpr double kNear = 1e-3;
 
 Outcome tresca(const NodeSprings& springs, const SettlingBudget& budget, double mu, Eigen::VectorXd& x) {
@@ -263,6 +269,9 @@ Outcome tresca(const NodeSprings& springs, const SettlingBudget& budget, double 
   double closestResidual = 1e300;
   for (int round = 0; round < budget.rounds; ++round) {
     const Outcome minimum = minimise(springs, budget, caps, x);
+    // A fall is taken only with the caps of the state it started from (an equilibrium: the last
+    // friction's, or every spring sticking): later rounds' caps are no state of the bodies.
+    if (minimum == Outcome::falls && round > 0) return Outcome::stalled;
     if (minimum != Outcome::stands) return minimum;
     caps = springs.caps(x, mu);
     double normalSum = 0;
