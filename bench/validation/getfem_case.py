@@ -7,19 +7,25 @@ contact with an augmented-Lagrangian multiplier (the integral large sliding cont
 Renard & K. Poulios, GetFEM's user documentation, "Large sliding/large deformation contact with
 friction bricks") follows it: slid in 10 increments it ends on the pressed-in-place force to six
 digits (getfem_sliding_press.py). Here the slab's free blocks are elastic solids (linear
-elasticity, quadratic elements on the corners of gmsh's tetrahedra, fe_model.mesh_block); every
-side face of a free block is a slave contact boundary with Coulomb friction, against the other free
-blocks and the fixed blocks that share a face with one (meshed, clamped on their whole surface:
-Tessera's fixed blocks never move, as fe_model clamps every node of them). The loaded block's top
-is pressed down on a round patch at its centre, held laterally (as run_case.py); the load is the
-vertical resultant of the contact tractions, and friction's slip in an increment is measured from
-the last one's displacement. Units: mm, N, MPa.
+elasticity, quadratic elements on the corners of gmsh's tetrahedra, fe_model.mesh_block). Each
+face a free block shares with another block is a contact interface with Coulomb friction, taken
+once: the free block is its slave side against a fixed block (meshed, clamped on its whole
+surface: Tessera's fixed blocks never move, as fe_model clamps every node of them) and against a
+free block of higher index, its master side against one of lower index. The loaded block's top is
+pressed down on a round patch at its centre, held laterally (as run_case.py); the load is the
+vertical force the free blocks put on the fixed ones (the model has no weight), and friction's
+slip in an increment is measured from the last one's displacement. Units: mm, N, MPa.
 
 Usage: getfem_case.py BUNDLE -o DIR [--youngs-modulus PA] [--poisson NU] [--friction MU]
-                      [--element-size F] [--deflection F] [--punch-radius F] [--increments N]
-Lengths F are fractions of the loaded block's thickness h, as in run_case.py. Writes DIR/curve.csv
-(delta_mm, load_N, block_displacement_mm: the loaded block's mean downward displacement, Tessera's
-delta_b) and DIR/summary.json. Needs Debian's python3-getfem (scripts/setup.sh) and python3-gmsh.
+                      [--element-size F] [--deflection F] [--punch-radius F] [--increments N] [--mirror]
+Lengths F are fractions of the loaded block's thickness h, as in run_case.py. --mirror models the
+half or quarter of the slab on the positive side of its mirror planes through the loaded block's
+centre, as run_case.py --mirror does (fe_model.mirror_part: blocks across them cut; here the cut
+faces of the free blocks held normal to their plane by a penalty 10^4 times E / element size) and
+reports the whole slab's load (exit 2 for a slab with neither plane). Writes DIR/curve.csv (delta_mm, load_N,
+block_displacement_mm: the loaded block's mean downward displacement, Tessera's delta_b) and
+DIR/summary.json, both after every increment: a stopped run keeps what it reached. Needs Debian's
+python3-getfem (scripts/setup.sh) and python3-gmsh.
 """
 import argparse
 import json
@@ -40,9 +46,18 @@ def convex_points(nodes, corners):
     return np.ascontiguousarray(nodes[corners].transpose(2, 1, 0))
 
 
+def face_centres(mesh, faces) -> np.ndarray:
+    """The centre of each of `faces` (GetFEM's 2 x F convex/face array), F x 3."""
+    return np.array([mesh.pts(mesh.pid_in_faces(faces[:, [j]])).mean(axis=1) for j in range(faces.shape[1])])
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_slab_arguments(parser)
+    parser.add_argument("--mirror", action="store_true",
+                        help="model the slab's half or quarter on the positive side of its mirror planes "
+                             "through the loaded block's centre (a slab with neither: refused); the load is "
+                             "2 or 4 x the part's")
     args = parser.parse_args()
     import getfem as gf
     gf.util_trace_level(0)
@@ -50,10 +65,21 @@ def main() -> int:
 
     start = time.time()
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
     blocks = fe.read_bundle(args.bundle)
     loaded = central_free_block(blocks)
     h = float(np.ptp(blocks[loaded].vertices[:, 2]))
+    centre = blocks[loaded].vertices.mean(axis=0)
+    axes = []
+    if args.mirror:
+        name = blocks[loaded].name
+        try:
+            blocks, axes = fe.mirror_part(blocks, centre)
+        except ValueError as e:
+            print(f"getfem_case: {e}", file=sys.stderr)
+            return 2
+        loaded = next(k for k, b in enumerate(blocks) if b.name == name)
+    share = 2 ** len(axes)  # the whole slab's load per the model's
+    out.mkdir(parents=True, exist_ok=True)  # (after the refusal: it leaves no empty folder)
     size, radius, deflection = args.element_size * h, args.punch_radius * h, args.deflection * h
     free = [k for k, b in enumerate(blocks) if not b.fixed]
 
@@ -74,14 +100,37 @@ def main() -> int:
     md.add_initialized_data("r", [E / size])  # the augmentation parameter: convergence, not the answer
     md.add_initialized_data("f", [args.friction])
     md.add_initialized_data("alpha", [1.0])
+    md.add_initialized_data("held", [1e4 * E / size])  # the mirror planes' penalty (MPa/mm)
     contact = md.add_integral_large_sliding_contact_brick_raytracing("r", size, "f", "alpha", 0)
-    SURFACE, PATCH = 1, 2
+    # Regions of a free block's mesh: SLAVE its faces in contact as the slave side (against a fixed
+    # block, AGAINST_FIXED too, or a free block of higher index), MASTER as the master side (against
+    # a free block of lower index: each interface is constrained once), PATCH the punch, MIRROR + a
+    # the cut faces on the mirror plane of axis a. A fixed block's mesh: SLAVE its whole surface.
+    SLAVE, AGAINST_FIXED, MASTER, PATCH, MIRROR = 1, 2, 3, 4, 5
+    tolerance = 1e-6 * fe.slab_size(blocks)
+    planes = [fe.planar_faces(b) for b in blocks]
+    pairs = fe.shared_faces(blocks, planes, tolerance)
+    partners = {}  # (block, face) -> the blocks across that face
+    for a, i, b, j in pairs:
+        partners.setdefault((a, i), []).append(b)
+        partners.setdefault((b, j), []).append(a)
+
+    def on_mirror(face, axis):
+        return face.normal @ np.eye(3)[axis] < -1 + 1e-9 and abs(face.offset + centre[axis]) <= tolerance
+
     parts = {}
     for k in free:
         m = gf.Mesh("empty", 3)
         m.add_convex(gf.GeoTrans("GT_PK(3,1)"), convex_points(meshes[k].nodes, meshes[k].tets[:, :4]))
-        sides = [f.normal for f in fe.planar_faces(blocks[k]) if abs(f.normal[2]) < 0.9]  # top and bottom touch nothing
-        m.set_region(SURFACE, np.hstack([m.outer_faces_with_direction(n, 0.01) for n in sides]))
+        faces = planes[k]
+
+        def region(which):  # the mesh faces of the block's planar faces i for which which(partners) holds
+            chosen = [m.outer_faces_with_direction(f.normal, 0.01) for i, f in enumerate(faces)
+                      if which(partners.get((k, i), []))]
+            return np.hstack(chosen) if chosen else np.zeros((2, 0), int)
+        m.set_region(SLAVE, region(lambda across: any(blocks[b].fixed or b > k for b in across)))
+        m.set_region(AGAINST_FIXED, region(lambda across: any(blocks[b].fixed for b in across)))
+        m.set_region(MASTER, region(lambda across: any(not blocks[b].fixed and b < k for b in across)))
         mfu = gf.MeshFem(m, 3)
         mfu.set_classical_fem(2)
         mim = gf.MeshIm(m, 4)
@@ -89,33 +138,38 @@ def main() -> int:
         md.add_fem_variable(u, mfu)
         md.add_fem_data(w, mfu)
         md.add_isotropic_linearized_elasticity_brick(mim, u, "lambda", "mu")
-        md.add_filtered_fem_variable(multiplier, mfu, SURFACE)
-        add = md.add_master_slave_contact_boundary_to_large_sliding_contact_brick if len(free) > 1 else \
-            md.add_slave_contact_boundary_to_large_sliding_contact_brick
-        add(contact, mim, SURFACE, u, multiplier, w)
+        for a in axes:  # symmetry: the cut face moves in its plane only (a penalty 10^4 times the
+            # elements' own stiffness E/size: a multiplier would conflict with the punch's on the loaded block)
+            if any(on_mirror(f, a) for f in faces):
+                cut = m.outer_faces_with_direction(-np.eye(3)[a], 0.01)
+                cut = cut[:, np.abs(face_centres(m, cut)[:, a] - centre[a]) <= tolerance]
+                m.set_region(MIRROR + a, cut)
+                md.add_linear_term(mim, f"held*{u}({a + 1})*Test_{u}({a + 1})", MIRROR + a)
+        md.add_filtered_fem_variable(multiplier, mfu, SLAVE)
+        md.add_slave_contact_boundary_to_large_sliding_contact_brick(contact, mim, SLAVE, u, multiplier, w)
+        if m.region(MASTER).size:
+            md.add_master_contact_boundary_to_large_sliding_contact_brick(contact, mim, MASTER, u, w)
         parts[k] = (m, mfu, mim, u, w, multiplier)
-    planes = [fe.planar_faces(b) for b in blocks]
-    touching = {k for a, _, b, _ in fe.shared_faces(blocks, planes, 1e-6 * fe.slab_size(blocks)) for k in (a, b)}
+    touching = {k for a, _, b, _ in pairs for k in (a, b)}
     for k, b in enumerate(blocks):  # those that share a face with a free block (not a line, as corner neighbours)
         if b.fixed and k in touching:
             m = gf.Mesh("empty", 3)
             m.add_convex(gf.GeoTrans("GT_PK(3,1)"), convex_points(meshes[k].nodes, meshes[k].tets[:, :4]))
-            m.set_region(SURFACE, m.outer_faces())
+            m.set_region(SLAVE, m.outer_faces())
             mfu = gf.MeshFem(m, 3)
             mfu.set_classical_fem(1)
             mim = gf.MeshIm(m, 2)
             md.add_fem_variable(f"u{k}", mfu)  # clamped on its whole surface: it does not move
             md.add_isotropic_linearized_elasticity_brick(mim, f"u{k}", "lambda", "mu")
-            md.add_Dirichlet_condition_with_simplification(f"u{k}", SURFACE)
+            md.add_Dirichlet_condition_with_simplification(f"u{k}", SLAVE)
             md.add_fem_data(f"w{k}", mfu)  # its previous displacement, 0: friction's slip is u - w
-            md.add_master_contact_boundary_to_large_sliding_contact_brick(contact, mim, SURFACE, f"u{k}", f"w{k}")
+            md.add_master_contact_boundary_to_large_sliding_contact_brick(contact, mim, SLAVE, f"u{k}", f"w{k}")
             parts[k] = (m, mfu, mim)  # GetFEM's objects live while Python holds them
 
     m, mfu, mim, u, _, _ = parts[loaded]
-    centre = blocks[loaded].vertices.mean(axis=0)
     top = blocks[loaded].vertices[:, 2].max()
     faces = m.outer_faces_with_direction([0.0, 0.0, 1.0], 0.01)
-    middle = np.array([m.pts(m.pid_in_faces(faces[:, [j]])).mean(axis=1) for j in range(faces.shape[1])])
+    middle = face_centres(m, faces)
     on_patch = (np.abs(middle[:, 2] - top) < 1e-6 * h) & (np.hypot(*(middle[:, :2] - centre[:2]).T) <= radius)
     if not on_patch.any():
         raise SystemExit("getfem_case: no element face on the punch patch: refine the mesh or widen the punch")
@@ -142,6 +196,20 @@ def main() -> int:
             md.set_variable(parts[k][4], md.variable(parts[k][3]))
         return True
 
+    def write_summary(rows, status):
+        peak = max(rows, key=lambda r: r[1]) if rows else (0.0, 0.0, 0.0)
+        summary = {"solver": "GetFEM",
+                   "contact": "integral large sliding contact (raytracing, augmented Lagrangian)",
+                   "youngs_modulus_Pa": args.youngs_modulus, "poisson": args.poisson, "friction": args.friction,
+                   "element_size_mm": size, "punch_radius_mm": radius, "deflection_mm": deflection,
+                   "mirror_planes": ["xy"[a] for a in axes], "increments": args.increments,
+                   "converged_increments": len(rows), "status": status, "free_blocks": len(free),
+                   "nodes": int(sum(len(meshes[k].nodes) for k in free)), "P_max_N": peak[1],
+                   "delta_at_P_max_mm": peak[0], "block_displacement_at_P_max_mm": peak[2],
+                   "seconds": time.time() - start}
+        (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+        return peak
+
     rows = []
     status = "reached the deflection"
     curve = open(out / "curve.csv", "w")  # written as it goes: a stopped run keeps its increments
@@ -152,26 +220,19 @@ def main() -> int:
         if not reach(deflection * (step - 1) / args.increments, delta):
             status = f"stopped at increment {step}: Newton did not converge, the increment halved three times"
             break
-        load = sum(gf.asm_generic(parts[k][2], 0, f"{parts[k][5]}(3)", SURFACE, md) for k in free)
+        # the load: the vertical force the free blocks put on the fixed ones (no weight in the model)
+        load = share * sum(gf.asm_generic(parts[k][2], 0, f"{parts[k][5]}(3)", AGAINST_FIXED, md) for k in free)
         sink = -gf.asm_generic(mim, 0, f"{u}(3)", -1, md) / volume
         rows.append((delta, load, sink))
         curve.write(f"{delta:.9g},{load:.9g},{sink:.9g}\n")
         curve.flush()
+        write_summary(rows, f"running: {step} of {args.increments} increments")
         left = (time.time() - stepping) / step * (args.increments - step)
         print(f"  increment {step}/{args.increments}: delta {delta:.4f} mm, load {load:.2f} N, "
               f"block {sink:.4f} mm (about {left / 60:.0f} min left)", flush=True)
 
     curve.close()
-    peak = max(rows, key=lambda r: r[1]) if rows else (0.0, 0.0, 0.0)
-    summary = {"solver": "GetFEM " + gf.__version__ if hasattr(gf, "__version__") else "GetFEM",
-               "contact": "integral large sliding contact (raytracing, augmented Lagrangian)",
-               "youngs_modulus_Pa": args.youngs_modulus, "poisson": args.poisson, "friction": args.friction,
-               "element_size_mm": size, "punch_radius_mm": radius, "deflection_mm": deflection,
-               "increments": args.increments, "converged_increments": len(rows), "status": status,
-               "free_blocks": len(free), "nodes": int(sum(len(meshes[k].nodes) for k in free)),
-               "P_max_N": peak[1], "delta_at_P_max_mm": peak[0], "block_displacement_at_P_max_mm": peak[2],
-               "seconds": time.time() - start}
-    (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    peak = write_summary(rows, status)
     print(f"getfem_case: {status}; P_max {peak[1]:.1f} N at delta_b {peak[2]:.3f} mm; {out}")
     return 0 if rows else 1
 
