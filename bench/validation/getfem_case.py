@@ -18,11 +18,14 @@ slip in an increment is measured from the last one's displacement. Units: mm, N,
 
 Usage: getfem_case.py BUNDLE -o DIR [--youngs-modulus PA] [--poisson NU] [--friction MU]
                       [--element-size F] [--deflection F] [--punch-radius F] [--increments N] [--mirror]
+                      [--neighbour-stiffness F]
 Lengths F are fractions of the loaded block's thickness h, as in run_case.py. --mirror models the
 half or quarter of the slab on the positive side of its mirror planes through the loaded block's
 centre, as run_case.py --mirror does (fe_model.mirror_part: blocks across them cut; here the cut
 faces of the free blocks held normal to their plane by a penalty 10^4 times E / element size) and
-reports the whole slab's load (exit 2 for a slab with neither plane). Writes DIR/curve.csv (delta_mm, load_N,
+reports the whole slab's load (exit 2 for a slab with neither plane). --neighbour-stiffness F
+multiplies the Young's modulus of the free blocks other than the loaded one (100: nearly rigid, as
+Tessera's blocks are, which separates their own deformation from the rest). Writes DIR/curve.csv (delta_mm, load_N,
 block_displacement_mm: the loaded block's mean downward displacement, Tessera's delta_b) and
 DIR/summary.json, both after every increment: a stopped run keeps what it reached. Needs Debian's
 python3-getfem (scripts/setup.sh) and python3-gmsh.
@@ -58,6 +61,9 @@ def main() -> int:
                         help="model the slab's half or quarter on the positive side of its mirror planes "
                              "through the loaded block's centre (a slab with neither: refused); the load is "
                              "2 or 4 x the part's")
+    parser.add_argument("--neighbour-stiffness", type=float, default=1.0,
+                        help="Young's modulus of the free blocks other than the loaded one, x this (default 1; "
+                             "100: nearly rigid, the run that separates their own deformation from the rest)")
     args = parser.parse_args()
     import getfem as gf
     gf.util_trace_level(0)
@@ -97,6 +103,8 @@ def main() -> int:
     md = gf.Model("real")
     md.add_initialized_data("lambda", [lam])
     md.add_initialized_data("mu", [mu])
+    md.add_initialized_data("lambda_neighbour", [args.neighbour_stiffness * lam])
+    md.add_initialized_data("mu_neighbour", [args.neighbour_stiffness * mu])
     md.add_initialized_data("r", [E / size])  # the augmentation parameter: convergence, not the answer
     md.add_initialized_data("f", [args.friction])
     md.add_initialized_data("alpha", [1.0])
@@ -137,7 +145,10 @@ def main() -> int:
         u, w, multiplier = f"u{k}", f"w{k}", f"lambda{k}"
         md.add_fem_variable(u, mfu)
         md.add_fem_data(w, mfu)
-        md.add_isotropic_linearized_elasticity_brick(mim, u, "lambda", "mu")
+        if k == loaded:
+            md.add_isotropic_linearized_elasticity_brick(mim, u, "lambda", "mu")
+        else:
+            md.add_isotropic_linearized_elasticity_brick(mim, u, "lambda_neighbour", "mu_neighbour")
         for a in axes:  # symmetry: the cut face moves in its plane only (a penalty 10^4 times the
             # elements' own stiffness E/size: a multiplier would conflict with the punch's on the loaded block)
             if any(on_mirror(f, a) for f in faces):
@@ -200,7 +211,8 @@ def main() -> int:
         peak = max(rows, key=lambda r: r[1]) if rows else (0.0, 0.0, 0.0)
         summary = {"solver": "GetFEM",
                    "contact": "integral large sliding contact (raytracing, augmented Lagrangian)",
-                   "youngs_modulus_Pa": args.youngs_modulus, "poisson": args.poisson, "friction": args.friction,
+                   "youngs_modulus_Pa": args.youngs_modulus, "neighbour_stiffness": args.neighbour_stiffness,
+                   "poisson": args.poisson, "friction": args.friction,
                    "element_size_mm": size, "punch_radius_mm": radius, "deflection_mm": deflection,
                    "mirror_planes": ["xy"[a] for a in axes], "increments": args.increments,
                    "converged_increments": len(rows), "status": status, "free_blocks": len(free),
