@@ -42,6 +42,7 @@ public:
       springs_.push_back(spring);
       pairs_.back().end = springs_.size();
     }
+    displacementScale_ = ownWeightDisplacement();
   }
 
   int columns() const { return columns_; }
@@ -115,7 +116,10 @@ public:
 
   /// The displacement of a body under its own weight on its own springs, the largest: the scale
   /// against which a motion that grows without bound is told (a fall).
-  double displacementScale() const {
+  double displacementScale() const { return displacementScale_; }
+
+private:
+  double ownWeightDisplacement() const {
     Eigen::VectorXd held = Eigen::VectorXd::Zero(weight_.size());
     for (const Pair& pair : pairs_)
       for (std::size_t i = pair.begin; i < pair.end; ++i) {
@@ -130,7 +134,6 @@ public:
     return scale > 0 ? scale : 1.0;
   }
 
-private:
   struct Spring {  // one node: its rows along the normal (positive: opening) and two tangents
     Vector12 normal, tangent[2];
     double stiffness = 0;
@@ -162,6 +165,7 @@ private:
   Eigen::VectorXd weight_;
   std::vector<Spring> springs_;
   std::vector<Pair> pairs_;
+  double displacementScale_ = 1.0;
 };
 
 // Every solver below stops when each component of the out-of-balance force is within kTolerance

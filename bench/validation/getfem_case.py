@@ -105,7 +105,8 @@ def main() -> int:
     md.add_initialized_data("mu", [mu])
     md.add_initialized_data("lambda_neighbour", [args.neighbour_stiffness * lam])
     md.add_initialized_data("mu_neighbour", [args.neighbour_stiffness * mu])
-    md.add_initialized_data("r", [E / size])  # the augmentation parameter: convergence, not the answer
+    # the augmentation parameter, of the stiffest blocks: convergence, not the answer
+    md.add_initialized_data("r", [E * max(1.0, args.neighbour_stiffness) / size])
     md.add_initialized_data("f", [args.friction])
     md.add_initialized_data("alpha", [1.0])
     md.add_initialized_data("held", [1e4 * E / size])  # the mirror planes' penalty (MPa/mm)

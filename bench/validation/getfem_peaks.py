@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""Table and figure of the 5 x 5 slabs toward their peak on GetFEM (getfem_peaks.sh): for each case,
+the FE curve (getfem_case.py) and Tessera's under each stiffness rule, compared on the loaded
+block's displacement delta_b. Where the FE run stopped before its peak, its last load is a lower
+bound of its P_max, and the table says so.
+
+Usage: getfem_peaks.py OUT CASE...   (OUT/CASE/getfem*: getfem_case.py outputs; OUT/CASE/tessera_RULE:
+       tessera run)
+Writes OUT/table.md and OUT/getfem_peaks.png.
+"""
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from compare import save  # noqa: E402
+
+RULES = ("span", "bars", "sections")
+
+
+def rising(curve):
+    """The curve's part up to its peak load."""
+    end = int(np.argmax(curve["load_N"])) + 1
+    return curve["block_displacement_mm"][:end], curve["load_N"][:end]
+
+
+def main() -> int:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out, cases = Path(sys.argv[1]), sys.argv[2:]
+    lines = ["| case | FE run | FE P_max (N) | at δ_b (mm) | rule | Tessera P_max (N) | at δ_b (mm) | "
+             "Tessera at the FE's last δ_b (N) |", "|---|---|---|---|---|---|---|---|"]
+    fig, axes = plt.subplots(1, len(cases), figsize=(6 * len(cases), 4.5), squeeze=False)
+    for case, ax in zip(cases, axes[0]):
+        tessera = {r: np.genfromtxt(out / case / f"tessera_{r}" / "curve.csv", delimiter=",", names=True)
+                   for r in RULES if (out / case / f"tessera_{r}" / "curve.csv").exists()}
+        for run in sorted((out / case).glob("getfem*/summary.json")):
+            s = json.loads(run.read_text())
+            fe = np.genfromtxt(run.parent / "curve.csv", delimiter=",", names=True, ndmin=1)
+            if fe.size == 0:
+                continue
+            peak = int(np.argmax(fe["load_N"]))
+            reached = peak < fe.size - 1  # the load fell after its maximum: a peak, not a bound
+            label = (f"{run.parent.name}: {s['element_size_mm']:.2f} mm elements, "
+                     f"{s['converged_increments']} of {s['increments']} increments")
+            if s.get("neighbour_stiffness", 1.0) != 1.0:
+                label += f", neighbours' E x {s['neighbour_stiffness']:g}"
+            ax.plot(fe["block_displacement_mm"], fe["load_N"], "o-", ms=3, label="GetFEM " + label)
+            last = fe["block_displacement_mm"][-1]
+            for rule, t in tessera.items():
+                d, p = rising(t)
+                at_last = float(np.interp(last, np.maximum.accumulate(t["block_displacement_mm"]), t["load_N"]))
+                fe_p = f"{fe['load_N'][peak]:.0f}" if reached else f"≥ {fe['load_N'][peak]:.0f}"
+                fe_d = f"{fe['block_displacement_mm'][peak]:.2f}" if reached else f"≥ {last:.2f}"
+                difference = f"{p[-1] / fe['load_N'][peak] - 1:+.0%}"
+                if not reached:  # against a lower bound, only a shortfall is a (least) difference
+                    difference = "≤ " + difference if p[-1] < fe["load_N"][peak] else "the FE's peak not reached"
+                versus = f" ({difference})"
+                lines.append(f"| {case} | {label} | {fe_p} | {fe_d} | {rule} | {p[-1]:.0f}{versus} | {d[-1]:.2f} | "
+                             f"{at_last:.0f} ({at_last / fe['load_N'][-1] - 1:+.0%}) |")
+        for rule, t in tessera.items():
+            ax.plot(t["block_displacement_mm"], t["load_N"], lw=1, label=f"Tessera, {rule} rule")
+        ax.set_title(case)
+        ax.set_xlabel("loaded block's displacement δ_b (mm)")
+        ax.set_ylabel("load (N)")
+        ax.set_xlim(0, 3.5)
+        ax.legend(fontsize=7)
+    save(fig, lines, out, "getfem_peaks.png")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# The 5 x 5 slabs toward their peak on GetFEM (docs/validation.md, "Toward the peak on the 5 x 5
+# slabs"): for square5 and hex5, the bundle, Tessera's runs under the three stiffness rules (the
+# default scene at E = 4.2 GPa, mu = 0.23) and getfem_case.py on the slab's quarter or half
+# (--mirror), 0.4 h elements, to 1.0 h in 30 increments; on square5 also 0.3 h elements to 0.4 h
+# (the mesh), and the neighbours 100 x stiffer to 0.6 h; then the table and the figure
+# (getfem_peaks.py). A GetFEM run that stops (Newton not converging through a slip) keeps the
+# increments it reached.
+# Usage: bench/validation/getfem_peaks.sh [OUT]     (default OUT: out/validation_gf)
+# Env:   TESSERA (build/tools/tessera). Hours on 2 cores (docs/validation.md lists each run's time).
+set -uo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+out=${1:-"$here/out/validation_gf"}
+tessera=${TESSERA:-"$here/build/tools/tessera"}
+python=/usr/bin/python3
+fe() {  # CASE NAME getfem_case.py-options...
+  local case=$1 name=$2
+  shift 2
+  echo "== $case: GetFEM, $name" >&2
+  "$python" "$here/bench/validation/getfem_case.py" "$out/$case/bundle" -o "$out/$case/$name" --mirror "$@" \
+    > "$out/$case/$name.log" 2>&1 || echo "   (stopped: $out/$case/$name.log)" >&2
+}
+set -e
+mkdir -p "$out/square5" "$out/hex5"
+"$tessera" tile --block "$here/assets/blocks/planar_a10_h3.18_5deg.obj" --unit mm --grid 5x5 --pitch 10 \
+  -o "$out/square5/bundle" --replace > "$out/square5/tile.log" 2>&1
+"$tessera" tile --tiling hex --grid 5x5 --pitch 10 --thickness 3.18 --angle 5 --unit mm \
+  -o "$out/hex5/bundle" --replace > "$out/hex5/tile.log" 2>&1
+for case in square5 hex5; do
+  for rule in span bars sections; do
+    sed -e "s/^youngs_modulus = .*/youngs_modulus = 4.2e9/" \
+        -e "s/^friction = .*/friction = 0.23\nstiffness_rule = \"$rule\"/" \
+      "$here/assets/scenes/default.toml" > "$out/$case/scene_$rule.toml"
+    rm -rf "$out/$case/tessera_$rule"
+    "$tessera" run "$out/$case/scene_$rule.toml" --bundle "$out/$case/bundle" -o "$out/$case/tessera_$rule" \
+      --no-plot > "$out/$case/tessera_$rule.log"
+  done
+done
+set +e
+fe square5 getfem --element-size 0.4 --deflection 1.0 --increments 30
+fe hex5 getfem --element-size 0.4 --deflection 1.0 --increments 30
+fe square5 getfem_fine --element-size 0.3 --deflection 0.4 --increments 12
+fe square5 getfem_rigid_neighbours --element-size 0.4 --deflection 0.6 --increments 18 --neighbour-stiffness 100
+"$python" "$here/bench/validation/getfem_peaks.py" "$out" square5 hex5
