@@ -26,8 +26,9 @@ faces of the free blocks held normal to their plane by a penalty 10^4 times E / 
 reports the whole slab's load (exit 2 for a slab with neither plane). --neighbour-stiffness F
 multiplies the Young's modulus of the free blocks other than the loaded one (100: nearly rigid, as
 Tessera's blocks are, which separates their own deformation from the rest). Writes DIR/curve.csv (delta_mm, load_N,
-block_displacement_mm: the loaded block's mean downward displacement, Tessera's delta_b) and
-DIR/summary.json, both after every increment: a stopped run keeps what it reached. Needs Debian's
+block_displacement_mm: the loaded block's mean downward displacement, Tessera's delta_b),
+DIR/blocks.csv (delta_mm and each free block's mean downward displacement, by name) and
+DIR/summary.json, all after every increment: a stopped run keeps what it reached. Needs Debian's
 python3-getfem (scripts/setup.sh) and python3-gmsh.
 """
 import argparse
@@ -188,7 +189,10 @@ def main() -> int:
     m.set_region(PATCH, faces[:, on_patch])
     md.add_initialized_data("pressed", [0.0, 0.0, 0.0])
     md.add_Dirichlet_condition_with_multipliers(mim, u, mfu, PATCH, "pressed")
-    volume = gf.asm_generic(mim, 0, "1", -1, md)
+    volumes = {k: gf.asm_generic(parts[k][2], 0, "1", -1, md) for k in free}
+
+    def sinking(k):  # block k's mean downward displacement (of its part: the whole's, by symmetry)
+        return -gf.asm_generic(parts[k][2], 0, f"{parts[k][3]}(3)", -1, md) / volumes[k]
 
     def reach(start: float, end: float, depth: int = 0) -> bool:
         """Newton from the converged state at the patch's displacement `start` to `end`; where it
@@ -227,6 +231,8 @@ def main() -> int:
     status = "reached the deflection"
     curve = open(out / "curve.csv", "w")  # written as it goes: a stopped run keeps its increments
     curve.write("delta_mm,load_N,block_displacement_mm\n")
+    sinks = open(out / "blocks.csv", "w")  # every free block's delta_b, to compare the neighbours' motion
+    sinks.write("delta_mm," + ",".join(blocks[k].name for k in free) + "\n")
     stepping = time.time()
     for step in range(1, args.increments + 1):
         delta = deflection * step / args.increments
@@ -235,16 +241,19 @@ def main() -> int:
             break
         # the load: the vertical force the free blocks put on the fixed ones (no weight in the model)
         load = share * sum(gf.asm_generic(parts[k][2], 0, f"{parts[k][5]}(3)", AGAINST_FIXED, md) for k in free)
-        sink = -gf.asm_generic(mim, 0, f"{u}(3)", -1, md) / volume
+        sink = sinking(loaded)
         rows.append((delta, load, sink))
         curve.write(f"{delta:.9g},{load:.9g},{sink:.9g}\n")
         curve.flush()
+        sinks.write(f"{delta:.9g}," + ",".join(f"{sinking(k):.9g}" for k in free) + "\n")
+        sinks.flush()
         write_summary(rows, f"running: {step} of {args.increments} increments")
         left = (time.time() - stepping) / step * (args.increments - step)
         print(f"  increment {step}/{args.increments}: delta {delta:.4f} mm, load {load:.2f} N, "
               f"block {sink:.4f} mm (about {left / 60:.0f} min left)", flush=True)
 
     curve.close()
+    sinks.close()
     peak = write_summary(rows, status)
     print(f"getfem_case: {status}; P_max {peak[1]:.1f} N at delta_b {peak[2]:.3f} mm; {out}")
     return 0 if rows else 1
