@@ -4,8 +4,8 @@ the FE curve (getfem_case.py) and Tessera's under each stiffness rule, compared 
 block's displacement delta_b. Where the FE run stopped before its peak, its last load is a lower
 bound of its P_max, and the table says so.
 
-Usage: getfem_peaks.py OUT CASE...   (OUT/CASE/getfem*: getfem_case.py outputs; OUT/CASE/tessera_RULE:
-       tessera run)
+Usage: getfem_peaks.py OUT CASE...   (OUT/CASE/getfem*: getfem_case.py outputs; OUT/CASE/tessera_RULE
+       and OUT/CASE/variant_NAME: tessera run)
 Writes OUT/table.md and OUT/getfem_peaks.png.
 """
 import json
@@ -69,6 +69,14 @@ def main() -> int:
         ax.set_ylabel("load (N)")
         ax.set_xlim(0, 3.5)
         ax.legend(fontsize=7)
+    for case in cases:  # Tessera's P_max under its numerical choices (getfem_peaks.sh's variants)
+        variants = sorted((out / case).glob("variant_*/summary.json"))
+        if variants:
+            lines += ["", f"| {case}: Tessera, bars rule, with | P_max (N) | at δ_b (mm) |", "|---|---|---|"]
+        for run in variants:
+            r = json.loads(run.read_text())["response"]
+            lines.append(f"| {run.parent.name[len('variant_'):]} | {r['peak_load_N']:.1f} | "
+                         f"{r['at_peak']['block_displacement_mm']:.2f} |")
     save(fig, lines, out, "getfem_peaks.png")
     return 0
 

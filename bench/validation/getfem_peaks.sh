@@ -2,9 +2,9 @@
 # The 5 x 5 slabs toward their peak on GetFEM (docs/validation.md, "Toward the peak on the 5 x 5
 # slabs"): for square5 and hex5, the bundle, Tessera's runs under the three stiffness rules (the
 # default scene at E = 4.2 GPa, mu = 0.23) and getfem_case.py on the slab's quarter or half
-# (--mirror), 0.4 h elements, to 1.0 h in 30 increments; on square5 also 0.3 h elements to 0.4 h
-# (the mesh), and the neighbours 100 x stiffer to 0.6 h; then the table and the figure
-# (getfem_peaks.py). A GetFEM run that stops (Newton not converging through a slip) keeps the
+# (--mirror), 0.4 h elements, to 1.0 h in 30 increments; on square5 also Tessera's runs under its
+# numerical choices (variant_*), 0.3 h elements to 0.4 h (the mesh), and the neighbours 100 x
+# stiffer to 0.6 h; then the tables and the figure (getfem_peaks.py). A GetFEM run that stops (Newton not converging through a slip) keeps the
 # increments it reached.
 # Usage: bench/validation/getfem_peaks.sh [OUT]     (default OUT: out/validation_gf)
 # Env:   TESSERA (build/tools/tessera). Hours on 2 cores (docs/validation.md lists each run's time).
@@ -35,6 +35,22 @@ for case in square5 hex5; do
     "$tessera" run "$out/$case/scene_$rule.toml" --bundle "$out/$case/bundle" -o "$out/$case/tessera_$rule" \
       --no-plot > "$out/$case/tessera_$rule.log"
   done
+done
+# square5 under Tessera's numerical choices (the bars rule's scene, each with one change)
+variants=('implicit|[solver]\nmethod = "implicit"'
+          'blended|[solver]\ncontact_area = "blended"'
+          'one_way|[solver]\ncontact_evaluation = "one-way"'
+          'tangential_10|[solver]\nmethod = "implicit"|s/^tangential_ratio = .*/tangential_ratio = 10.0/'
+          'nodes_half|[solver]\nmethod = "implicit"\n[resolution]\nnode_spacing_ratio = 0.0943'
+          'nodes_third|[solver]\nmethod = "implicit"\n[resolution]\nnode_spacing_ratio = 0.0629'
+          'no_gravity|[solver]\nmethod = "implicit"\ngravity = [0.0, 0.0, 0.0]')
+for variant in "${variants[@]}"; do
+  IFS='|' read -r name keys edit <<< "$variant"
+  sed -e "${edit:-s/^//}" "$out/square5/scene_bars.toml" > "$out/square5/scene_$name.toml"
+  printf '\n%b\n' "$keys" >> "$out/square5/scene_$name.toml"
+  rm -rf "$out/square5/variant_$name"
+  "$tessera" run "$out/square5/scene_$name.toml" --bundle "$out/square5/bundle" -o "$out/square5/variant_$name" \
+    --no-plot > "$out/square5/variant_$name.log"
 done
 set +e
 fe square5 getfem --element-size 0.4 --deflection 1.0 --increments 30
