@@ -41,7 +41,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import fe_model as fe  # noqa: E402
-from run_case import add_slab_arguments, central_free_block  # noqa: E402
+from run_case import add_slab_arguments, slab_part  # noqa: E402
 
 
 def convex_points(nodes, corners):
@@ -58,10 +58,6 @@ def face_centres(mesh, faces) -> np.ndarray:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_slab_arguments(parser)
-    parser.add_argument("--mirror", action="store_true",
-                        help="model the slab's half or quarter on the positive side of its mirror planes "
-                             "through the loaded block's centre (a slab with neither: refused); the load is "
-                             "2 or 4 x the part's")
     parser.add_argument("--neighbour-stiffness", type=float, default=1.0,
                         help="Young's modulus of the free blocks other than the loaded one, x this (default 1; "
                              "100: nearly rigid, the run that separates their own deformation from the rest)")
@@ -72,19 +68,11 @@ def main() -> int:
 
     start = time.time()
     out = Path(args.out)
-    blocks = fe.read_bundle(args.bundle)
-    loaded = central_free_block(blocks)
-    h = float(np.ptp(blocks[loaded].vertices[:, 2]))
-    centre = blocks[loaded].vertices.mean(axis=0)
-    axes = []
-    if args.mirror:
-        name = blocks[loaded].name
-        try:
-            blocks, axes = fe.mirror_part(blocks, centre)
-        except ValueError as e:
-            print(f"getfem_case: {e}", file=sys.stderr)
-            return 2
-        loaded = next(k for k, b in enumerate(blocks) if b.name == name)
+    try:
+        blocks, loaded, h, centre, axes = slab_part(args.bundle, args.mirror)
+    except ValueError as e:
+        print(f"getfem_case: {e}", file=sys.stderr)
+        return 2
     share = 2 ** len(axes)  # the whole slab's load per the model's
     out.mkdir(parents=True, exist_ok=True)  # (after the refusal: it leaves no empty folder)
     size, radius, deflection = args.element_size * h, args.punch_radius * h, args.deflection * h

@@ -35,6 +35,14 @@ def central_free_block(blocks) -> int:
     return min(free, key=lambda k: np.linalg.norm(centres[k] - mean))
 
 
+def positive(text: str) -> int:
+    """An argument that counts something: an integer of at least 1."""
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value}: at least 1")
+    return value
+
+
 def add_slab_arguments(parser: argparse.ArgumentParser) -> None:
     """The bundle, the output folder, the material and the loading, as every FE run here takes them."""
     parser.add_argument("bundle")
@@ -45,7 +53,28 @@ def add_slab_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--element-size", type=float, default=0.3, help="fraction of h (default 0.3)")
     parser.add_argument("--deflection", type=float, default=0.8, help="fraction of h (default 0.8)")
     parser.add_argument("--punch-radius", type=float, default=0.3, help="fraction of h (default 0.3)")
-    parser.add_argument("--increments", type=int, default=40)
+    parser.add_argument("--increments", type=positive, default=40)
+    parser.add_argument("--mirror", action="store_true",
+                        help="model the slab's part x >= x_c and/or y >= y_c (x_c, y_c: the loaded block's "
+                             "centre) for each of these planes the slab is its own mirror image about, with "
+                             "symmetry conditions there (a slab with neither: refused); the load is "
+                             "2 or 4 x the part's")
+
+
+def slab_part(bundle: str, mirror: bool):
+    """The blocks modelled (with --mirror, fe_model.mirror_part's), the loaded block's index among
+    them, its thickness h (z-extent, mm) and centre, and the mirror axes; ValueError for a slab
+    with no mirror plane when mirror is asked for."""
+    blocks = fe.read_bundle(bundle)
+    loaded = central_free_block(blocks)
+    h = float(np.ptp(blocks[loaded].vertices[:, 2]))
+    centre = blocks[loaded].vertices.mean(axis=0)
+    axes = []
+    if mirror:
+        name = blocks[loaded].name
+        blocks, axes = fe.mirror_part(blocks, centre)
+        loaded = next(k for k, b in enumerate(blocks) if b.name == name)
+    return blocks, loaded, h, centre, axes
 
 
 def main() -> int:
@@ -60,27 +89,14 @@ def main() -> int:
     parser.add_argument("--large-displacements", action="store_true",
                         help="NLGEOM: equilibrium on the deformed geometry (default: small displacements)")
     parser.add_argument("--threads", type=int, default=2)
-    parser.add_argument("--mirror", action="store_true",
-                        help="model the slab's part x >= x_c and/or y >= y_c (x_c, y_c: the loaded block's "
-                             "centre) for each of these planes the slab is its own mirror image about, with "
-                             "symmetry conditions there (a slab with neither: refused); the load is "
-                             "2 or 4 x the part's")
     args = parser.parse_args()
 
     out = Path(args.out)
-    blocks = fe.read_bundle(args.bundle)
-    loaded = central_free_block(blocks)
-    h = float(np.ptp(blocks[loaded].vertices[:, 2]))
-    centre = blocks[loaded].vertices.mean(axis=0)
-    axes = []
-    if args.mirror:
-        name = blocks[loaded].name
-        try:
-            blocks, axes = fe.mirror_part(blocks, centre)
-        except ValueError as e:
-            print(f"run_case: {e}", file=sys.stderr)
-            return 2
-        loaded = next(k for k, b in enumerate(blocks) if b.name == name)
+    try:
+        blocks, loaded, h, centre, axes = slab_part(args.bundle, args.mirror)
+    except ValueError as e:
+        print(f"run_case: {e}", file=sys.stderr)
+        return 2
     share = 2 ** len(axes)  # the whole slab's load per the model's
     out.mkdir(parents=True, exist_ok=True)  # (after the refusals: none leaves an empty folder)
     model = fe.Model(youngs_modulus=args.youngs_modulus / 1e6, poisson=args.poisson, friction=args.friction,
