@@ -25,8 +25,9 @@ centre, as run_case.py --mirror does (fe_model.mirror_part: blocks across them c
 faces of the free blocks held normal to their plane by a penalty 10^4 times E / element size) and
 reports the whole slab's load (exit 2 for a slab with neither plane). --neighbour-stiffness F
 multiplies the Young's modulus of the free blocks other than the loaded one (100: nearly rigid, as
-Tessera's blocks are, which separates their own deformation from the rest). Writes DIR/curve.csv (delta_mm, load_N,
-block_displacement_mm: the loaded block's mean downward displacement, Tessera's delta_b),
+Tessera's blocks are, which separates their own deformation from the rest). Writes DIR/curve.csv
+(delta_mm, load_N, block_displacement_mm: the loaded block's mean downward displacement, Tessera's
+delta_b),
 DIR/blocks.csv (delta_mm and each free block's mean downward displacement, by name) and
 DIR/summary.json, all after every increment: a stopped run keeps what it reached. Needs Debian's
 python3-getfem (scripts/setup.sh) and python3-gmsh.
