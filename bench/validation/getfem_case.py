@@ -13,8 +13,9 @@ once: the free block is its slave side against a fixed block (meshed, clamped on
 surface: Tessera's fixed blocks never move, as fe_model clamps every node of them) and against a
 free block of higher index, its master side against one of lower index. The loaded block's top is
 pressed down on a round patch at its centre, held laterally (as run_case.py); the load is the
-vertical force the free blocks put on the fixed ones (the model has no weight), and friction's
-slip in an increment is measured from the last one's displacement. Units: mm, N, MPa.
+patch's reaction (its check, support_N: the vertical force the free blocks put on the fixed ones,
+the same where the model has no weight and the faces against fixed blocks touch nothing else), and
+friction's slip in an increment is measured from the last one's displacement. Units: mm, N, MPa.
 
 Usage: getfem_case.py BUNDLE -o DIR [--youngs-modulus PA] [--poisson NU] [--friction MU]
                       [--element-size F] [--deflection F] [--punch-radius F] [--increments N] [--mirror]
@@ -27,7 +28,7 @@ reports the whole slab's load (exit 2 for a slab with neither plane). --neighbou
 multiplies the Young's modulus of the free blocks other than the loaded one (100: nearly rigid, as
 Tessera's blocks are, which separates their own deformation from the rest). Writes DIR/curve.csv
 (delta_mm, load_N, block_displacement_mm: the loaded block's mean downward displacement, Tessera's
-delta_b),
+delta_b, and support_N),
 DIR/blocks.csv (delta_mm and each free block's mean downward displacement, by name) and
 DIR/summary.json, all after every increment: a stopped run keeps what it reached. Needs Debian's
 python3-getfem (scripts/setup.sh) and python3-gmsh.
@@ -54,6 +55,14 @@ def convex_points(nodes, corners):
 def face_centres(mesh, faces) -> np.ndarray:
     """The centre of each of `faces` (GetFEM's 2 x F convex/face array), F x 3."""
     return np.array([mesh.pts(mesh.pid_in_faces(faces[:, [j]])).mean(axis=1) for j in range(faces.shape[1])])
+
+
+def faces_on(mesh, normal, offset: float, tolerance: float) -> np.ndarray:
+    """The mesh's outer faces on the plane normal . x = offset with that outward normal."""
+    faces = mesh.outer_faces_with_direction(normal, 0.01)
+    if faces.shape[1] == 0:
+        return faces
+    return faces[:, np.abs(face_centres(mesh, faces) @ normal - offset) <= tolerance]
 
 
 def main() -> int:
@@ -99,7 +108,7 @@ def main() -> int:
     md.add_initialized_data("r", [E * max(1.0, args.neighbour_stiffness) / size])
     md.add_initialized_data("f", [args.friction])
     md.add_initialized_data("alpha", [1.0])
-    md.add_initialized_data("held", [1e4 * E / size])  # the mirror planes' penalty (MPa/mm)
+    md.add_initialized_data("held", [1e4 * E * max(1.0, args.neighbour_stiffness) / size])  # the mirror planes' penalty (MPa/mm)
     contact = md.add_integral_large_sliding_contact_brick_raytracing("r", size, "f", "alpha", 0)
     # Regions of a free block's mesh: SLAVE its faces in contact as the slave side (against a fixed
     # block, AGAINST_FIXED too, or a free block of higher index), MASTER as the master side (against
@@ -124,7 +133,7 @@ def main() -> int:
         faces = planes[k]
 
         def region(which):  # the mesh faces of the block's planar faces i for which which(partners) holds
-            chosen = [m.outer_faces_with_direction(f.normal, 0.01) for i, f in enumerate(faces)
+            chosen = [faces_on(m, f.normal, f.offset, tolerance) for i, f in enumerate(faces)
                       if which(partners.get((k, i), []))]
             return np.hstack(chosen) if chosen else np.zeros((2, 0), int)
         m.set_region(SLAVE, region(lambda across: any(blocks[b].fixed or b > k for b in across)))
@@ -143,12 +152,13 @@ def main() -> int:
         for a in axes:  # symmetry: the cut face moves in its plane only (a penalty 10^4 times the
             # elements' own stiffness E/size: a multiplier would conflict with the punch's on the loaded block)
             if any(on_mirror(f, a) for f in faces):
-                cut = m.outer_faces_with_direction(-np.eye(3)[a], 0.01)
-                cut = cut[:, np.abs(face_centres(m, cut)[:, a] - centre[a]) <= tolerance]
-                m.set_region(MIRROR + a, cut)
+                m.set_region(MIRROR + a, faces_on(m, -np.eye(3)[a], -centre[a], tolerance))
                 md.add_linear_term(mim, f"held*{u}({a + 1})*Test_{u}({a + 1})", MIRROR + a)
-        md.add_filtered_fem_variable(multiplier, mfu, SLAVE)
-        md.add_slave_contact_boundary_to_large_sliding_contact_brick(contact, mim, SLAVE, u, multiplier, w)
+        if m.region(SLAVE).size:
+            md.add_filtered_fem_variable(multiplier, mfu, SLAVE)
+            md.add_slave_contact_boundary_to_large_sliding_contact_brick(contact, mim, SLAVE, u, multiplier, w)
+        else:
+            multiplier = None
         if m.region(MASTER).size:
             md.add_master_contact_boundary_to_large_sliding_contact_brick(contact, mim, MASTER, u, w)
         parts[k] = (m, mfu, mim, u, w, multiplier)
@@ -177,7 +187,7 @@ def main() -> int:
         raise SystemExit("getfem_case: no element face on the punch patch: refine the mesh or widen the punch")
     m.set_region(PATCH, faces[:, on_patch])
     md.add_initialized_data("pressed", [0.0, 0.0, 0.0])
-    md.add_Dirichlet_condition_with_multipliers(mim, u, mfu, PATCH, "pressed")
+    punch = md.mult_varname_Dirichlet(md.add_Dirichlet_condition_with_multipliers(mim, u, mfu, PATCH, "pressed"))
     volumes = {k: gf.asm_generic(parts[k][2], 0, "1", -1, md) for k in free}
 
     def sinking(k):  # block k's mean downward displacement (of its part: the whole's, by symmetry)
@@ -219,7 +229,7 @@ def main() -> int:
     rows = []
     status = "reached the deflection"
     curve = open(out / "curve.csv", "w")  # written as it goes: a stopped run keeps its increments
-    curve.write("delta_mm,load_N,block_displacement_mm\n")
+    curve.write("delta_mm,load_N,block_displacement_mm,support_N\n")
     sinks = open(out / "blocks.csv", "w")  # every free block's delta_b, to compare the neighbours' motion
     sinks.write("delta_mm," + ",".join(blocks[k].name for k in free) + "\n")
     stepping = time.time()
@@ -228,11 +238,14 @@ def main() -> int:
         if not reach(deflection * (step - 1) / args.increments, delta):
             status = f"stopped at increment {step}: Newton did not converge, the increment halved three times"
             break
-        # the load: the vertical force the free blocks put on the fixed ones (no weight in the model)
-        load = share * sum(gf.asm_generic(parts[k][2], 0, f"{parts[k][5]}(3)", AGAINST_FIXED, md) for k in free)
+        # the load: the punch's reaction; its check, the support: the vertical force the free blocks
+        # put on the fixed ones (equal where the faces against fixed blocks touch nothing else)
+        load = share * gf.asm_generic(mim, 0, f"{punch}(3)", PATCH, md)
+        support = share * sum(gf.asm_generic(parts[k][2], 0, f"{parts[k][5]}(3)", AGAINST_FIXED, md)
+                              for k in free if parts[k][5])
         sink = sinking(loaded)
         rows.append((delta, load, sink))
-        curve.write(f"{delta:.9g},{load:.9g},{sink:.9g}\n")
+        curve.write(f"{delta:.9g},{load:.9g},{sink:.9g},{support:.9g}\n")
         curve.flush()
         sinks.write(f"{delta:.9g}," + ",".join(f"{sinking(k):.9g}" for k in free) + "\n")
         sinks.flush()

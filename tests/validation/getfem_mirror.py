@@ -6,7 +6,9 @@ normal to their plane, the load 4 x the quarter's) must give the whole slab's an
 small increment, the stiffness on the loaded block's mean displacement, load / delta_b, within 3 %
 (measured: 1.5 %; the two meshes differ, gmsh meshes the cut blocks anew, and so do the punch
 patches, which moves the load at a given punch displacement by 5 %). A quarter that lost its
-symmetry conditions (the block free to spread) or its factor 4 is far off.
+symmetry conditions (the block free to spread) or its factor 4 is far off. In each run the punch's
+reaction equals the vertical force on the fixed blocks (equilibrium; both 122.892615 N on the
+whole slab) to 1e-3.
 
 Usage: getfem_mirror.py TESSERA_EXE WORK_DIR. Exit 77 (skipped) where GetFEM or gmsh is not installed.
 """
@@ -20,12 +22,15 @@ root = Path(__file__).resolve().parents[2]
 
 
 def run(bundle: Path, out: Path, *extra: str) -> tuple[float, float, dict]:
-    subprocess.run([sys.executable, str(root / "bench/validation/getfem_case.py"), str(bundle), "-o", str(out),
-                    "--element-size", "0.3", "--deflection", "0.03", "--increments", "1", *extra],
-                   check=True, capture_output=True, text=True)
+    run = subprocess.run([sys.executable, str(root / "bench/validation/getfem_case.py"), str(bundle), "-o", str(out),
+                          "--element-size", "0.3", "--deflection", "0.03", "--increments", "1", *extra],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, f"getfem_case.py failed ({run.returncode}): {run.stdout[-2000:]}{run.stderr[-2000:]}"
     with open(out / "curve.csv") as f:
         row = list(csv.DictReader(f))[-1]
-    return float(row["load_N"]), float(row["block_displacement_mm"]), json.loads((out / "summary.json").read_text())
+    load, support = float(row["load_N"]), float(row["support_N"])
+    assert abs(support / load - 1) < 1e-3, f"the punch's reaction {load} N is not the supports' {support} N"
+    return load, float(row["block_displacement_mm"]), json.loads((out / "summary.json").read_text())
 
 
 def main() -> int:
