@@ -78,11 +78,7 @@ def main() -> int:
 
     start = time.time()
     out = Path(args.out)
-    try:
-        blocks, loaded, h, centre, axes = slab_part(args.bundle, args.mirror)
-    except ValueError as e:
-        print(f"getfem_case: {e}", file=sys.stderr)
-        return 2
+    blocks, loaded, h, centre, axes = slab_part(args.bundle, args.mirror, "getfem_case")
     share = 2 ** len(axes)  # the whole slab's load per the model's
     out.mkdir(parents=True, exist_ok=True)  # (after the refusal: it leaves no empty folder)
     size, radius, deflection = args.element_size * h, args.punch_radius * h, args.deflection * h
@@ -243,11 +239,12 @@ def main() -> int:
         load = share * gf.asm_generic(mim, 0, f"{punch}(3)", PATCH, md)
         support = share * sum(gf.asm_generic(parts[k][2], 0, f"{parts[k][5]}(3)", AGAINST_FIXED, md)
                               for k in free if parts[k][5])
-        sink = sinking(loaded)
+        sunk = {k: sinking(k) for k in free}
+        sink = sunk[loaded]
         rows.append((delta, load, sink))
         curve.write(f"{delta:.9g},{load:.9g},{sink:.9g},{support:.9g}\n")
         curve.flush()
-        sinks.write(f"{delta:.9g}," + ",".join(f"{sinking(k):.9g}" for k in free) + "\n")
+        sinks.write(f"{delta:.9g}," + ",".join(f"{sunk[k]:.9g}" for k in free) + "\n")
         sinks.flush()
         write_summary(rows, f"running: {step} of {args.increments} increments")
         left = (time.time() - stepping) / step * (args.increments - step)

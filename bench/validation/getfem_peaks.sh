@@ -4,8 +4,8 @@
 # default scene at E = 4.2 GPa, mu = 0.23) and getfem_case.py on the slab's quarter or half
 # (--mirror), 0.4 h elements, to 1.0 h in 30 increments; on square5 also Tessera's runs under its
 # numerical choices (variant_*), 0.3 h elements to 0.4 h (the mesh), and the neighbours 100 x
-# stiffer to 0.6 h; then the tables and the figure (getfem_peaks.py). A GetFEM run that stops (Newton not converging through a slip) keeps the
-# increments it reached.
+# stiffer to 0.6 h; then the tables and the figure (getfem_peaks.py). A GetFEM run that stops
+# (Newton not converging through a slip) keeps the increments it reached.
 # Usage: bench/validation/getfem_peaks.sh [OUT]     (default OUT: out/validation_gf)
 # Env:   TESSERA (build/tools/tessera). Hours on 2 cores (docs/validation.md lists each run's time).
 set -uo pipefail

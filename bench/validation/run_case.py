@@ -61,10 +61,10 @@ def add_slab_arguments(parser: argparse.ArgumentParser) -> None:
                              "2 or 4 x the part's")
 
 
-def slab_part(bundle: str, mirror: bool):
+def slab_part(bundle: str, mirror: bool, program: str):
     """The blocks modelled (with --mirror, fe_model.mirror_part's), the loaded block's index among
-    them, its thickness h (z-extent, mm) and centre, and the mirror axes; ValueError for a slab
-    with no mirror plane when mirror is asked for."""
+    them, its thickness h (z-extent, mm) and centre, and the mirror axes. A slab with no mirror
+    plane when mirror is asked for: the reason on stderr, after the program's name, and exit 2."""
     blocks = fe.read_bundle(bundle)
     loaded = central_free_block(blocks)
     h = float(np.ptp(blocks[loaded].vertices[:, 2]))
@@ -72,7 +72,11 @@ def slab_part(bundle: str, mirror: bool):
     axes = []
     if mirror:
         name = blocks[loaded].name
-        blocks, axes = fe.mirror_part(blocks, centre)
+        try:
+            blocks, axes = fe.mirror_part(blocks, centre)
+        except ValueError as e:
+            print(f"{program}: {e}", file=sys.stderr)
+            raise SystemExit(2)
         loaded = next(k for k, b in enumerate(blocks) if b.name == name)
     return blocks, loaded, h, centre, axes
 
@@ -92,11 +96,7 @@ def main() -> int:
     args = parser.parse_args()
 
     out = Path(args.out)
-    try:
-        blocks, loaded, h, centre, axes = slab_part(args.bundle, args.mirror)
-    except ValueError as e:
-        print(f"run_case: {e}", file=sys.stderr)
-        return 2
+    blocks, loaded, h, centre, axes = slab_part(args.bundle, args.mirror, "run_case")
     share = 2 ** len(axes)  # the whole slab's load per the model's
     out.mkdir(parents=True, exist_ok=True)  # (after the refusals: none leaves an empty folder)
     model = fe.Model(youngs_modulus=args.youngs_modulus / 1e6, poisson=args.poisson, friction=args.friction,
