@@ -58,6 +58,17 @@ def read_bundle(path: str | Path) -> list[Block]:
     return blocks
 
 
+def span(path: str | Path) -> tuple[int, float]:
+    """The bundle's free span: its interfaces M and length L (mm), from which Tessera's span rule
+    takes k_n = E M / L (docs/bundle.md)."""
+    import h5py
+    with h5py.File(Path(path) / "bundle.h5", "r") as f:
+        attrs = f["bodies"].attrs
+        if "span_interfaces" not in attrs or "span_length" not in attrs:
+            raise ValueError(f"{path}: the bundle stores no span (span_interfaces, span_length)")
+        return int(attrs["span_interfaces"]), float(attrs["span_length"]) * MM_PER_M
+
+
 def box(name: str, lo, hi, fixed: bool = False) -> Block:
     """An axis-aligned box [lo, hi] (mm) as a closed triangle mesh."""
     lo, hi = np.asarray(lo, float), np.asarray(hi, float)
@@ -252,6 +263,8 @@ class Model:
     poisson: float = 0.2
     friction: float = 0.23             # Coulomb coefficient; 0: frictionless
     penalty_factor: float = 50.0       # contact slope K = factor * E / element size (MPa/mm)
+    slope: float = 0.0                 # MPa/mm: the contact slope itself, if above 0 (penalty_factor unused)
+    block_stiffness: float = 1.0       # the blocks' modulus is E x this (the contact slope keeps E's)
     stick_factor: float = 0.1          # stick slope = factor * K
     increments: int = 20               # the step in this many increments (more where ccx cuts them)
     element_size: float = 1.0          # mm
@@ -260,6 +273,8 @@ class Model:
 
     def contact_slope(self) -> float:
         """Penalty slope of the contact pressure against overclosure, MPa/mm."""
+        if self.slope > 0:
+            return self.slope
         return self.penalty_factor * self.youngs_modulus / self.element_size
 
 
@@ -446,7 +461,7 @@ def write_input(path: Path, mesh: Mesh, model: Model, held: list[Constraint],
         lines.append(f"*ELEMENT, TYPE=C3D10, ELSET=B{k}")
         lines += [f"{eo + i + 1}, " + ", ".join(str(no + v + 1) for v in tet) for i, tet in enumerate(m.tets)]
     lines += ["*ELSET, ELSET=EALL"] + [f"B{k}" for k in range(len(blocks))]
-    lines += ["*MATERIAL, NAME=BLOCK", "*ELASTIC", f"{model.youngs_modulus:.12g}, {model.poisson:.12g}",
+    lines += ["*MATERIAL, NAME=BLOCK", "*ELASTIC", f"{model.youngs_modulus * model.block_stiffness:.12g}, {model.poisson:.12g}",
               "*SOLID SECTION, ELSET=EALL, MATERIAL=BLOCK"]
 
     def surface(k, i):

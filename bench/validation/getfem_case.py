@@ -3,30 +3,36 @@
 peak with GetFEM").
 
 CalculiX's contacts overstate a press slid past an edge (sliding_press.py); GetFEM's raytracing
-contact with an augmented-Lagrangian multiplier (the integral large sliding contact brick; Y.
-Renard & K. Poulios, GetFEM's user documentation, "Large sliding/large deformation contact with
-friction bricks") follows it: slid in 10 increments it ends on the pressed-in-place force to six
-digits (getfem_sliding_press.py). Here the slab's free blocks are elastic solids (linear
-elasticity, quadratic elements on the corners of gmsh's tetrahedra, fe_model.mesh_block). Each
-face a free block shares with another block is a contact interface with Coulomb friction, taken
-once: the free block is its slave side against a fixed block (meshed, clamped on its whole
-surface: Tessera's fixed blocks never move, as fe_model clamps every node of them) and against a
-free block of higher index, its master side against one of lower index. The loaded block's top is
-pressed down on a round patch at its centre, held laterally (as run_case.py); the load is the
-patch's reaction (its check, support_N: the vertical force the free blocks put on the fixed ones,
-the same where the model has no weight and the faces against fixed blocks touch nothing else), and
-friction's slip in an increment is measured from the last one's displacement. Units: mm, N, MPa.
+contact with an augmented-Lagrangian multiplier (the formulation of its integral large sliding
+contact brick, written out here in its weak-form language: contact_terms; Y. Renard & K.
+Poulios, GetFEM's user documentation, "Large sliding/large deformation contact with friction
+bricks") follows it: slid in 10 increments it ends on the pressed-in-place force to six digits
+(getfem_sliding_press.py). Here the slab's free blocks are elastic solids (linear elasticity,
+quadratic elements on the corners of gmsh's tetrahedra, fe_model.mesh_block). Each face a free
+block shares with another block is a contact interface with Coulomb friction, taken once: the free
+block is its slave side against a fixed block (meshed, clamped on its whole surface: Tessera's
+fixed blocks never move, as fe_model clamps every node of them) and against a free block of higher
+index, its master side against one of lower index. The faces are rigid (no penetration), or with
+--span-contact compliant as Tessera's: traction k_n times the penetration, k_n = E M / L from the
+bundle's span, and a tangential spring k_t = k_n held to Coulomb's limit (contact_terms). The
+loaded block's top is pressed down on a round patch at its centre, held laterally (as
+run_case.py); the load is the patch's reaction (its check, support_N: the vertical force the free
+blocks put on the fixed ones, the same where the model has no weight and the faces against fixed
+blocks touch nothing else), and friction's slip in an increment is measured from the last one's
+displacement. Units: mm, N, MPa.
 
 Usage: getfem_case.py BUNDLE -o DIR [--youngs-modulus PA] [--poisson NU] [--friction MU]
                       [--element-size F] [--deflection F] [--punch-radius F] [--increments N] [--mirror]
-                      [--neighbour-stiffness F]
+                      [--neighbour-stiffness F] [--block-stiffness F] [--span-contact]
 Lengths F are fractions of the loaded block's thickness h, as in run_case.py. --mirror models the
 half or quarter of the slab on the positive side of its mirror planes through the loaded block's
 centre, as run_case.py --mirror does (fe_model.mirror_part: blocks across them cut; here the cut
 faces of the free blocks held normal to their plane by a penalty 10^4 times E / element size) and
 reports the whole slab's load (exit 2 for a slab with neither plane). --neighbour-stiffness F
 multiplies the Young's modulus of the free blocks other than the loaded one (100: nearly rigid, as
-Tessera's blocks are, which separates their own deformation from the rest). Writes DIR/curve.csv
+Tessera's blocks are, which separates their own deformation from the rest); --block-stiffness F
+every free block's. With --block-stiffness 1000 --span-contact the FE solves Tessera's own model,
+rigid blocks on compliant faces, quasi-statically. Writes DIR/curve.csv
 (delta_mm, load_N, block_displacement_mm: the loaded block's mean downward displacement, Tessera's
 delta_b, and support_N),
 DIR/blocks.csv (delta_mm and each free block's mean downward displacement, by name) and
@@ -65,13 +71,52 @@ def faces_on(mesh, normal, offset: float, tolerance: float) -> np.ndarray:
     return faces[:, np.abs(face_centres(mesh, faces) @ normal - offset) <= tolerance]
 
 
+RAY, U_ALL, W_ALL = "contact", "displacements", "last_displacements"  # the raytracing and its groups
+
+
+def contact_terms(u: str, w: str, multiplier: str) -> str:
+    """The weak form of a slave boundary's contact (GWFL, on its region): GetFEM's integral large
+    sliding contact (Renard & Poulios; the brick's non-symmetric form) with the faces' compliance c.
+    The multiplier (the traction on the slave side) solves multiplier = P(multiplier, n, V, g, f, r),
+    P the augmented projection on Coulomb's cone, n the slave's deformed normal, where the ray meets
+    a master; at that fixed point the compliant gap and slip vanish:
+        g = (x_master - x) . n - c multiplier . n     (rigid: c = 0; compliant: multiplier . n = g / c)
+        V = slip since the last increment + c (multiplier - its last value)_t
+    so the traction is k_n = 1/c times the penetration and its tangential part a spring k_t = k_n,
+    held to f times the normal one."""
+    n = f"Transformed_unit_vector(Grad_{u}, Normal)"
+    last = f"{multiplier}_last"
+    change = f"({multiplier}-{last})"
+    gap = f"((Interpolate(X,{RAY})+Interpolate({U_ALL},{RAY})-X-{u}).{n}-compliance*{multiplier}.{n})"
+    slip = (f"(({u}-Interpolate({U_ALL},{RAY})-{w}+Interpolate({W_ALL},{RAY}))"
+            f"+compliance*({change}-({change}.{n})*{n}))*alpha")
+    projection = f"Coulomb_friction_coupled_projection({multiplier}, {n}, {slip}, {gap}, f, r)"
+    return (f"-{multiplier}.Test_{u} + Interpolate_filter({RAY}, {multiplier}.Interpolate(Test_{U_ALL},{RAY}), 1)"
+            f" - (1/r)*{multiplier}.Test_{multiplier}"
+            f" + Interpolate_filter({RAY}, (1/r)*{projection}.Test_{multiplier}, 1)")
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_slab_arguments(parser)
     parser.add_argument("--neighbour-stiffness", type=float, default=1.0,
                         help="Young's modulus of the free blocks other than the loaded one, x this (default 1; "
                              "100: nearly rigid, the run that separates their own deformation from the rest)")
+    parser.add_argument("--block-stiffness", type=float, default=1.0,
+                        help="Young's modulus of every free block, x this (default 1; with --span-contact and "
+                             "1000: Tessera's rigid blocks on compliant faces, solved by the FE)")
+    parser.add_argument("--large-displacements", action="store_true",
+                        help="finite-strain elasticity (Saint Venant-Kirchhoff): blocks that turn by degrees "
+                             "(default: linearised, whose rotations strain the blocks)")
+    parser.add_argument("--span-contact", action="store_true",
+                        help="compliant faces: traction k_n x penetration and a tangential spring k_t = k_n "
+                             "under Coulomb's limit, k_n = E M / L (Tessera's span rule, the bundle's span); "
+                             "default: rigid faces")
     args = parser.parse_args()
+    for name in ("neighbour_stiffness", "block_stiffness"):
+        if not getattr(args, name) > 0:
+            print(f"getfem_case: --{name.replace('_', '-')} {getattr(args, name)}: must be above 0", file=sys.stderr)
+            return 2
     import getfem as gf
     gf.util_trace_level(0)
     gf.util_warning_level(0)
@@ -93,19 +138,31 @@ def main() -> int:
         gmsh.finalize()
 
     E = args.youngs_modulus / 1e6
+    compliance = 0.0  # mm/MPa: 1 / k_n, the faces' (0: rigid)
+    if args.span_contact:
+        try:
+            interfaces, length = fe.span(args.bundle)
+        except ValueError as e:
+            print(f"getfem_case: {e}", file=sys.stderr)
+            return 2
+        compliance = length / (E * interfaces)
     lam = E * args.poisson / ((1 + args.poisson) * (1 - 2 * args.poisson))
     mu = E / (2 * (1 + args.poisson))
+    stiffest = E * args.block_stiffness * max(1.0, args.neighbour_stiffness)
     md = gf.Model("real")
-    md.add_initialized_data("lambda", [lam])
-    md.add_initialized_data("mu", [mu])
-    md.add_initialized_data("lambda_neighbour", [args.neighbour_stiffness * lam])
-    md.add_initialized_data("mu_neighbour", [args.neighbour_stiffness * mu])
-    # the augmentation parameter, of the stiffest blocks: convergence, not the answer
-    md.add_initialized_data("r", [E * max(1.0, args.neighbour_stiffness) / size])
+    md.add_initialized_data("lambda", [args.block_stiffness * lam])
+    md.add_initialized_data("mu", [args.block_stiffness * mu])
+    md.add_initialized_data("lambda_neighbour", [args.block_stiffness * args.neighbour_stiffness * lam])
+    md.add_initialized_data("mu_neighbour", [args.block_stiffness * args.neighbour_stiffness * mu])
+    # the augmentation parameter: an element of the stiffest blocks in series with the faces
+    # (convergence, not the answer)
+    md.add_initialized_data("r", [1.0 / (compliance + size / stiffest)])
     md.add_initialized_data("f", [args.friction])
     md.add_initialized_data("alpha", [1.0])
-    md.add_initialized_data("held", [1e4 * E * max(1.0, args.neighbour_stiffness) / size])  # the mirror planes' penalty (MPa/mm)
-    contact = md.add_integral_large_sliding_contact_brick_raytracing("r", size, "f", "alpha", 0)
+    md.add_initialized_data("held", [1e4 * stiffest / size])  # the mirror planes' penalty (MPa/mm)
+    md.add_initialized_data("compliance", [compliance])
+    md.add_raytracing_transformation(RAY, size)  # (release distance: an element)
+    slaves, masters = [], []  # the contact boundaries, given to the transformation once every variable exists
     # Regions of a free block's mesh: SLAVE its faces in contact as the slave side (against a fixed
     # block, AGAINST_FIXED too, or a free block of higher index), MASTER as the master side (against
     # a free block of lower index: each interface is constrained once), PATCH the punch, MIRROR + a
@@ -141,10 +198,11 @@ def main() -> int:
         u, w, multiplier = f"u{k}", f"w{k}", f"lambda{k}"
         md.add_fem_variable(u, mfu)
         md.add_fem_data(w, mfu)
-        if k == loaded:
-            md.add_isotropic_linearized_elasticity_brick(mim, u, "lambda", "mu")
-        else:
-            md.add_isotropic_linearized_elasticity_brick(mim, u, "lambda_neighbour", "mu_neighbour")
+        moduli = "" if k == loaded else "_neighbour"
+        if args.large_displacements:  # Saint Venant-Kirchhoff: a rigid rotation strains nothing
+            md.add_finite_strain_elasticity_brick(mim, "SaintVenant Kirchhoff", u, f"[lambda{moduli}; mu{moduli}]")
+        else:  # linearised: a rotation by theta strains the block by about theta^2 / 2
+            md.add_isotropic_linearized_elasticity_brick(mim, u, f"lambda{moduli}", f"mu{moduli}")
         for a in axes:  # symmetry: the cut face moves in its plane only (a penalty 10^4 times the
             # elements' own stiffness E/size: a multiplier would conflict with the punch's on the loaded block)
             if any(on_mirror(f, a) for f in faces):
@@ -152,11 +210,12 @@ def main() -> int:
                 md.add_linear_term(mim, f"held*{u}({a + 1})*Test_{u}({a + 1})", MIRROR + a)
         if m.region(SLAVE).size:
             md.add_filtered_fem_variable(multiplier, mfu, SLAVE)
-            md.add_slave_contact_boundary_to_large_sliding_contact_brick(contact, mim, SLAVE, u, multiplier, w)
+            md.add_fem_data(f"{multiplier}_last", mfu)  # the traction at the last increment (on SLAVE)
+            slaves.append((m, mim, u, w, multiplier))
         else:
             multiplier = None
         if m.region(MASTER).size:
-            md.add_master_contact_boundary_to_large_sliding_contact_brick(contact, mim, MASTER, u, w)
+            masters.append((m, MASTER))
         parts[k] = (m, mfu, mim, u, w, multiplier)
     touching = {k for a, _, b, _ in pairs for k in (a, b)}
     for k, b in enumerate(blocks):  # those that share a face with a free block (not a line, as corner neighbours)
@@ -171,8 +230,15 @@ def main() -> int:
             md.add_isotropic_linearized_elasticity_brick(mim, f"u{k}", "lambda", "mu")
             md.add_Dirichlet_condition_with_simplification(f"u{k}", SLAVE)
             md.add_fem_data(f"w{k}", mfu)  # its previous displacement, 0: friction's slip is u - w
-            md.add_master_contact_boundary_to_large_sliding_contact_brick(contact, mim, SLAVE, f"u{k}", f"w{k}")
-            parts[k] = (m, mfu, mim)  # GetFEM's objects live while Python holds them
+            masters.append((m, SLAVE))
+            parts[k] = (m, mfu, mim, f"u{k}", f"w{k}", None)  # GetFEM's objects live while Python holds them
+    md.define_variable_group(U_ALL, *[p[3] for p in parts.values()])
+    md.define_variable_group(W_ALL, *[p[4] for p in parts.values()])
+    for m, region in masters:
+        md.add_master_contact_boundary_to_raytracing_transformation(RAY, m, U_ALL, region)
+    for m, mim, u, w, multiplier in slaves:
+        md.add_slave_contact_boundary_to_raytracing_transformation(RAY, m, U_ALL, SLAVE)
+        md.add_nonlinear_term(mim, contact_terms(u, w, multiplier), SLAVE)
 
     m, mfu, mim, u, _, _ = parts[loaded]
     top = blocks[loaded].vertices[:, 2].max()
@@ -189,6 +255,12 @@ def main() -> int:
     def sinking(k):  # block k's mean downward displacement (of its part: the whole's, by symmetry)
         return -gf.asm_generic(parts[k][2], 0, f"{parts[k][3]}(3)", -1, md) / volumes[k]
 
+    def tilt(k, i, j):  # block k's mean rotation (degrees) from axis i towards axis j (1-based): the
+        # skew part of its deformation gradient, sin of the angle for a rigid rotation
+        u = parts[k][3]
+        skew = gf.asm_generic(parts[k][2], 0, f"(Grad_{u}({j},{i})-Grad_{u}({i},{j}))/2", -1, md) / volumes[k]
+        return np.degrees(np.arcsin(np.clip(skew, -1, 1)))
+
     def reach(start: float, end: float, depth: int = 0) -> bool:
         """Newton from the converged state at the patch's displacement `start` to `end`; where it
         fails, the state is restored and the way there halved, at most three times. After each
@@ -204,14 +276,22 @@ def main() -> int:
             middle = 0.5 * (start + end)
             return depth < 3 and reach(start, middle, depth + 1) and reach(middle, end, depth + 1)
         for k in free:
-            md.set_variable(parts[k][4], md.variable(parts[k][3]))
+            m, mfu, mim, u, w, multiplier = parts[k]
+            md.set_variable(w, md.variable(u))
+            if multiplier:  # the filtered multiplier's dofs are mfu's on SLAVE, in order
+                last = np.zeros(mfu.nbdof())
+                last[mfu.basic_dof_on_region(SLAVE)] = md.variable(multiplier)
+                md.set_variable(f"{multiplier}_last", last)
         return True
 
     def write_summary(rows, status):
         peak = max(rows, key=lambda r: r[1]) if rows else (0.0, 0.0, 0.0)
         summary = {"solver": "GetFEM",
                    "contact": "integral large sliding contact (raytracing, augmented Lagrangian)",
-                   "youngs_modulus_Pa": args.youngs_modulus, "neighbour_stiffness": args.neighbour_stiffness,
+                   "faces_k_n_MPa_per_mm": 1.0 / compliance if compliance else None,  # None: rigid faces
+                   "large_displacements": args.large_displacements,
+                   "youngs_modulus_Pa": args.youngs_modulus, "block_stiffness": args.block_stiffness,
+                   "neighbour_stiffness": args.neighbour_stiffness,
                    "poisson": args.poisson, "friction": args.friction,
                    "element_size_mm": size, "punch_radius_mm": radius, "deflection_mm": deflection,
                    "mirror_planes": ["xy"[a] for a in axes], "increments": args.increments,
@@ -227,7 +307,8 @@ def main() -> int:
     curve = open(out / "curve.csv", "w")  # written as it goes: a stopped run keeps its increments
     curve.write("delta_mm,load_N,block_displacement_mm,support_N\n")
     sinks = open(out / "blocks.csv", "w")  # every free block's delta_b, to compare the neighbours' motion
-    sinks.write("delta_mm," + ",".join(blocks[k].name for k in free) + "\n")
+    sinks.write("delta_mm," + ",".join(blocks[k].name for k in free) + "," +
+                ",".join(f"{blocks[k].name}_tilt_{axis}_deg" for k in free for axis in "xyz") + "\n")
     stepping = time.time()
     for step in range(1, args.increments + 1):
         delta = deflection * step / args.increments
@@ -244,7 +325,9 @@ def main() -> int:
         rows.append((delta, load, sink))
         curve.write(f"{delta:.9g},{load:.9g},{sink:.9g},{support:.9g}\n")
         curve.flush()
-        sinks.write(f"{delta:.9g}," + ",".join(f"{sunk[k]:.9g}" for k in free) + "\n")
+        tilts = [tilt(k, i, j) for k in free for i, j in ((2, 3), (3, 1), (1, 2))]  # about x, y, z
+        sinks.write(f"{delta:.9g}," + ",".join(f"{sunk[k]:.9g}" for k in free) + "," +
+                    ",".join(f"{t:.6g}" for t in tilts) + "\n")
         sinks.flush()
         write_summary(rows, f"running: {step} of {args.increments} increments")
         left = (time.time() - stepping) / step * (args.increments - step)

@@ -36,10 +36,12 @@ def main() -> int:
              "Tessera at the FE's last δ_b (N) |", "|---|---|---|---|---|---|---|---|"]
     fig, axes = plt.subplots(1, len(cases), figsize=(6 * len(cases), 4.5), squeeze=False)
     for case, ax in zip(cases, axes[0]):
-        tessera = {r: np.genfromtxt(out / case / f"tessera_{r}" / "curve.csv", delimiter=",", names=True)
-                   for r in RULES if (out / case / f"tessera_{r}" / "curve.csv").exists()}
+        def tessera_runs(suffix):  # Tessera's curves under each rule, at the case's friction or at none
+            return {r: np.genfromtxt(out / case / f"tessera_{r}{suffix}" / "curve.csv", delimiter=",", names=True)
+                    for r in RULES if (out / case / f"tessera_{r}{suffix}" / "curve.csv").exists()}
         for run in sorted((out / case).glob("getfem*/summary.json")):
             s = json.loads(run.read_text())
+            tessera = tessera_runs("_mu0" if s["friction"] == 0 else "")  # (frictionless: tessera_RULE_mu0)
             fe = np.genfromtxt(run.parent / "curve.csv", delimiter=",", names=True, ndmin=1)
             if fe.size == 0:
                 continue
@@ -50,6 +52,14 @@ def main() -> int:
                      f"{s['converged_increments']} of {s['increments']} increments")
             if s.get("neighbour_stiffness", 1.0) != 1.0:
                 label += f", neighbours' E x {s['neighbour_stiffness']:g}"
+            if s.get("block_stiffness", 1.0) != 1.0:
+                label += f", blocks' E x {s['block_stiffness']:g}"
+            if s.get("faces_k_n_MPa_per_mm"):
+                label += f", faces k_n = {s['faces_k_n_MPa_per_mm']:.0f} MPa/mm"
+            if s.get("large_displacements"):
+                label += ", finite strain"
+            if s["friction"] == 0:
+                label += ", frictionless"
             ax.plot(fe["block_displacement_mm"], fe["load_N"], "o-", ms=3, label="GetFEM " + label)
             last = fe["block_displacement_mm"][-1]
             for rule, t in tessera.items():
@@ -63,8 +73,9 @@ def main() -> int:
                 versus = f" ({difference})"
                 lines.append(f"| {case} | {label} | {fe_p} | {fe_d} | {rule} | {p[-1]:.0f}{versus} | {d[-1]:.2f} | "
                              f"{at_last:.0f} ({at_last / fe['load_N'][-1] - 1:+.0%}) |")
-        for rule, t in tessera.items():
-            ax.plot(t["block_displacement_mm"], t["load_N"], lw=1, label=f"Tessera, {rule} rule")
+        for suffix, what in (("", ""), ("_mu0", ", frictionless")):
+            for rule, t in tessera_runs(suffix).items():
+                ax.plot(t["block_displacement_mm"], t["load_N"], lw=1, label=f"Tessera, {rule} rule{what}")
         ax.set_title(case)
         ax.set_xlabel("loaded block's displacement δ_b (mm)")
         ax.set_ylabel("load (N)")

@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# The 5 x 5 slabs toward their peak on GetFEM (docs/validation.md, "Toward the peak on the 5 x 5
-# slabs"): for square5 and hex5, the bundle, Tessera's runs under the three stiffness rules (the
-# default scene at E = 4.2 GPa, mu = 0.23) and getfem_case.py on the slab's quarter or half
-# (--mirror), 0.4 h elements, to 1.0 h in 30 increments; on square5 also Tessera's runs under its
-# numerical choices (variant_*), 0.3 h elements to 0.4 h (the mesh), and the neighbours 100 x
-# stiffer to 0.6 h; then the tables and the figure (getfem_peaks.py). A GetFEM run that stops
-# (Newton not converging through a slip) keeps the increments it reached.
+# The slabs toward their peak on GetFEM (docs/validation.md, "Toward the peak on the 5 x 5 slabs"
+# and "Tessera's own model, solved by the FE"): for square3, square5 and hex5, the bundle and
+# Tessera's runs under the three stiffness rules (the default scene at E = 4.2 GPa, mu = 0.23);
+# getfem_case.py on the 5 x 5 slabs' quarter or half (--mirror), 0.4 h elements, linearised
+# (getfem) and finite-strain elasticity (getfem_finite_strain); on square5 also Tessera's runs
+# under its numerical choices (variant_*), 0.3 h elements to 0.4 h (the mesh) and the neighbours
+# 100 x stiffer to 0.6 h; on square3 Tessera's own model in the FE (rigid blocks, E x 1000, on
+# faces of the span rule's k_n: getfem_rigid_blocks), with friction and without (then against
+# Tessera frictionless and the rigid wedge's closed form); then the tables and the figure
+# (getfem_peaks.py). A GetFEM run that stops (Newton not converging through a slip) keeps the
+# increments it reached.
 # Usage: bench/validation/getfem_peaks.sh [OUT]     (default OUT: out/validation_gf)
 # Env:   TESSERA (build/tools/tessera). Hours on 2 cores (docs/validation.md lists each run's time).
 set -uo pipefail
@@ -21,12 +25,14 @@ fe() {  # CASE NAME getfem_case.py-options...
     > "$out/$case/$name.log" 2>&1 || echo "   (stopped: $out/$case/$name.log)" >&2
 }
 set -e
-mkdir -p "$out/square5" "$out/hex5"
+mkdir -p "$out/square3" "$out/square5" "$out/hex5"
+"$tessera" tile --block "$here/assets/blocks/planar_a10_h3.18_5deg.obj" --unit mm --grid 3x3 --pitch 10 \
+  -o "$out/square3/bundle" --replace > "$out/square3/tile.log" 2>&1
 "$tessera" tile --block "$here/assets/blocks/planar_a10_h3.18_5deg.obj" --unit mm --grid 5x5 --pitch 10 \
   -o "$out/square5/bundle" --replace > "$out/square5/tile.log" 2>&1
 "$tessera" tile --tiling hex --grid 5x5 --pitch 10 --thickness 3.18 --angle 5 --unit mm \
   -o "$out/hex5/bundle" --replace > "$out/hex5/tile.log" 2>&1
-for case in square5 hex5; do
+for case in square3 square5 hex5; do
   for rule in span bars sections; do
     sed -e "s/^youngs_modulus = .*/youngs_modulus = 4.2e9/" \
         -e "s/^friction = .*/friction = 0.23\nstiffness_rule = \"$rule\"/" \
@@ -36,6 +42,11 @@ for case in square5 hex5; do
       --no-plot > "$out/$case/tessera_$rule.log"
   done
 done
+# square3 frictionless, the span rule (against the rigid wedge's closed form and the FE's)
+sed -e "s/^friction = .*/friction = 0.0/" "$out/square3/scene_span.toml" > "$out/square3/scene_span_mu0.toml"
+rm -rf "$out/square3/tessera_span_mu0"
+"$tessera" run "$out/square3/scene_span_mu0.toml" --bundle "$out/square3/bundle" -o "$out/square3/tessera_span_mu0" \
+  --no-plot > "$out/square3/tessera_span_mu0.log"
 # square5 under Tessera's numerical choices (the bars rule's scene, each with one change)
 variants=('implicit|[solver]\nmethod = "implicit"'
           'blended|[solver]\ncontact_area = "blended"'
@@ -57,4 +68,9 @@ fe square5 getfem --element-size 0.4 --deflection 1.0 --increments 30
 fe hex5 getfem --element-size 0.4 --deflection 1.0 --increments 30
 fe square5 getfem_fine --element-size 0.3 --deflection 0.4 --increments 12
 fe square5 getfem_rigid_neighbours --element-size 0.4 --deflection 0.6 --increments 18 --neighbour-stiffness 100
-"$python" "$here/bench/validation/getfem_peaks.py" "$out" square5 hex5
+rigid=(--block-stiffness 1000 --span-contact --large-displacements)  # Tessera's model: rigid blocks, k_n faces
+fe square3 getfem_rigid_blocks --element-size 0.3 --deflection 1.2 --increments 80 "${rigid[@]}"
+fe square3 getfem_rigid_blocks_mu0 --element-size 0.3 --deflection 1.2 --increments 80 "${rigid[@]}" --friction 0
+fe square5 getfem_finite_strain --element-size 0.4 --deflection 1.0 --increments 30 --large-displacements
+fe hex5 getfem_finite_strain --element-size 0.4 --deflection 1.0 --increments 30 --large-displacements
+"$python" "$here/bench/validation/getfem_peaks.py" "$out" square3 square5 hex5

@@ -86,6 +86,12 @@ def main() -> int:
     add_slab_arguments(parser)
     parser.add_argument("--penalty", type=float, default=50.0,
                         help="contact slope K = PENALTY x E / element size (default 50)")
+    parser.add_argument("--span-contact", action="store_true",
+                        help="the contact slope is Tessera's span rule, k_n = E M / L (the bundle's span), "
+                             "instead of --penalty's")
+    parser.add_argument("--block-stiffness", type=float, default=1.0,
+                        help="the blocks' modulus is E x this (default 1); with --span-contact and 1000, "
+                             "Tessera's rigid blocks on penalty contacts, solved by the FE")
     parser.add_argument("--stick", type=float, default=0.1,
                         help="friction's stick slope = STICK x the contact slope (default 0.1)")
     parser.add_argument("--contact", choices=list(fe.CONTACT_TYPES), default="surface",
@@ -98,11 +104,22 @@ def main() -> int:
     out = Path(args.out)
     blocks, loaded, h, centre, axes = slab_part(args.bundle, args.mirror, "run_case")
     share = 2 ** len(axes)  # the whole slab's load per the model's
+    if args.block_stiffness <= 0:
+        print(f"run_case: --block-stiffness {args.block_stiffness}: must be above 0", file=sys.stderr)
+        return 2
+    slope = 0.0
+    if args.span_contact:
+        try:
+            interfaces, length = fe.span(args.bundle)
+        except ValueError as e:
+            print(f"run_case: {e}", file=sys.stderr)
+            return 2
+        slope = args.youngs_modulus / 1e6 * interfaces / length
     out.mkdir(parents=True, exist_ok=True)  # (after the refusals: none leaves an empty folder)
     model = fe.Model(youngs_modulus=args.youngs_modulus / 1e6, poisson=args.poisson, friction=args.friction,
                      increments=args.increments, element_size=args.element_size * h, penalty_factor=args.penalty,
-                     stick_factor=args.stick, contact=args.contact,
-                     large_displacements=args.large_displacements)
+                     stick_factor=args.stick, contact=args.contact, block_stiffness=args.block_stiffness,
+                     large_displacements=args.large_displacements, slope=slope)
     start = time.time()
     mesh = fe.mesh_blocks(blocks, model.element_size)
     held, pressed = fe.slab_supports(mesh, loaded, args.punch_radius * h, args.deflection * h, centre)
@@ -124,7 +141,8 @@ def main() -> int:
                                    "".join(f"{d:.9g},{p:.9g},{b:.9g}\n" for d, p, b in curve))
     summary = {
         "bundle": str(Path(args.bundle).resolve()), "loaded_block": blocks[loaded].name, "thickness_mm": h,
-        "youngs_modulus_MPa": model.youngs_modulus, "poisson": model.poisson, "friction": model.friction,
+        "youngs_modulus_MPa": model.youngs_modulus, "block_stiffness": model.block_stiffness,
+        "poisson": model.poisson, "friction": model.friction,
         "element_size_mm": model.element_size, "contact_slope_MPa_per_mm": model.contact_slope(),
         "stick_slope_MPa_per_mm": model.stick_factor * model.contact_slope(),
         "contact": args.contact, "large_displacements": model.large_displacements,
