@@ -7,12 +7,13 @@ contact with an augmented-Lagrangian multiplier (the formulation of its integral
 contact brick, written out here in its weak-form language: contact_terms; Y. Renard & K.
 Poulios, GetFEM's user documentation, "Large sliding/large deformation contact with friction
 bricks") follows it: slid in 10 increments it ends on the pressed-in-place force to six digits
-(getfem_sliding_press.py). Here the slab's free blocks are elastic solids (linear elasticity,
-quadratic elements on the corners of gmsh's tetrahedra, fe_model.mesh_block). Each face a free
-block shares with another block is a contact interface with Coulomb friction, taken once: the free
-block is its slave side against a fixed block (meshed, clamped on its whole surface: Tessera's
-fixed blocks never move, as fe_model clamps every node of them) and against a free block of higher
-index, its master side against one of lower index. The faces are rigid (no penetration), or with
+(getfem_sliding_press.py). Here the slab's free blocks are elastic solids (linear elasticity or,
+with --large-displacements, Saint Venant-Kirchhoff's finite strain; quadratic elements on the
+corners of gmsh's tetrahedra, fe_model.mesh_block). Each face a free block shares with another
+block is a contact interface with Coulomb friction, taken once: the free block is its slave side
+against a fixed block (meshed, clamped on its whole surface: Tessera's fixed blocks never move, as
+fe_model clamps every node of them) and against a free block of higher index, its master side
+against one of lower index. The faces are rigid (no penetration), or with
 --span-contact compliant as Tessera's: traction k_n times the penetration, k_n = E M / L from the
 bundle's span, and a tangential spring k_t = k_n held to Coulomb's limit (contact_terms). The
 loaded block's top is pressed down on a round patch at its centre, held laterally (as
@@ -24,6 +25,7 @@ displacement. Units: mm, N, MPa.
 Usage: getfem_case.py BUNDLE -o DIR [--youngs-modulus PA] [--poisson NU] [--friction MU]
                       [--element-size F] [--deflection F] [--punch-radius F] [--increments N] [--mirror]
                       [--neighbour-stiffness F] [--block-stiffness F] [--span-contact]
+                      [--large-displacements]
 Lengths F are fractions of the loaded block's thickness h, as in run_case.py. --mirror models the
 half or quarter of the slab on the positive side of its mirror planes through the loaded block's
 centre, as run_case.py --mirror does (fe_model.mirror_part: blocks across them cut; here the cut
@@ -31,11 +33,13 @@ faces of the free blocks held normal to their plane by a penalty 10^4 times E / 
 reports the whole slab's load (exit 2 for a slab with neither plane). --neighbour-stiffness F
 multiplies the Young's modulus of the free blocks other than the loaded one (100: nearly rigid, as
 Tessera's blocks are, which separates their own deformation from the rest); --block-stiffness F
-every free block's. With --block-stiffness 1000 --span-contact the FE solves Tessera's own model,
-rigid blocks on compliant faces, quasi-statically. Writes DIR/curve.csv
+every free block's. With --block-stiffness 1000 --span-contact --large-displacements the FE solves
+Tessera's own model, rigid blocks on compliant faces, quasi-statically (on the 3 x 3 slab; on the
+5 x 5 ones Newton does not converge so: docs/validation.md). Writes DIR/curve.csv
 (delta_mm, load_N, block_displacement_mm: the loaded block's mean downward displacement, Tessera's
 delta_b, and support_N),
-DIR/blocks.csv (delta_mm and each free block's mean downward displacement, by name) and
+DIR/blocks.csv (delta_mm, each free block's mean downward displacement by name, and its mean
+rotation about x, y and z in degrees, NAME_tilt_x_deg ...) and
 DIR/summary.json, all after every increment: a stopped run keeps what it reached. Needs Debian's
 python3-getfem (scripts/setup.sh) and python3-gmsh.
 """
@@ -49,7 +53,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import fe_model as fe  # noqa: E402
-from run_case import add_slab_arguments, slab_part  # noqa: E402
+from run_case import add_slab_arguments, face_stiffness, factor, slab_part  # noqa: E402
 
 
 def convex_points(nodes, corners):
@@ -99,24 +103,13 @@ def contact_terms(u: str, w: str, multiplier: str) -> str:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_slab_arguments(parser)
-    parser.add_argument("--neighbour-stiffness", type=float, default=1.0,
+    parser.add_argument("--neighbour-stiffness", type=factor, default=1.0,
                         help="Young's modulus of the free blocks other than the loaded one, x this (default 1; "
                              "100: nearly rigid, the run that separates their own deformation from the rest)")
-    parser.add_argument("--block-stiffness", type=float, default=1.0,
-                        help="Young's modulus of every free block, x this (default 1; with --span-contact and "
-                             "1000: Tessera's rigid blocks on compliant faces, solved by the FE)")
     parser.add_argument("--large-displacements", action="store_true",
-                        help="finite-strain elasticity (Saint Venant-Kirchhoff): blocks that turn by degrees "
-                             "(default: linearised, whose rotations strain the blocks)")
-    parser.add_argument("--span-contact", action="store_true",
-                        help="compliant faces: traction k_n x penetration and a tangential spring k_t = k_n "
-                             "under Coulomb's limit, k_n = E M / L (Tessera's span rule, the bundle's span); "
-                             "default: rigid faces")
+                        help="finite-strain elasticity (Saint Venant-Kirchhoff), for blocks that turn by degrees "
+                             "(default: linearised, where a block turned by theta grows by about theta^2 / 2)")
     args = parser.parse_args()
-    for name in ("neighbour_stiffness", "block_stiffness"):
-        if not getattr(args, name) > 0:
-            print(f"getfem_case: --{name.replace('_', '-')} {getattr(args, name)}: must be above 0", file=sys.stderr)
-            return 2
     import getfem as gf
     gf.util_trace_level(0)
     gf.util_warning_level(0)
@@ -124,6 +117,8 @@ def main() -> int:
     start = time.time()
     out = Path(args.out)
     blocks, loaded, h, centre, axes = slab_part(args.bundle, args.mirror, "getfem_case")
+    k_n = face_stiffness(args, "getfem_case")
+    compliance = 1.0 / k_n if k_n else 0.0  # mm/MPa, the faces' (0: rigid)
     share = 2 ** len(axes)  # the whole slab's load per the model's
     out.mkdir(parents=True, exist_ok=True)  # (after the refusal: it leaves no empty folder)
     size, radius, deflection = args.element_size * h, args.punch_radius * h, args.deflection * h
@@ -138,14 +133,6 @@ def main() -> int:
         gmsh.finalize()
 
     E = args.youngs_modulus / 1e6
-    compliance = 0.0  # mm/MPa: 1 / k_n, the faces' (0: rigid)
-    if args.span_contact:
-        try:
-            interfaces, length = fe.span(args.bundle)
-        except ValueError as e:
-            print(f"getfem_case: {e}", file=sys.stderr)
-            return 2
-        compliance = length / (E * interfaces)
     lam = E * args.poisson / ((1 + args.poisson) * (1 - 2 * args.poisson))
     mu = E / (2 * (1 + args.poisson))
     stiffest = E * args.block_stiffness * max(1.0, args.neighbour_stiffness)
@@ -201,7 +188,7 @@ def main() -> int:
         moduli = "" if k == loaded else "_neighbour"
         if args.large_displacements:  # Saint Venant-Kirchhoff: a rigid rotation strains nothing
             md.add_finite_strain_elasticity_brick(mim, "SaintVenant Kirchhoff", u, f"[lambda{moduli}; mu{moduli}]")
-        else:  # linearised: a rotation by theta strains the block by about theta^2 / 2
+        else:  # linearised: turned by theta, points move along tangents: the block grows by ~theta^2 / 2
             md.add_isotropic_linearized_elasticity_brick(mim, u, f"lambda{moduli}", f"mu{moduli}")
         for a in axes:  # symmetry: the cut face moves in its plane only (a penalty 10^4 times the
             # elements' own stiffness E/size: a multiplier would conflict with the punch's on the loaded block)

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Table and figure of the 5 x 5 slabs toward their peak on GetFEM (getfem_peaks.sh): for each case,
 the FE curve (getfem_case.py) and Tessera's under each stiffness rule, compared on the loaded
-block's displacement delta_b. Where the FE run stopped before its load fell 2 % past its maximum,
+block's displacement delta_b. Where the FE run ended before its load fell 2 % past its maximum,
 that maximum is a lower bound of its P_max, and the table says so.
 
 Usage: getfem_peaks.py OUT CASE...   (OUT/CASE/getfem*: getfem_case.py outputs; OUT/CASE/tessera_RULE
@@ -33,7 +33,7 @@ def main() -> int:
 
     out, cases = Path(sys.argv[1]), sys.argv[2:]
     lines = ["| case | FE run | FE P_max (N) | at δ_b (mm) | rule | Tessera P_max (N) | at δ_b (mm) | "
-             "Tessera at the FE's last δ_b (N) |", "|---|---|---|---|---|---|---|---|"]
+             "Tessera at the FE's P_max δ_b (N) |", "|---|---|---|---|---|---|---|---|"]
     fig, axes = plt.subplots(1, len(cases), figsize=(6 * len(cases), 4.5), squeeze=False)
     for case, ax in zip(cases, axes[0]):
         def tessera_runs(suffix):  # Tessera's curves under each rule, at the case's friction or at none
@@ -46,8 +46,9 @@ def main() -> int:
             if fe.size == 0:
                 continue
             peak = int(np.argmax(fe["load_N"]))
-            # a peak, not a bound: the run went on to its end, or its load fell 2 % past its maximum
-            reached = s["status"] == "reached the deflection" or fe["load_N"][-1] < 0.98 * fe["load_N"][peak]
+            # a peak, not a bound: the load fell 2 % past its maximum (a run that ended or stopped
+            # still rising bounds the peak from below)
+            reached = fe["load_N"][-1] < 0.98 * fe["load_N"][peak]
             label = (f"{run.parent.name}: {s['element_size_mm']:.2f} mm elements, "
                      f"{s['converged_increments']} of {s['increments']} increments")
             if s.get("neighbour_stiffness", 1.0) != 1.0:
@@ -60,11 +61,12 @@ def main() -> int:
                 label += ", finite strain"
             if s["friction"] == 0:
                 label += ", frictionless"
-            ax.plot(fe["block_displacement_mm"], fe["load_N"], "o-", ms=3, label="GetFEM " + label)
+            ax.plot(fe["block_displacement_mm"], fe["load_N"], "o-", ms=3, label="GetFEM, " + run.parent.name)
             last = fe["block_displacement_mm"][-1]
             for rule, t in tessera.items():
                 d, p = rising(t)
-                at_last = float(np.interp(last, np.maximum.accumulate(t["block_displacement_mm"]), t["load_N"]))
+                at_peak = float(np.interp(fe["block_displacement_mm"][peak],
+                                          np.maximum.accumulate(t["block_displacement_mm"]), t["load_N"]))
                 fe_p = f"{fe['load_N'][peak]:.0f}" if reached else f"≥ {fe['load_N'][peak]:.0f}"
                 fe_d = f"{fe['block_displacement_mm'][peak]:.2f}" if reached else f"≥ {last:.2f}"
                 difference = f"{p[-1] / fe['load_N'][peak] - 1:+.0%}"
@@ -72,7 +74,7 @@ def main() -> int:
                     difference = "≤ " + difference if p[-1] < fe["load_N"][peak] else "the FE's peak not reached"
                 versus = f" ({difference})"
                 lines.append(f"| {case} | {label} | {fe_p} | {fe_d} | {rule} | {p[-1]:.0f}{versus} | {d[-1]:.2f} | "
-                             f"{at_last:.0f} ({at_last / fe['load_N'][-1] - 1:+.0%}) |")
+                             f"{at_peak:.0f} ({at_peak / fe['load_N'][peak] - 1:+.0%}) |")
         for suffix, what in (("", ""), ("_mu0", ", frictionless")):
             for rule, t in tessera_runs(suffix).items():
                 ax.plot(t["block_displacement_mm"], t["load_N"], lw=1, label=f"Tessera, {rule} rule{what}")

@@ -3,7 +3,8 @@
 
 Usage: run_case.py BUNDLE -o DIR [--youngs-modulus PA] [--poisson NU] [--friction MU]
                    [--element-size F] [--deflection F] [--punch-radius F] [--increments N]
-                   [--penalty F] [--stick F] [--threads N] [--mirror]
+                   [--penalty F] [--stick F] [--threads N] [--mirror] [--block-stiffness F]
+                   [--span-contact]
 Lengths F are fractions of the loaded block's thickness h (its z-extent), as Tessera's own
 protocol lengths are. Writes DIR/curve.csv (per converged increment: delta_mm, the patch's downward
 displacement; load_N, the force on it; block_displacement_mm, the mean downward displacement of
@@ -13,7 +14,10 @@ cannot find a balance) keeps its converged increments; summary.json says where a
 when ccx solves no increment (its log named). --mirror models the half or quarter of a slab on the
 positive side of its mirror planes x = x_c and y = y_c through the loaded block's centre (blocks
 across them cut, their nodes there held normal to the plane) and reports the whole slab's load;
-exit 2 for a slab with neither plane.
+exit 2 for a slab with neither plane. --block-stiffness and --span-contact (the contact slope
+Tessera's k_n) give Tessera's own model, but CalculiX does not solve it: where the faces hold the
+compliance, the force it prints at the k-th of n increments is F_n / (n - k + 1)
+(docs/validation.md); getfem_case.py solves it.
 """
 import argparse
 import json
@@ -43,6 +47,14 @@ def positive(text: str) -> int:
     return value
 
 
+def factor(text: str) -> float:
+    """An argument that scales a modulus: a number above 0."""
+    value = float(text)
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"{value}: above 0")
+    return value
+
+
 def add_slab_arguments(parser: argparse.ArgumentParser) -> None:
     """The bundle, the output folder, the material and the loading, as every FE run here takes them."""
     parser.add_argument("bundle")
@@ -59,6 +71,24 @@ def add_slab_arguments(parser: argparse.ArgumentParser) -> None:
                              "centre) for each of these planes the slab is its own mirror image about, with "
                              "symmetry conditions there (a slab with neither: refused); the load is "
                              "2 or 4 x the part's")
+    parser.add_argument("--block-stiffness", type=factor, default=1.0,
+                        help="the blocks' Young's modulus x this (default 1; 1000: rigid blocks)")
+    parser.add_argument("--span-contact", action="store_true",
+                        help="faces as compliant as Tessera's: k_n = E M / L (Tessera's span rule, from the "
+                             "bundle's span) times the penetration, and k_t = k_n")
+
+
+def face_stiffness(args, program: str) -> float | None:
+    """The faces' k_n (MPa/mm) that --span-contact asks for (E the case's, not the blocks'), or None.
+    A bundle without a span: the reason on stderr, after the program's name, and exit 2."""
+    if not args.span_contact:
+        return None
+    try:
+        interfaces, length = fe.span(args.bundle)
+    except ValueError as e:
+        print(f"{program}: {e}", file=sys.stderr)
+        raise SystemExit(2)
+    return args.youngs_modulus / 1e6 * interfaces / length
 
 
 def slab_part(bundle: str, mirror: bool, program: str):
@@ -86,12 +116,6 @@ def main() -> int:
     add_slab_arguments(parser)
     parser.add_argument("--penalty", type=float, default=50.0,
                         help="contact slope K = PENALTY x E / element size (default 50)")
-    parser.add_argument("--span-contact", action="store_true",
-                        help="the contact slope is Tessera's span rule, k_n = E M / L (the bundle's span), "
-                             "instead of --penalty's")
-    parser.add_argument("--block-stiffness", type=float, default=1.0,
-                        help="the blocks' modulus is E x this (default 1); with --span-contact and 1000, "
-                             "Tessera's rigid blocks on penalty contacts, solved by the FE")
     parser.add_argument("--stick", type=float, default=0.1,
                         help="friction's stick slope = STICK x the contact slope (default 0.1)")
     parser.add_argument("--contact", choices=list(fe.CONTACT_TYPES), default="surface",
@@ -104,17 +128,7 @@ def main() -> int:
     out = Path(args.out)
     blocks, loaded, h, centre, axes = slab_part(args.bundle, args.mirror, "run_case")
     share = 2 ** len(axes)  # the whole slab's load per the model's
-    if args.block_stiffness <= 0:
-        print(f"run_case: --block-stiffness {args.block_stiffness}: must be above 0", file=sys.stderr)
-        return 2
-    slope = 0.0
-    if args.span_contact:
-        try:
-            interfaces, length = fe.span(args.bundle)
-        except ValueError as e:
-            print(f"run_case: {e}", file=sys.stderr)
-            return 2
-        slope = args.youngs_modulus / 1e6 * interfaces / length
+    slope = face_stiffness(args, "run_case") or 0.0  # (0: --penalty's)
     out.mkdir(parents=True, exist_ok=True)  # (after the refusals: none leaves an empty folder)
     model = fe.Model(youngs_modulus=args.youngs_modulus / 1e6, poisson=args.poisson, friction=args.friction,
                      increments=args.increments, element_size=args.element_size * h, penalty_factor=args.penalty,
