@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The slabs toward their peak on GetFEM (docs/validation.md, "Toward the peak on the 5 x 5 slabs"
-# and "Tessera's own model, solved by the FE"): for square3, square5 and hex5, the bundle and
-# Tessera's runs under the three stiffness rules (the default scene at E = 4.2 GPa, mu = 0.23);
-# getfem_case.py on the 5 x 5 slabs' quarter or half (--mirror), 0.4 h elements, linearised
+# The slabs toward their peak on GetFEM; docs/validation.md, sections
+# "Toward the peak on the 5 × 5 slabs, with GetFEM" and "Tessera's own model, solved by the FE".
+# For square3, square5 and hex5, the bundle and Tessera's runs under the three stiffness rules
+# (the default scene at E = 4.2 GPa, mu = 0.23); getfem_case.py on the 5 x 5 slabs' quarter or
+# half (--mirror), 0.4 h elements, linearised
 # (getfem) and finite-strain elasticity (getfem_finite_strain); on square5 also Tessera's runs
 # under its numerical choices (variant_*), 0.3 h elements to 0.4 h (the mesh) and the neighbours
 # 100 x stiffer to 0.6 h; on square3 Tessera's own model in the FE (rigid blocks, E x 1000, on
