@@ -3,14 +3,14 @@
 # "Toward the peak on the 5 × 5 slabs, with GetFEM" and "Tessera's own model, solved by the FE".
 # For square3, square5 and hex5, the bundle and Tessera's runs under the three stiffness rules
 # (the default scene at E = 4.2 GPa, mu = 0.23); getfem_case.py on the 5 x 5 slabs' quarter or
-# half (--mirror), 0.4 h elements, linearised
-# (getfem) and finite-strain elasticity (getfem_finite_strain); on square5 also Tessera's runs
-# under its numerical choices (variant_*), 0.3 h elements to 0.4 h (the mesh) and the neighbours
-# 100 x stiffer to 0.6 h; on square3 Tessera's own model in the FE (rigid blocks, E x 1000, on
-# faces of the span rule's k_n: getfem_rigid_blocks), with friction and without (then against
-# Tessera frictionless and the rigid wedge's closed form); then the tables and the figure
-# (getfem_peaks.py). A GetFEM run that stops (Newton not converging through a slip) keeps the
-# increments it reached.
+# half (--mirror), 0.4 h elements, linearised (getfem) and finite-strain elasticity
+# (getfem_finite_strain); on square5 also Tessera's runs under its numerical choices (variant_*),
+# 0.3 h elements to 0.4 h (the mesh) and the neighbours 100 x stiffer to 0.6 h; on square3
+# Tessera's own model in the FE (rigid blocks, E x 1000, on faces of the span rule's k_n:
+# getfem_rigid_blocks), with friction and without (then against Tessera frictionless and the
+# rigid wedge's closed form, rigid_wedge.py, also with faces at 10 degrees: square3_10deg); then
+# the tables and the figure (getfem_peaks.py). A GetFEM run that stops (Newton not converging
+# through a slip) keeps the increments it reached.
 # Usage: bench/validation/getfem_peaks.sh [OUT]     (default OUT: out/validation_gf)
 # Env:   TESSERA (build/tools/tessera). Hours on 2 cores (docs/validation.md lists each run's time).
 set -uo pipefail
@@ -43,11 +43,19 @@ for case in square3 square5 hex5; do
       --no-plot > "$out/$case/tessera_$rule.log"
   done
 done
-# square3 frictionless, the span rule (against the rigid wedge's closed form and the FE's)
+# square3 frictionless, the span rule, and the same slab of 10-degree faces (square3_10deg):
+# Tessera against the rigid wedge's closed form and its contact area against the faces' overlap
+mkdir -p "$out/square3_10deg"
+"$tessera" tile --tiling square --grid 3x3 --pitch 10 --thickness 3.18 --angle 10 --unit mm \
+  -o "$out/square3_10deg/bundle" --replace > "$out/square3_10deg/tile.log" 2>&1
 sed -e "s/^friction = .*/friction = 0.0/" "$out/square3/scene_span.toml" > "$out/square3/scene_span_mu0.toml"
-rm -rf "$out/square3/tessera_span_mu0"
-"$tessera" run "$out/square3/scene_span_mu0.toml" --bundle "$out/square3/bundle" -o "$out/square3/tessera_span_mu0" \
-  --no-plot > "$out/square3/tessera_span_mu0.log"
+for case in square3 square3_10deg; do
+  rm -rf "$out/$case/tessera_span_mu0"
+  "$tessera" run "$out/square3/scene_span_mu0.toml" --bundle "$out/$case/bundle" -o "$out/$case/tessera_span_mu0" \
+    --no-plot > "$out/$case/tessera_span_mu0.log"
+  "$python" "$here/bench/validation/rigid_wedge.py" "$out/$case/bundle" 840 --tessera "$out/$case/tessera_span_mu0" \
+    > "$out/$case/rigid_wedge.txt"
+done
 # square5 under Tessera's numerical choices (the bars rule's scene, each with one change)
 variants=('implicit|[solver]\nmethod = "implicit"'
           'blended|[solver]\ncontact_area = "blended"'
@@ -72,6 +80,7 @@ fe square5 getfem_rigid_neighbours --element-size 0.4 --deflection 0.6 --increme
 rigid=(--block-stiffness 1000 --span-contact --large-displacements)  # Tessera's model: rigid blocks, k_n faces
 fe square3 getfem_rigid_blocks --element-size 0.3 --deflection 1.2 --increments 80 "${rigid[@]}"
 fe square3 getfem_rigid_blocks_mu0 --element-size 0.3 --deflection 1.2 --increments 80 "${rigid[@]}" --friction 0
+fe square3_10deg getfem_rigid_blocks_mu0 --element-size 0.3 --deflection 1.0 --increments 60 "${rigid[@]}" --friction 0
 fe square5 getfem_finite_strain --element-size 0.4 --deflection 1.0 --increments 30 --large-displacements
 fe hex5 getfem_finite_strain --element-size 0.4 --deflection 1.0 --increments 30 --large-displacements
-"$python" "$here/bench/validation/getfem_peaks.py" "$out" square3 square5 hex5
+"$python" "$here/bench/validation/getfem_peaks.py" "$out" square3 square3_10deg square5 hex5
