@@ -64,9 +64,12 @@ def span(path: str | Path) -> tuple[int, float]:
     import h5py
     with h5py.File(Path(path) / "bundle.h5", "r") as f:
         attrs = f["bodies"].attrs
-        if "span_interfaces" not in attrs or "span_length" not in attrs:
-            raise ValueError(f"{path}: the bundle stores no span (span_interfaces, span_length)")
-        return int(attrs["span_interfaces"]), float(attrs["span_length"]) * MM_PER_M
+        interfaces, length = int(attrs.get("span_interfaces", 0)), float(attrs.get("span_length", 0.0))
+        if interfaces <= 0 or length <= 0:
+            raise ValueError(f"{path}: the bundle stores no span (span_interfaces {interfaces}, span_length "
+                             f"{length} m): give it one (tessera assemble --span-length --span-interfaces) "
+                             "or use rigid faces")
+        return interfaces, length * MM_PER_M
 
 
 def box(name: str, lo, hi, fixed: bool = False) -> Block:

@@ -29,8 +29,9 @@ Usage: getfem_case.py BUNDLE -o DIR [--youngs-modulus PA] [--poisson NU] [--fric
 Lengths F are fractions of the loaded block's thickness h, as in run_case.py. --mirror models the
 half or quarter of the slab on the positive side of its mirror planes through the loaded block's
 centre, as run_case.py --mirror does (fe_model.mirror_part: blocks across them cut; here the cut
-faces of the free blocks held normal to their plane by a penalty 10^4 times E / element size) and
-reports the whole slab's load (exit 2 for a slab with neither plane). --neighbour-stiffness F
+faces of the free blocks held normal to their plane by a penalty 10^4 times the stiffest blocks'
+E / element size) and reports the whole slab's load (exit 2 for a slab with neither plane, and for
+--span-contact on a bundle without a span). --neighbour-stiffness F
 multiplies the Young's modulus of the free blocks other than the loaded one (100: nearly rigid, as
 Tessera's blocks are, which separates their own deformation from the rest); --block-stiffness F
 every free block's. With --block-stiffness 1000 --span-contact --large-displacements the FE solves
@@ -87,17 +88,26 @@ def contact_terms(u: str, w: str, multiplier: str) -> str:
         g = (x_master - x) . n - c multiplier . n     (rigid: c = 0; compliant: multiplier . n = g / c)
         V = slip since the last increment + c (multiplier - its last value)_t
     so the traction is k_n = 1/c times the penetration and its tangential part a spring k_t = k_n,
-    held to f times the normal one."""
+    held to f times the normal one (the projection drops V's normal part). The spring's history is
+    the traction at the slave point, in the fixed frame: unlike Tessera's, it is not turned with a
+    face that turns, nor dropped when the point's master changes (store_last)."""
     n = f"Transformed_unit_vector(Grad_{u}, Normal)"
     last = f"{multiplier}_last"
     change = f"({multiplier}-{last})"
     gap = f"((Interpolate(X,{RAY})+Interpolate({U_ALL},{RAY})-X-{u}).{n}-compliance*{multiplier}.{n})"
-    slip = (f"(({u}-Interpolate({U_ALL},{RAY})-{w}+Interpolate({W_ALL},{RAY}))"
-            f"+compliance*({change}-({change}.{n})*{n}))*alpha")
+    slip = f"(({u}-Interpolate({U_ALL},{RAY})-{w}+Interpolate({W_ALL},{RAY}))+compliance*{change})*alpha"
     projection = f"Coulomb_friction_coupled_projection({multiplier}, {n}, {slip}, {gap}, f, r)"
     return (f"-{multiplier}.Test_{u} + Interpolate_filter({RAY}, {multiplier}.Interpolate(Test_{U_ALL},{RAY}), 1)"
             f" - (1/r)*{multiplier}.Test_{multiplier}"
             f" + Interpolate_filter({RAY}, (1/r)*{projection}.Test_{multiplier}, 1)")
+
+
+def store_last(md, mfu, region: int, multiplier: str) -> None:
+    """The traction reached, as contact_terms' MULTIPLIER_last (data on the whole mfu: the filtered
+    multiplier's dofs are mfu's on the region, in order)."""
+    last = np.zeros(mfu.nbdof())
+    last[mfu.basic_dof_on_region(region)] = md.variable(multiplier)
+    md.set_variable(f"{multiplier}_last", last)
 
 
 def main() -> int:
@@ -120,7 +130,7 @@ def main() -> int:
     k_n = face_stiffness(args, "getfem_case")
     compliance = 1.0 / k_n if k_n else 0.0  # mm/MPa, the faces' (0: rigid)
     share = 2 ** len(axes)  # the whole slab's load per the model's
-    out.mkdir(parents=True, exist_ok=True)  # (after the refusal: it leaves no empty folder)
+    out.mkdir(parents=True, exist_ok=True)  # (after the refusals of the slab and its span)
     size, radius, deflection = args.element_size * h, args.punch_radius * h, args.deflection * h
     free = [k for k, b in enumerate(blocks) if not b.fixed]
 
@@ -265,10 +275,8 @@ def main() -> int:
         for k in free:
             m, mfu, mim, u, w, multiplier = parts[k]
             md.set_variable(w, md.variable(u))
-            if multiplier:  # the filtered multiplier's dofs are mfu's on SLAVE, in order
-                last = np.zeros(mfu.nbdof())
-                last[mfu.basic_dof_on_region(SLAVE)] = md.variable(multiplier)
-                md.set_variable(f"{multiplier}_last", last)
+            if multiplier:
+                store_last(md, mfu, SLAVE, multiplier)
         return True
 
     def write_summary(rows, status):

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Table and figure of the 5 x 5 slabs toward their peak on GetFEM (getfem_peaks.sh): for each case,
+"""Table and figure of the slabs toward their peak on GetFEM (getfem_peaks.sh): for each case,
 the FE curve (getfem_case.py) and Tessera's under each stiffness rule, compared on the loaded
 block's displacement delta_b. Where the FE run ended before its load fell 2 % past its maximum,
 that maximum is a lower bound of its P_max, and the table says so.
@@ -57,8 +57,7 @@ def main() -> int:
                 label += f", blocks' E x {s['block_stiffness']:g}"
             if s.get("faces_k_n_MPa_per_mm"):
                 label += f", faces k_n = {s['faces_k_n_MPa_per_mm']:.0f} MPa/mm"
-            if s.get("large_displacements"):
-                label += ", finite strain"
+            label += ", finite strain" if s.get("large_displacements") else ", linearised"
             if s["friction"] == 0:
                 label += ", frictionless"
             ax.plot(fe["block_displacement_mm"], fe["load_N"], "o-", ms=3, label="GetFEM, " + run.parent.name)

@@ -53,7 +53,7 @@ for case in square3 square3_10deg; do
   rm -rf "$out/$case/tessera_span_mu0"
   "$tessera" run "$out/square3/scene_span_mu0.toml" --bundle "$out/$case/bundle" -o "$out/$case/tessera_span_mu0" \
     --no-plot > "$out/$case/tessera_span_mu0.log"
-  "$python" "$here/bench/validation/rigid_wedge.py" "$out/$case/bundle" 840 --tessera "$out/$case/tessera_span_mu0" \
+  "$python" "$here/bench/validation/rigid_wedge.py" "$out/$case/bundle" --tessera "$out/$case/tessera_span_mu0" \
     > "$out/$case/rigid_wedge.txt"
 done
 # square5 under Tessera's numerical choices (the bars rule's scene, each with one change)

@@ -10,11 +10,12 @@ the vertical load is
 
     P(delta_b) = sum over those faces of k_n A(delta_b) delta_b sin^2 theta
 
-Usage: rigid_wedge.py BUNDLE K_N [--tessera RUN]
-  K_N in MPa/mm (N/mm^3; Tessera's span rule: E M / L). Prints the closed form's peak and the load at
-  a few delta_b; with --tessera, for each snapshot of a Tessera run of that bundle (results.h5), the
-  contact area of the loaded block's wedging pairs against their exact overlap, and the missing
-  area per unit of the penetration d.
+Usage: rigid_wedge.py BUNDLE [--youngs-modulus PA] [--tessera RUN]
+k_n = E M / L, Tessera's span rule, from the bundle's span (E default 4.2e9 Pa). Prints the closed
+form's peak and the load at a few delta_b; with --tessera, for each snapshot of a Tessera run of
+that bundle (results.h5), the contact area of the loaded block's wedging pairs against their exact
+overlap, and the missing area per unit of the penetration d. Exit 2 for a bundle without a span or
+whose central free block is wedged by no fixed block.
 """
 import argparse
 import sys
@@ -24,7 +25,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import fe_model as fe  # noqa: E402
-from run_case import central_free_block  # noqa: E402
+from run_case import central_free_block, factor  # noqa: E402
 
 
 def wedging_faces(blocks):
@@ -56,9 +57,15 @@ def load(blocks, loaded, wedges, k_n: float, sink: float) -> float:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("bundle")
-    parser.add_argument("k_n", type=float, help="MPa/mm")
+    parser.add_argument("--youngs-modulus", type=factor, default=4.2e9, help="Pa (default 4.2e9)")
     parser.add_argument("--tessera", help="a Tessera run of the bundle (its results.h5): its contact areas")
     args = parser.parse_args()
+    try:
+        interfaces, length = fe.span(args.bundle)
+    except ValueError as e:
+        print(f"rigid_wedge: {e}", file=sys.stderr)
+        return 2
+    k_n = args.youngs_modulus / 1e6 * interfaces / length  # MPa/mm
     blocks = fe.read_bundle(args.bundle)
     loaded, wedges = wedging_faces(blocks)
     if not wedges:
@@ -67,9 +74,9 @@ def main() -> int:
         return 2
     h = float(np.ptp(blocks[loaded].vertices[:, 2]))
     sinks = np.linspace(0.0, h, 641)
-    loads = [load(blocks, loaded, wedges, args.k_n, s) for s in sinks]
+    loads = [load(blocks, loaded, wedges, k_n, s) for s in sinks]
     peak = int(np.argmax(loads))
-    print(f"{len(wedges)} wedging faces, theta {np.degrees(np.arcsin(abs(wedges[0][0].normal[2]))):.2f} deg: "
+    print(f"k_n = {k_n:.6g} MPa/mm; {len(wedges)} wedging faces, theta {np.degrees(np.arcsin(abs(wedges[0][0].normal[2]))):.2f} deg: "
           f"P_max = {loads[peak]:.1f} N at delta_b = {sinks[peak]:.3f} mm")
     print("delta_b (mm), P (N): " + ", ".join(f"{s:.2f} {p:.1f}" for s, p in zip(sinks[::64], loads[::64])))
     if args.tessera:

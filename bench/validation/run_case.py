@@ -15,9 +15,9 @@ when ccx solves no increment (its log named). --mirror models the half or quarte
 positive side of its mirror planes x = x_c and y = y_c through the loaded block's centre (blocks
 across them cut, their nodes there held normal to the plane) and reports the whole slab's load;
 exit 2 for a slab with neither plane. --block-stiffness and --span-contact (the contact slope
-Tessera's k_n) give Tessera's own model, but CalculiX does not solve it: where the faces hold the
-compliance, the force it prints at the k-th of n increments is F_n / (n - k + 1)
-(docs/validation.md); getfem_case.py solves it.
+Tessera's k_n; exit 2 for a bundle without a span) give Tessera's own model, but CalculiX does not
+solve it: where the faces hold the compliance, the force it prints at the k-th of n increments is
+F_n / (n - k + 1) (docs/validation.md); getfem_case.py solves it.
 """
 import argparse
 import json
@@ -75,7 +75,8 @@ def add_slab_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the blocks' Young's modulus x this (default 1; 1000: rigid blocks)")
     parser.add_argument("--span-contact", action="store_true",
                         help="faces as compliant as Tessera's: k_n = E M / L (Tessera's span rule, from the "
-                             "bundle's span) times the penetration, and k_t = k_n")
+                             "bundle's span) times the penetration; k_t = k_n in getfem_case.py, --stick x k_n "
+                             "in run_case.py; a bundle without a span: exit 2")
 
 
 def face_stiffness(args, program: str) -> float | None:
