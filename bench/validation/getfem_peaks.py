@@ -36,12 +36,14 @@ def main() -> int:
              "Tessera at the FE's P_max δ_b (N) |", "|---|---|---|---|---|---|---|---|"]
     fig, axes = plt.subplots(1, len(cases), figsize=(6 * len(cases), 4.5), squeeze=False)
     for case, ax in zip(cases, axes[0]):
-        def tessera_runs(suffix):  # Tessera's curves under each rule, at the case's friction or at none
-            return {r: np.genfromtxt(out / case / f"tessera_{r}{suffix}" / "curve.csv", delimiter=",", names=True)
-                    for r in RULES if (out / case / f"tessera_{r}{suffix}" / "curve.csv").exists()}
+        # Tessera's curves under each rule, at the case's friction ("") and frictionless ("_mu0")
+        tessera_runs = {suffix: {r: np.genfromtxt(out / case / f"tessera_{r}{suffix}" / "curve.csv", delimiter=",",
+                                                  names=True)
+                                 for r in RULES if (out / case / f"tessera_{r}{suffix}" / "curve.csv").exists()}
+                        for suffix in ("", "_mu0")}
         for run in sorted((out / case).glob("getfem*/summary.json")):
             s = json.loads(run.read_text())
-            tessera = tessera_runs("_mu0" if s["friction"] == 0 else "")  # (frictionless: tessera_RULE_mu0)
+            tessera = tessera_runs["_mu0" if s["friction"] == 0 else ""]
             fe = np.genfromtxt(run.parent / "curve.csv", delimiter=",", names=True, ndmin=1)
             if fe.size == 0:
                 continue
@@ -75,7 +77,7 @@ def main() -> int:
                 lines.append(f"| {case} | {label} | {fe_p} | {fe_d} | {rule} | {p[-1]:.0f}{versus} | {d[-1]:.2f} | "
                              f"{at_peak:.0f} ({at_peak / fe['load_N'][peak] - 1:+.0%}) |")
         for suffix, what in (("", ""), ("_mu0", ", frictionless")):
-            for rule, t in tessera_runs(suffix).items():
+            for rule, t in tessera_runs[suffix].items():
                 ax.plot(t["block_displacement_mm"], t["load_N"], lw=1, label=f"Tessera, {rule} rule{what}")
         ax.set_title(case)
         ax.set_xlabel("loaded block's displacement δ_b (mm)")

@@ -20,6 +20,21 @@ import numpy as np
 
 E, NU = 4200.0, 0.2  # MPa
 SIDE, HEIGHT, PRESS, SLIDE, START, SIZE = 4.0, 4.0, 0.01, 14.0, -8.0, 1.0  # mm
+TOP, BOTTOM = 1, 2  # a block's mesh regions: its faces looking up and down
+
+
+def elastic_block(gf, md, name: str, mesh):
+    """The block meshed by `mesh` as the model's displacement variable `name`: quadratic elements,
+    linear elasticity of the data lambda and mu, its top and bottom faces the regions TOP and
+    BOTTOM. Returns (its finite element method, its integration method)."""
+    mesh.set_region(TOP, mesh.outer_faces_with_direction([0.0, 0.0, 1.0], 0.01))
+    mesh.set_region(BOTTOM, mesh.outer_faces_with_direction([0.0, 0.0, -1.0], 0.01))
+    mfu = gf.MeshFem(mesh, 3)
+    mfu.set_classical_fem(2)
+    mim = gf.MeshIm(mesh, 5)
+    md.add_fem_variable(name, mfu)
+    md.add_isotropic_linearized_elasticity_brick(mim, name, "lambda", "mu")
+    return mfu, mim
 
 
 def grid(a: float, b: float) -> np.ndarray:
@@ -31,7 +46,6 @@ def normal_force(start: float, slide: float, increments: int) -> float:
     by `slide`, in `increments` equal steps."""
     import getfem as gf
     gf.util_trace_level(0)
-    TOP, BOTTOM = 1, 2
     block = gf.Mesh("cartesian", grid(-12, 8), grid(-5, 5), grid(0, HEIGHT))
     prism = gf.Mesh("cartesian", grid(start, start + SIDE), grid(-SIDE / 2, SIDE / 2), grid(HEIGHT, 2 * HEIGHT))
     md = gf.Model("real")
@@ -40,17 +54,8 @@ def normal_force(start: float, slide: float, increments: int) -> float:
     md.add_initialized_data("r", [E / SIZE])  # the augmentation parameter: convergence, not the answer
     md.add_initialized_data("pressed", [0.0, 0.0, 0.0])
     contact = md.add_integral_large_sliding_contact_brick_raytracing("r", 0.5 * SIZE)
-    keep = []  # GetFEM's objects live while Python holds them
-    for name, m in (("block", block), ("prism", prism)):
-        m.set_region(TOP, m.outer_faces_with_direction([0.0, 0.0, 1.0], 0.01))
-        m.set_region(BOTTOM, m.outer_faces_with_direction([0.0, 0.0, -1.0], 0.01))
-        mfu = gf.MeshFem(m, 3)
-        mfu.set_classical_fem(2)
-        mim = gf.MeshIm(m, 5)
-        md.add_fem_variable(name, mfu)
-        md.add_isotropic_linearized_elasticity_brick(mim, name, "lambda", "mu")
-        keep.append((m, mfu, mim))
-    (_, block_fem, block_im), (_, prism_fem, prism_im) = keep
+    (block_fem, block_im), (prism_fem, prism_im) = elastic_block(gf, md, "block", block), \
+        elastic_block(gf, md, "prism", prism)
     md.add_Dirichlet_condition_with_multipliers(block_im, "block", block_fem, BOTTOM)
     md.add_Dirichlet_condition_with_multipliers(prism_im, "prism", prism_fem, TOP, "pressed")
     md.add_filtered_fem_variable("traction", prism_fem, BOTTOM)

@@ -25,13 +25,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench" / "validati
 
 E, NU, SIDE, H, SIZE = 4200.0, 0.2, 4.0, 2.0, 1.0  # MPa, -, mm
 K_N, MU, PRESS = 840.0, 0.5, 0.01                   # MPa/mm, -, mm
-TOP, BOTTOM = 1, 2
 
 
 def pair(gf, stiffness: float, compliance: float, brick: bool = False):
     """The two blocks (E x stiffness) in contact, by contact_terms or by GetFEM's brick; returns
     drive(x, z): the top moved to (x, 0, z), the face's force (N) on the upper block."""
     from getfem_case import RAY, U_ALL, W_ALL, contact_terms, store_last
+    from getfem_sliding_press import BOTTOM, TOP, elastic_block
     grid = np.linspace(0, SIDE, int(SIDE / SIZE) + 1)
     meshes = {"lower": gf.Mesh("cartesian", grid, grid, np.linspace(0, H, 3)),
               "upper": gf.Mesh("cartesian", grid, grid, np.linspace(H, 2 * H, 3))}
@@ -45,14 +45,8 @@ def pair(gf, stiffness: float, compliance: float, brick: bool = False):
     md.add_initialized_data("pressed", [0.0, 0.0, 0.0])
     keep = {}  # GetFEM's objects live while Python holds them
     for name, m in meshes.items():
-        m.set_region(TOP, m.outer_faces_with_direction([0.0, 0.0, 1.0], 0.01))
-        m.set_region(BOTTOM, m.outer_faces_with_direction([0.0, 0.0, -1.0], 0.01))
-        mfu = gf.MeshFem(m, 3)
-        mfu.set_classical_fem(2)
-        mim = gf.MeshIm(m, 5)
-        md.add_fem_variable(name, mfu)
+        mfu, mim = elastic_block(gf, md, name, m)
         md.add_fem_data(f"{name}_last", mfu)
-        md.add_isotropic_linearized_elasticity_brick(mim, name, "lambda", "mu")
         keep[name] = (m, mfu, mim)
     (lower, lower_fem, lower_im), (upper, upper_fem, upper_im) = keep["lower"], keep["upper"]
     md.add_Dirichlet_condition_with_multipliers(lower_im, "lower", lower_fem, BOTTOM)
