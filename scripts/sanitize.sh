@@ -30,7 +30,7 @@ slow+='|wave faces interlock|graded nodes on non-convex|does not stand under its
 slow+='|osteomorphic blocks tiled unturned'  # 3 min here: exact mesh level sets of a 4 608-triangle block
 slow+='|tessera check on the Voronoi slab'  # 49 blocks' level sets
 slow+='|run_paraview_state_opens_in_paraview|run_paraview_series_is_readable_by_vtk'  # Python reading the files back
-slow+='|getfem_'  # GetFEM's Newton in Python: nothing of ours beyond a tile
+slow+='|getfem_|nearest_face_area'  # Python only (GetFEM's Newton; numpy): nothing of ours beyond a tile
 (cd "$build_dir" && ctest --output-on-failure -j "$jobs" -E "$slow" -LE slurm)
 
 "$build_dir/fuzz/fuzz_checkpoint" --seeds "$build_dir/fuzz-seeds" > /dev/null

@@ -217,20 +217,17 @@ def shared_faces(blocks, faces, tolerance: float) -> list[tuple[int, int, int, i
     return pairs
 
 
-def overlap_area(p: np.ndarray, q: np.ndarray, normal: np.ndarray) -> float:
-    """Area common to two convex coplanar polygons (Sutherland-Hodgman clipping in their plane)."""
+def overlap_polygon(p: np.ndarray, q: np.ndarray, normal: np.ndarray) -> list:
+    """The polygon common to two convex coplanar polygons, counter-clockwise in 2-D coordinates of
+    their plane (Sutherland-Hodgman clipping); empty where they do not overlap."""
     u = np.cross(normal, [1.0, 0, 0] if abs(normal[0]) < 0.9 else [0, 1.0, 0])
     u /= np.linalg.norm(u)
     w = np.cross(normal, u)
     P = [np.array([x @ u, x @ w]) for x in p]
     Q = [np.array([x @ u, x @ w]) for x in q]
-
-    def area(poly):
-        return 0.5 * sum(poly[k - 1][0] * poly[k][1] - poly[k][0] * poly[k - 1][1] for k in range(len(poly)))
-
-    if area(P) < 0:
+    if polygon_area(P) < 0:
         P.reverse()
-    if area(Q) < 0:
+    if polygon_area(Q) < 0:
         Q.reverse()
     out = P
     for k in range(len(Q)):
@@ -249,8 +246,18 @@ def overlap_area(p: np.ndarray, q: np.ndarray, normal: np.ndarray) -> float:
                 clipped.append(y)
         out = clipped
         if len(out) < 3:
-            return 0.0
-    return abs(area(out))
+            return []
+    return out
+
+
+def polygon_area(poly) -> float:
+    """Signed area of a 2-D polygon (positive counter-clockwise)."""
+    return 0.5 * sum(poly[k - 1][0] * poly[k][1] - poly[k][0] * poly[k - 1][1] for k in range(len(poly)))
+
+
+def overlap_area(p: np.ndarray, q: np.ndarray, normal: np.ndarray) -> float:
+    """Area common to two convex coplanar polygons."""
+    return abs(polygon_area(overlap_polygon(p, q, normal)))
 
 
 # --- the CalculiX input --------------------------------------------------------------------------

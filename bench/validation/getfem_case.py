@@ -119,6 +119,10 @@ def main() -> int:
     parser.add_argument("--large-displacements", action="store_true",
                         help="finite-strain elasticity (Saint Venant-Kirchhoff), for blocks that turn by degrees "
                              "(default: linearised, where a block turned by theta grows by about theta^2 / 2)")
+    parser.add_argument("--augmentation", type=factor, default=1.0,
+                        help="the augmentation parameter r x this (default 1: one element of the stiffest "
+                             "blocks in series with the faces); it moves Newton's path, not the answer")
+    parser.add_argument("--newton-log", action="store_true", help="print Newton's residual at every iteration")
     args = parser.parse_args()
     import getfem as gf
     gf.util_trace_level(0)
@@ -153,7 +157,7 @@ def main() -> int:
     md.add_initialized_data("mu_neighbour", [args.block_stiffness * args.neighbour_stiffness * mu])
     # the augmentation parameter: an element of the stiffest blocks in series with the faces
     # (convergence, not the answer)
-    md.add_initialized_data("r", [1.0 / (compliance + size / stiffest)])
+    md.add_initialized_data("r", [args.augmentation / (compliance + size / stiffest)])
     md.add_initialized_data("f", [args.friction])
     md.add_initialized_data("alpha", [1.0])
     md.add_initialized_data("held", [1e4 * stiffest / size])  # the mirror planes' penalty (MPa/mm)
@@ -265,7 +269,8 @@ def main() -> int:
         saved = md.from_variables()
         md.set_variable("pressed", [0.0, 0.0, -end])
         try:
-            converged = md.solve("max_res", 1e-8, "max_iter", 80, "lsearch", "simplest", "lsolver", "mumps")[1]
+            converged = md.solve(*(["noisy"] if args.newton_log else []), "max_res", 1e-8, "max_iter", 80,
+                                 "lsearch", "simplest", "lsolver", "mumps")[1]
         except RuntimeError:  # GetFEM raises where Newton diverges or the tangent is singular
             converged = False
         if not converged:
