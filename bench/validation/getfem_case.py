@@ -25,7 +25,7 @@ displacement. Units: mm, N, MPa.
 Usage: getfem_case.py BUNDLE -o DIR [--youngs-modulus PA] [--poisson NU] [--friction MU]
                       [--element-size F] [--deflection F] [--punch-radius F] [--increments N] [--mirror]
                       [--neighbour-stiffness F] [--block-stiffness F] [--span-contact]
-                      [--large-displacements]
+                      [--large-displacements] [--augmentation F] [--newton-log] [--resume]
 Lengths F are fractions of the loaded block's thickness h, as in run_case.py. --mirror models the
 half or quarter of the slab on the positive side of its mirror planes through the loaded block's
 centre, as run_case.py --mirror does (fe_model.mirror_part: blocks across them cut; here the cut
@@ -41,7 +41,12 @@ Tessera's own model, rigid blocks on compliant faces, quasi-statically (on the 3
 delta_b, and support_N),
 DIR/blocks.csv (delta_mm, each free block's mean downward displacement by name, and its mean
 rotation about x, y and z in degrees, NAME_tilt_x_deg ...) and
-DIR/summary.json, all after every increment: a stopped run keeps what it reached. Needs Debian's
+DIR/summary.json, all after every increment: a stopped run keeps what it reached, and
+DIR/state.npz, from which --resume goes on (with the same options; the curves come out the same
+to the digit). An increment Newton does not get through is cut into 2, 4 ... 16 sub-steps, kept
+while they are needed (reach). --augmentation F scales the augmentation parameter, which moves
+Newton's path and, through friction's history, the answer by under 1 % (hex5 at 0.6 h: 0.1 and 1
+within 1 % to delta_b = 1.1 mm, 0.1 about 20 % faster). Needs Debian's
 python3-getfem (scripts/setup.sh) and python3-gmsh.
 """
 import argparse
@@ -77,6 +82,7 @@ def faces_on(mesh, normal, offset: float, tolerance: float) -> np.ndarray:
 
 
 RAY, U_ALL, W_ALL = "contact", "displacements", "last_displacements"  # the raytracing and its groups
+MOST_SUBSTEPS = 16  # an increment's finest cut (getfem_case's reach)
 
 
 def contact_terms(u: str, w: str, multiplier: str) -> str:
@@ -110,6 +116,52 @@ def store_last(md, mfu, region: int, multiplier: str) -> None:
     md.set_variable(f"{multiplier}_last", last)
 
 
+def run_options(args) -> str:
+    """What makes a run the run it is (every option but where it writes and how it talks), as
+    the state file records it: a run resumes only with the same."""
+    return json.dumps({k: v for k, v in sorted(vars(args).items()) if k not in ("out", "resume", "newton_log")})
+
+
+def save_state(path: Path, md, data_names, step: int, steps: int, curve_lines, block_lines, options: str,
+               seconds: float) -> None:
+    """The model's state after increment `step` (its variables, friction's references and the
+    tractions' history), the lines written so far and the run's time, replaced atomically."""
+    partial = path.with_name(path.name + ".partial")
+    with open(partial, "wb") as f:
+        np.savez(f, variables=md.from_variables(), step=step, steps=steps, options=options, seconds=seconds,
+                 curve="".join(curve_lines), blocks="".join(block_lines),
+                 **{name: md.variable(name) for name in data_names})
+    partial.replace(path)
+
+
+def refuse(message: str) -> None:
+    print(f"getfem_case: {message}", file=sys.stderr)
+    raise SystemExit(2)
+
+
+def read_state(path: Path, options: str):
+    """The state save_state wrote, for a run with these options (else the reason and exit 2)."""
+    try:
+        state = np.load(path)
+        recorded = str(state["options"])
+    except (OSError, ValueError, KeyError, EOFError) as e:
+        refuse(f"{path}: not a state this script wrote ({e}); start again without --resume")
+    if recorded != options:
+        refuse(f"{path} is a run with other options; resume with the same ones, or start again without --resume")
+    return state
+
+
+def restore_state(state, md, data_names):
+    """Put a read_state state back in md; (step, steps, curve lines, block lines, seconds)."""
+    if state["variables"].size != md.from_variables().size:
+        refuse("the state is of another model (its size differs); start again without --resume")
+    md.to_variables(state["variables"])
+    for name in data_names:
+        md.set_variable(name, state[name])
+    return (int(state["step"]), int(state["steps"]), str(state["curve"]).splitlines(keepends=True),
+            str(state["blocks"]).splitlines(keepends=True), float(state["seconds"]))
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_slab_arguments(parser)
@@ -121,8 +173,10 @@ def main() -> int:
                              "(default: linearised, where a block turned by theta grows by about theta^2 / 2)")
     parser.add_argument("--augmentation", type=factor, default=1.0,
                         help="the augmentation parameter r x this (default 1: one element of the stiffest "
-                             "blocks in series with the faces); it moves Newton's path, not the answer")
+                             "blocks in series with the faces); it moves Newton's path, the answer under 1 %%")
     parser.add_argument("--newton-log", action="store_true", help="print Newton's residual at every iteration")
+    parser.add_argument("--resume", action="store_true",
+                        help="go on from the last increment a run with the same options saved in DIR/state.npz")
     args = parser.parse_args()
     import getfem as gf
     gf.util_trace_level(0)
@@ -130,6 +184,10 @@ def main() -> int:
 
     start = time.time()
     out = Path(args.out)
+    options, state_file = run_options(args), out / "state.npz"
+    state = read_state(state_file, options) if args.resume and state_file.exists() else None
+    if args.resume and state is None:
+        print(f"getfem_case: no {state_file}: starting from the beginning", flush=True)
     blocks, loaded, h, centre, axes = slab_part(args.bundle, args.mirror, "getfem_case")
     k_n = face_stiffness(args, "getfem_case")
     compliance = 1.0 / k_n if k_n else 0.0  # mm/MPa, the faces' (0: rigid)
@@ -262,10 +320,10 @@ def main() -> int:
         skew = gf.asm_generic(parts[k][2], 0, f"(Grad_{u}({j},{i})-Grad_{u}({i},{j}))/2", -1, md) / volumes[k]
         return np.degrees(np.arcsin(np.clip(skew, -1, 1)))
 
-    def reach(start: float, end: float, depth: int = 0) -> bool:
-        """Newton from the converged state at the patch's displacement `start` to `end`; where it
-        fails, the state is restored and the way there halved, at most three times. After each
-        converged step friction's reference (w) moves to the displacement reached."""
+    def solve(end: float) -> bool:
+        """Newton from the converged state to the patch's displacement `end`; where it fails, the
+        state is restored. After a converged step friction's reference (w) and the tractions'
+        history move to the state reached."""
         saved = md.from_variables()
         md.set_variable("pressed", [0.0, 0.0, -end])
         try:
@@ -275,13 +333,33 @@ def main() -> int:
             converged = False
         if not converged:
             md.to_variables(saved)
-            middle = 0.5 * (start + end)
-            return depth < 3 and reach(start, middle, depth + 1) and reach(middle, end, depth + 1)
+            return False
         for k in free:
             m, mfu, mim, u, w, multiplier = parts[k]
             md.set_variable(w, md.variable(u))
             if multiplier:
                 store_last(md, mfu, SLAVE, multiplier)
+        return True
+
+    steps = 1  # sub-steps an increment takes: doubled where Newton fails, halved after an increment without
+
+    def reach(start: float, end: float) -> bool:
+        """From the converged state at the patch's displacement `start` to `end` in `steps` equal
+        sub-steps, their number doubled (at most to 16) wherever one does not converge, so that a
+        hard stretch (contacts switching between stick and slip on several blocks at once) is not
+        tried again at full length increment after increment."""
+        nonlocal steps
+        position, failed = start, False
+        while position < end:
+            target = min(end, position + (end - start) / steps)
+            if solve(target):
+                position = target
+            elif steps < MOST_SUBSTEPS:
+                steps, failed = 2 * steps, True
+            else:
+                return False
+        if not failed:
+            steps = max(1, steps // 2)
         return True
 
     def write_summary(rows, status):
@@ -298,22 +376,30 @@ def main() -> int:
                    "converged_increments": len(rows), "status": status, "free_blocks": len(free),
                    "nodes": int(sum(len(meshes[k].nodes) for k in free)), "P_max_N": peak[1],
                    "delta_at_P_max_mm": peak[0], "block_displacement_at_P_max_mm": peak[2],
-                   "seconds": time.time() - start}
+                   "seconds": earlier + time.time() - start}
         (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
         return peak
 
-    rows = []
+    data_names = [p[4] for p in parts.values()] + [f"{p[5]}_last" for p in parts.values() if p[5]]
+    done, curve_lines, block_lines, earlier = 0, [], [], 0.0  # earlier: the seconds of the runs resumed
+    if state is not None:
+        done, steps, curve_lines, block_lines, earlier = restore_state(state, md, data_names)
+        md.set_variable("pressed", [0.0, 0.0, -deflection * done / args.increments])
+        print(f"getfem_case: resuming after increment {done} ({state_file})", flush=True)
+    rows = [tuple(float(x) for x in line.split(",")[:3]) for line in curve_lines]
     status = "reached the deflection"
     curve = open(out / "curve.csv", "w")  # written as it goes: a stopped run keeps its increments
-    curve.write("delta_mm,load_N,block_displacement_mm,support_N\n")
+    curve.write("delta_mm,load_N,block_displacement_mm,support_N\n" + "".join(curve_lines))
     sinks = open(out / "blocks.csv", "w")  # every free block's delta_b, to compare the neighbours' motion
     sinks.write("delta_mm," + ",".join(blocks[k].name for k in free) + "," +
-                ",".join(f"{blocks[k].name}_tilt_{axis}_deg" for k in free for axis in "xyz") + "\n")
+                ",".join(f"{blocks[k].name}_tilt_{axis}_deg" for k in free for axis in "xyz") + "\n" +
+                "".join(block_lines))
     stepping = time.time()
-    for step in range(1, args.increments + 1):
+    for step in range(done + 1, args.increments + 1):
         delta = deflection * step / args.increments
         if not reach(deflection * (step - 1) / args.increments, delta):
-            status = f"stopped at increment {step}: Newton did not converge, the increment halved three times"
+            status = (f"stopped at increment {step}: Newton did not converge, the increment cut into "
+                      f"{MOST_SUBSTEPS} sub-steps")
             break
         # the load: the punch's reaction; its check, the support: the vertical force the free blocks
         # put on the fixed ones (equal where the faces against fixed blocks touch nothing else)
@@ -323,14 +409,18 @@ def main() -> int:
         sunk = {k: sinking(k) for k in free}
         sink = sunk[loaded]
         rows.append((delta, load, sink))
-        curve.write(f"{delta:.9g},{load:.9g},{sink:.9g},{support:.9g}\n")
+        curve_lines.append(f"{delta:.9g},{load:.9g},{sink:.9g},{support:.9g}\n")
+        curve.write(curve_lines[-1])
         curve.flush()
         tilts = [tilt(k, i, j) for k in free for i, j in ((2, 3), (3, 1), (1, 2))]  # about x, y, z
-        sinks.write(f"{delta:.9g}," + ",".join(f"{sunk[k]:.9g}" for k in free) + "," +
-                    ",".join(f"{t:.6g}" for t in tilts) + "\n")
+        block_lines.append(f"{delta:.9g}," + ",".join(f"{sunk[k]:.9g}" for k in free) + "," +
+                           ",".join(f"{t:.6g}" for t in tilts) + "\n")
+        sinks.write(block_lines[-1])
         sinks.flush()
+        save_state(state_file, md, data_names, step, steps, curve_lines, block_lines, options,
+                   earlier + time.time() - start)
         write_summary(rows, f"running: {step} of {args.increments} increments")
-        left = (time.time() - stepping) / step * (args.increments - step)
+        left = (time.time() - stepping) / (step - done) * (args.increments - step)
         print(f"  increment {step}/{args.increments}: delta {delta:.4f} mm, load {load:.2f} N, "
               f"block {sink:.4f} mm (about {left / 60:.0f} min left)", flush=True)
 

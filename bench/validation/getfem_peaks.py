@@ -20,6 +20,11 @@ from compare import save  # noqa: E402
 RULES = ("span", "bars", "sections")
 
 
+def friction_suffix(mu: float) -> str:
+    """The suffix of Tessera's runs at friction mu: "" at the cases' 0.23, else _mu0, _mu1."""
+    return "" if mu == 0.23 else f"_mu{mu:g}"
+
+
 def rising(curve):
     """The curve's part up to its peak load."""
     end = int(np.argmax(curve["load_N"])) + 1
@@ -36,14 +41,15 @@ def main() -> int:
              "Tessera at the FE's P_max δ_b (N) |", "|---|---|---|---|---|---|---|---|"]
     fig, axes = plt.subplots(1, len(cases), figsize=(6 * len(cases), 4.5), squeeze=False)
     for case, ax in zip(cases, axes[0]):
-        # Tessera's curves under each rule, at the case's friction ("") and frictionless ("_mu0")
+        # Tessera's curves under each rule, at the cases' friction 0.23 (tessera_RULE) and others
+        # (tessera_RULE_muF: _mu0 frictionless, _mu1)
         tessera_runs = {suffix: {r: np.genfromtxt(out / case / f"tessera_{r}{suffix}" / "curve.csv", delimiter=",",
                                                   names=True)
                                  for r in RULES if (out / case / f"tessera_{r}{suffix}" / "curve.csv").exists()}
-                        for suffix in ("", "_mu0")}
+                        for suffix in ("", "_mu0", "_mu1")}
         for run in sorted((out / case).glob("getfem*/summary.json")):
             s = json.loads(run.read_text())
-            tessera = tessera_runs["_mu0" if s["friction"] == 0 else ""]
+            tessera = tessera_runs[friction_suffix(s["friction"])]
             fe = np.genfromtxt(run.parent / "curve.csv", delimiter=",", names=True, ndmin=1)
             if fe.size == 0:
                 continue
@@ -62,6 +68,10 @@ def main() -> int:
             label += ", finite strain" if s.get("large_displacements") else ", linearised"
             if s["friction"] == 0:
                 label += ", frictionless"
+            elif s["friction"] != 0.23:
+                label += f", μ = {s['friction']:g}"
+            if s["poisson"] != 0.2:
+                label += f", ν = {s['poisson']:g}"
             ax.plot(fe["block_displacement_mm"], fe["load_N"], "o-", ms=3, label="GetFEM, " + run.parent.name)
             last = fe["block_displacement_mm"][-1]
             for rule, t in tessera.items():
@@ -76,7 +86,7 @@ def main() -> int:
                 versus = f" ({difference})"
                 lines.append(f"| {case} | {label} | {fe_p} | {fe_d} | {rule} | {p[-1]:.0f}{versus} | {d[-1]:.2f} | "
                              f"{at_peak:.0f} ({at_peak / fe['load_N'][peak] - 1:+.0%}) |")
-        for suffix, what in (("", ""), ("_mu0", ", frictionless")):
+        for suffix, what in (("", ""), ("_mu0", ", frictionless"), ("_mu1", ", μ = 1")):
             for rule, t in tessera_runs[suffix].items():
                 ax.plot(t["block_displacement_mm"], t["load_N"], lw=1, label=f"Tessera, {rule} rule{what}")
         ax.set_title(case)

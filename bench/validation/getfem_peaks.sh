@@ -2,9 +2,11 @@
 # The slabs toward their peak on GetFEM; docs/validation.md, sections
 # "Toward the peak on the 5 × 5 slabs, with GetFEM" and "Tessera's own model, solved by the FE".
 # For square3, square5 and hex5, the bundle and Tessera's runs under the three stiffness rules
-# (the default scene at E = 4.2 GPa, mu = 0.23); getfem_case.py on the 5 x 5 slabs' quarter or
-# half (--mirror), 0.4 h elements, linearised (getfem) and finite-strain elasticity
-# (getfem_finite_strain); on square5 also Tessera's runs under its numerical choices (variant_*),
+# (the default scene at E = 4.2 GPa, mu = 0.23; square5 and hex5 at mu = 1 too); getfem_case.py
+# on the 5 x 5 slabs' quarter or half (--mirror), 0.4 h elements, linearised (getfem) and
+# finite-strain elasticity (getfem_finite_strain; hex5's at 0.6 h, where 0.4 h stalls), square5
+# at 0.5 h too (getfem_finite_strain_coarse: the mesh at the peak), both at mu = 1
+# (getfem_finite_strain_mu1); on square5 also Tessera's runs under its numerical choices (variant_*),
 # 0.3 h elements to 0.4 h (the mesh) and the neighbours 100 x stiffer to 0.6 h; on square3
 # Tessera's own model in the FE (rigid blocks, E x 1000, on faces of the span rule's k_n:
 # getfem_rigid_blocks), with friction and without (then against Tessera frictionless and the
@@ -38,9 +40,13 @@ for case in square3 square5 hex5; do
     sed -e "s/^youngs_modulus = .*/youngs_modulus = 4.2e9/" \
         -e "s/^friction = .*/friction = 0.23\nstiffness_rule = \"$rule\"/" \
       "$here/assets/scenes/default.toml" > "$out/$case/scene_$rule.toml"
-    rm -rf "$out/$case/tessera_$rule"
-    "$tessera" run "$out/$case/scene_$rule.toml" --bundle "$out/$case/bundle" -o "$out/$case/tessera_$rule" \
-      --no-plot > "$out/$case/tessera_$rule.log"
+    sed -e "s/^friction = .*/friction = 1.0/" "$out/$case/scene_$rule.toml" > "$out/$case/scene_${rule}_mu1.toml"
+    for run in "$rule" "${rule}_mu1"; do
+      [ "$case" != square3 ] || [ "$run" = "$rule" ] || continue
+      rm -rf "$out/$case/tessera_$run"
+      "$tessera" run "$out/$case/scene_$run.toml" --bundle "$out/$case/bundle" -o "$out/$case/tessera_$run" \
+        --no-plot > "$out/$case/tessera_$run.log"
+    done
   done
 done
 # square3 frictionless, the span rule, and the same slab of 10-degree faces (square3_10deg):
@@ -81,6 +87,10 @@ rigid=(--block-stiffness 1000 --span-contact --large-displacements)  # Tessera's
 fe square3 getfem_rigid_blocks --element-size 0.3 --deflection 1.2 --increments 80 "${rigid[@]}"
 fe square3 getfem_rigid_blocks_mu0 --element-size 0.3 --deflection 1.2 --increments 80 "${rigid[@]}" --friction 0
 fe square3_10deg getfem_rigid_blocks_mu0 --element-size 0.3 --deflection 1.0 --increments 60 "${rigid[@]}" --friction 0
+strain=(--large-displacements --augmentation 0.1)
 fe square5 getfem_finite_strain --element-size 0.4 --deflection 1.0 --increments 30 --large-displacements
-fe hex5 getfem_finite_strain --element-size 0.4 --deflection 1.0 --increments 30 --large-displacements
+fe square5 getfem_finite_strain_coarse --element-size 0.5 --deflection 0.7 --increments 21 "${strain[@]}"
+fe hex5 getfem_finite_strain --element-size 0.6 --deflection 1.0 --increments 30 "${strain[@]}"
+fe square5 getfem_finite_strain_mu1 --element-size 0.5 --deflection 1.0 --increments 30 "${strain[@]}" --friction 1
+fe hex5 getfem_finite_strain_mu1 --element-size 0.6 --deflection 1.0 --increments 30 "${strain[@]}" --friction 1
 "$python" "$here/bench/validation/getfem_peaks.py" "$out" square3 square3_10deg square5 hex5
