@@ -42,8 +42,8 @@ delta_b, and support_N),
 DIR/blocks.csv (delta_mm, each free block's mean downward displacement by name, and its mean
 rotation about x, y and z in degrees, NAME_tilt_x_deg ...) and
 DIR/summary.json, all after every increment: a stopped run keeps what it reached, and
-DIR/state.npz, from which --resume goes on (with the same options; the curves come out the same
-to the digit). An increment Newton does not get through is cut into 2, 4 ... 16 sub-steps, kept
+DIR/state.npz, from which --resume goes on (with the same options but --augmentation; the curves
+come out the same to the digit). An increment Newton does not get through is cut into 2, 4 ... 16 sub-steps, kept
 while they are needed (reach). --augmentation F scales the augmentation parameter, which moves
 Newton's path and, through friction's history, the answer by under 1 % (hex5 at 0.6 h: 0.1 and 1
 within 1 % to delta_b = 1.1 mm, 0.1 about 20 % faster). Needs Debian's
@@ -117,9 +117,10 @@ def store_last(md, mfu, region: int, multiplier: str) -> None:
 
 
 def run_options(args) -> str:
-    """What makes a run the run it is (every option but where it writes and how it talks), as
-    the state file records it: a run resumes only with the same."""
-    return json.dumps({k: v for k, v in sorted(vars(args).items()) if k not in ("out", "resume", "newton_log")})
+    """What makes a run the run it is (every option but where it writes, how it talks and Newton's
+    augmentation parameter), as the state file records it: a run resumes only with the same."""
+    return json.dumps({k: v for k, v in sorted(vars(args).items())
+                       if k not in ("out", "resume", "newton_log", "augmentation")})
 
 
 def save_state(path: Path, md, data_names, step: int, steps: int, curve_lines, block_lines, options: str,
@@ -176,7 +177,8 @@ def main() -> int:
                              "blocks in series with the faces); it moves Newton's path, the answer under 1 %%")
     parser.add_argument("--newton-log", action="store_true", help="print Newton's residual at every iteration")
     parser.add_argument("--resume", action="store_true",
-                        help="go on from the last increment a run with the same options saved in DIR/state.npz")
+                        help="go on from the last increment a run with the same options (--augmentation may "
+                             "differ) saved in DIR/state.npz")
     args = parser.parse_args()
     import getfem as gf
     gf.util_trace_level(0)
@@ -368,6 +370,7 @@ def main() -> int:
                    "contact": "integral large sliding contact (raytracing, augmented Lagrangian)",
                    "faces_k_n_MPa_per_mm": 1.0 / compliance if compliance else None,  # None: rigid faces
                    "large_displacements": args.large_displacements,
+                   "augmentation": args.augmentation,  # (of the last session, where resumed)
                    "youngs_modulus_Pa": args.youngs_modulus, "block_stiffness": args.block_stiffness,
                    "neighbour_stiffness": args.neighbour_stiffness,
                    "poisson": args.poisson, "friction": args.friction,

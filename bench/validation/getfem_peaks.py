@@ -39,8 +39,12 @@ def main() -> int:
     out, cases = Path(sys.argv[1]), sys.argv[2:]
     lines = ["| case | FE run | FE P_max (N) | at δ_b (mm) | rule | Tessera P_max (N) | at δ_b (mm) | "
              "Tessera at the FE's P_max δ_b (N) |", "|---|---|---|---|---|---|---|---|"]
-    fig, axes = plt.subplots(1, len(cases), figsize=(6 * len(cases), 4.5), squeeze=False)
-    for case, ax in zip(cases, axes[0]):
+    # one row of axes per friction: 0.23 (with the frictionless runs), and 1 where a case has it
+    rows = 2 if any((out / c / "tessera_span_mu1").exists() for c in cases) else 1
+    fig, axes = plt.subplots(rows, len(cases), figsize=(6 * len(cases), 4.5 * rows), squeeze=False)
+    for column, case in enumerate(cases):
+        def ax_for(suffix):
+            return axes[1 if suffix == "_mu1" and rows == 2 else 0][column]
         # Tessera's curves under each rule, at the cases' friction 0.23 (tessera_RULE) and others
         # (tessera_RULE_muF: _mu0 frictionless, _mu1)
         tessera_runs = {suffix: {r: np.genfromtxt(out / case / f"tessera_{r}{suffix}" / "curve.csv", delimiter=",",
@@ -72,7 +76,8 @@ def main() -> int:
                 label += f", μ = {s['friction']:g}"
             if s["poisson"] != 0.2:
                 label += f", ν = {s['poisson']:g}"
-            ax.plot(fe["block_displacement_mm"], fe["load_N"], "o-", ms=3, label="GetFEM, " + run.parent.name)
+            ax_for(friction_suffix(s["friction"])).plot(fe["block_displacement_mm"], fe["load_N"], "o-", ms=3,
+                                                         label="GetFEM, " + run.parent.name)
             last = fe["block_displacement_mm"][-1]
             for rule, t in tessera.items():
                 d, p = rising(t)
@@ -88,12 +93,17 @@ def main() -> int:
                              f"{at_peak:.0f} ({at_peak / fe['load_N'][peak] - 1:+.0%}) |")
         for suffix, what in (("", ""), ("_mu0", ", frictionless"), ("_mu1", ", μ = 1")):
             for rule, t in tessera_runs[suffix].items():
-                ax.plot(t["block_displacement_mm"], t["load_N"], lw=1, label=f"Tessera, {rule} rule{what}")
-        ax.set_title(case)
-        ax.set_xlabel("loaded block's displacement δ_b (mm)")
-        ax.set_ylabel("load (N)")
-        ax.set_xlim(0, 3.5)
-        ax.legend(fontsize=7)
+                ax_for(suffix).plot(t["block_displacement_mm"], t["load_N"], lw=1, label=f"Tessera, {rule} rule{what}")
+        for row, title in enumerate((case, f"{case}, μ = 1")[:rows]):
+            ax = axes[row][column]
+            if row and not ax.lines:  # a case without runs at mu = 1
+                ax.set_visible(False)
+                continue
+            ax.set_title(title)
+            ax.set_xlabel("loaded block's displacement δ_b (mm)")
+            ax.set_ylabel("load (N)")
+            ax.set_xlim(0, 3.5)
+            ax.legend(fontsize=7)
     for case in cases:  # Tessera's P_max under its numerical choices (getfem_peaks.sh's variants)
         variants = sorted((out / case).glob("variant_*/summary.json"))
         if variants:
