@@ -217,9 +217,13 @@ def shared_faces(blocks, faces, tolerance: float) -> list[tuple[int, int, int, i
     return pairs
 
 
-def overlap_polygon(p: np.ndarray, q: np.ndarray, normal: np.ndarray) -> list:
-    """The polygon common to two convex coplanar polygons, counter-clockwise in 2-D coordinates of
-    their plane (Sutherland-Hodgman clipping); empty where they do not overlap."""
+def polygon_area(poly) -> float:
+    """Signed area of a 2-D polygon (positive counter-clockwise)."""
+    return 0.5 * sum(poly[k - 1][0] * poly[k][1] - poly[k][0] * poly[k - 1][1] for k in range(len(poly)))
+
+
+def overlap_area(p: np.ndarray, q: np.ndarray, normal: np.ndarray) -> float:
+    """Area common to two convex coplanar polygons (Sutherland-Hodgman clipping in their plane)."""
     u = np.cross(normal, [1.0, 0, 0] if abs(normal[0]) < 0.9 else [0, 1.0, 0])
     u /= np.linalg.norm(u)
     w = np.cross(normal, u)
@@ -246,18 +250,8 @@ def overlap_polygon(p: np.ndarray, q: np.ndarray, normal: np.ndarray) -> list:
                 clipped.append(y)
         out = clipped
         if len(out) < 3:
-            return []
-    return out
-
-
-def polygon_area(poly) -> float:
-    """Signed area of a 2-D polygon (positive counter-clockwise)."""
-    return 0.5 * sum(poly[k - 1][0] * poly[k][1] - poly[k][0] * poly[k - 1][1] for k in range(len(poly)))
-
-
-def overlap_area(p: np.ndarray, q: np.ndarray, normal: np.ndarray) -> float:
-    """Area common to two convex coplanar polygons."""
-    return abs(polygon_area(overlap_polygon(p, q, normal)))
+            return 0.0
+    return abs(polygon_area(out))
 
 
 # --- the CalculiX input --------------------------------------------------------------------------

@@ -16,10 +16,10 @@ is what Tessera's formulation carries; it differs from A by strips along the ove
 Usage: rigid_wedge.py BUNDLE [--youngs-modulus PA] [--tessera RUN]
 k_n = E M / L, Tessera's span rule, from the bundle's span (E default 4.2e9 Pa). Prints the closed
 form's peak and the load at a few delta_b, both with the exact overlap and with the nearest-face
-area; with --tessera, for each snapshot of a Tessera run of
-that bundle (results.h5), the contact area of the loaded block's wedging pairs against their exact
-overlap and the nearest-face area, and the missing area per unit of the penetration d. Exit 2 for a bundle without a span or
-whose central free block is wedged by no fixed block.
+area; with --tessera, for each snapshot of a Tessera run of that bundle (results.h5), the contact
+area of the loaded block's wedging pairs against their exact overlap and the nearest-face area,
+and the missing area per unit of the penetration d. Exit 2 for a bundle without a span or whose
+central free block is wedged by no fixed block.
 """
 import argparse
 import sys
@@ -57,7 +57,7 @@ def overlap(blocks, loaded, face, neighbour, other, sink: float) -> float:
 def nearest_face_area(blocks, loaded, face, neighbour, other, sink: float, samples: int = 400) -> float:
     """The pair's contact area as a level-set contact evaluated both ways with half areas finds it
     with exact level sets and a continuous surface (no nodes): each face's points inside the other
-    block, each weighted by max(0, -n . n_nearest), n_nearest the normal of the other block's plane
+    block (on a grid of `samples` cells across the face's longer side), each weighted by max(0, -n . n_nearest), n_nearest the normal of the other block's plane
     nearest to the point (a convex block's signed distance inside is max_j (n_j . x - o_j), its
     gradient the normal of the plane that attains it); half of the sum over the two faces (mm^2).
     A point within d of the other block's next face takes that face's normal, across its own: the
@@ -65,10 +65,9 @@ def nearest_face_area(blocks, loaded, face, neighbour, other, sink: float, sampl
     shift = np.array([0.0, 0.0, -sink])
     planes = {k: fe.planar_faces(blocks[k]) for k in (loaded, neighbour)}
 
-    def side(points, own_normal, body, moved):  # area of points (on a grid, each `cell` mm^2) inside body
-        offsets = np.array([f.offset for f in planes[body]]) + (np.array([f.normal for f in planes[body]]) @ moved)
+    def side(points, own_normal, body, moved):  # the weights' sum over the points inside body (moved)
         normals = np.array([f.normal for f in planes[body]])
-        distance = points @ normals.T - offsets
+        distance = points @ normals.T - (np.array([f.offset for f in planes[body]]) + normals @ moved)
         inside = distance.max(axis=1) < 0
         nearest = normals[distance.argmax(axis=1)]
         return np.maximum(0.0, -(nearest @ own_normal))[inside].sum()
