@@ -45,8 +45,8 @@ DIR/summary.json, all after every increment: a stopped run keeps what it reached
 DIR/state.npz, from which --resume goes on (with the same options but --augmentation; the curves
 come out the same to the digit). An increment Newton does not get through is cut into 2, 4 ... 16 sub-steps, kept
 while they are needed (reach). --augmentation F scales the augmentation parameter, which moves
-Newton's path and, through friction's history, the answer by under 1 % (hex5 at 0.6 h: 0.1 and 1
-within 1 % to delta_b = 1.1 mm, 0.1 about 20 % faster). Needs Debian's
+Newton's path and, where friction's solution is not unique, the answer by up to 2 % (hex5 at
+0.6 h: 0.1 and 1 are 0.3-1.9 % apart up to the peak, 0.1 about 20 % faster). Needs Debian's
 python3-getfem (scripts/setup.sh) and python3-gmsh.
 """
 import argparse
@@ -174,7 +174,7 @@ def main() -> int:
                              "(default: linearised, where a block turned by theta grows by about theta^2 / 2)")
     parser.add_argument("--augmentation", type=factor, default=1.0,
                         help="the augmentation parameter r x this (default 1: one element of the stiffest "
-                             "blocks in series with the faces); it moves Newton's path, the answer under 1 %%")
+                             "blocks in series with the faces); it moves Newton's path, the answer by up to 2 %%")
     parser.add_argument("--newton-log", action="store_true", help="print Newton's residual at every iteration")
     parser.add_argument("--resume", action="store_true",
                         help="go on from the last increment a run with the same options (--augmentation may "

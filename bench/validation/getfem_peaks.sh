@@ -4,8 +4,9 @@
 # For square3, square5 and hex5, the bundle and Tessera's runs under the three stiffness rules
 # (the default scene at E = 4.2 GPa, mu = 0.23; square5 and hex5 at mu = 1 too); getfem_case.py
 # on the 5 x 5 slabs' quarter or half (--mirror), 0.4 h elements, linearised (getfem) and
-# finite-strain elasticity (getfem_finite_strain; hex5's at 0.6 h, where 0.4 h stalls), square5
-# at 0.5 h too (getfem_finite_strain_coarse: the mesh at the peak), both at mu = 1
+# finite-strain elasticity (getfem_finite_strain; hex5's at 0.6 h, where 0.4 h stalls, and with
+# the augmentation parameter x 0.1: _r01), square5
+# at 0.5 h too (getfem_finite_strain_coarse: the mesh at the peak; _nu03 at nu = 0.3), both at mu = 1
 # (getfem_finite_strain_mu1); on square5 also Tessera's runs under its numerical choices (variant_*),
 # 0.3 h elements to 0.4 h (the mesh) and the neighbours 100 x stiffer to 0.6 h; on square3
 # Tessera's own model in the FE (rigid blocks, E x 1000, on faces of the span rule's k_n:
@@ -90,7 +91,9 @@ fe square3_10deg getfem_rigid_blocks_mu0 --element-size 0.3 --deflection 1.0 --i
 strain=(--large-displacements --augmentation 0.1)
 fe square5 getfem_finite_strain --element-size 0.4 --deflection 1.0 --increments 30 --large-displacements
 fe square5 getfem_finite_strain_coarse --element-size 0.5 --deflection 0.7 --increments 21 "${strain[@]}"
-fe hex5 getfem_finite_strain --element-size 0.6 --deflection 1.0 --increments 30 "${strain[@]}"
+fe square5 getfem_finite_strain_nu03 --element-size 0.5 --deflection 0.7 --increments 21 "${strain[@]}" --poisson 0.3
+fe hex5 getfem_finite_strain --element-size 0.6 --deflection 1.0 --increments 30 --large-displacements
+fe hex5 getfem_finite_strain_r01 --element-size 0.6 --deflection 1.0 --increments 30 "${strain[@]}"
 fe square5 getfem_finite_strain_mu1 --element-size 0.5 --deflection 1.0 --increments 30 "${strain[@]}" --friction 1
 fe hex5 getfem_finite_strain_mu1 --element-size 0.6 --deflection 1.0 --increments 30 "${strain[@]}" --friction 1
 "$python" "$here/bench/validation/getfem_peaks.py" "$out" square3 square3_10deg square5 hex5
