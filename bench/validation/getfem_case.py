@@ -42,17 +42,19 @@ delta_b, and support_N),
 DIR/blocks.csv (delta_mm, each free block's mean downward displacement by name, and its mean
 rotation about x, y and z in degrees, NAME_tilt_x_deg ...) and
 DIR/summary.json, all after every increment: a stopped run keeps what it reached, and
-DIR/state.npz, from which --resume goes on (with the same options but --augmentation; the curves
-come out the same to the digit). An increment Newton does not get through is cut into 2, 4 ... 16 sub-steps, kept
-while they are needed (reach). --augmentation F scales the augmentation parameter, which moves
+DIR/state.npz, from which --resume goes on (with the same options except --augmentation; the
+curves come out the same to the digit; summary.json lists each session's augmentation). An
+increment Newton does not get through is cut into 2, 4 ... 16 sub-steps, kept while they are
+needed (reach). --augmentation F scales the augmentation parameter, which moves
 Newton's path and, where friction's solution is not unique, the answer by up to 2 % (hex5 at
-0.6 h: 0.1 and 1 are 0.3-1.9 % apart up to the peak, 0.1 about 20 % faster). Needs Debian's
+0.6 h: 0.1 and 1 are 0.3-2.1 % apart). Needs Debian's
 python3-getfem (scripts/setup.sh) and python3-gmsh.
 """
 import argparse
 import json
 import sys
 import time
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -119,17 +121,20 @@ def store_last(md, mfu, region: int, multiplier: str) -> None:
 def run_options(args) -> str:
     """What makes a run the run it is (every option but where it writes, how it talks and Newton's
     augmentation parameter), as the state file records it: a run resumes only with the same."""
-    return json.dumps({k: v for k, v in sorted(vars(args).items())
-                       if k not in ("out", "resume", "newton_log", "augmentation")})
+    options = {k: v for k, v in sorted(vars(args).items()) if k not in ("out", "resume", "newton_log", "augmentation")}
+    options["bundle"] = str(Path(args.bundle).resolve())
+    return json.dumps(options)
 
 
 def save_state(path: Path, md, data_names, step: int, steps: int, curve_lines, block_lines, options: str,
-               seconds: float) -> None:
+               seconds: float, sessions) -> None:
     """The model's state after increment `step` (its variables, friction's references and the
-    tractions' history), the lines written so far and the run's time, replaced atomically."""
+    tractions' history), the lines written so far, the run's time and its sessions (the increment
+    each started after, its augmentation), replaced atomically."""
     partial = path.with_name(path.name + ".partial")
     with open(partial, "wb") as f:
         np.savez(f, variables=md.from_variables(), step=step, steps=steps, options=options, seconds=seconds,
+                 sessions=json.dumps(sessions),
                  curve="".join(curve_lines), blocks="".join(block_lines),
                  **{name: md.variable(name) for name in data_names})
     partial.replace(path)
@@ -145,7 +150,7 @@ def read_state(path: Path, options: str):
     try:
         state = np.load(path)
         recorded = str(state["options"])
-    except (OSError, ValueError, KeyError, EOFError) as e:
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as e:
         refuse(f"{path}: not a state this script wrote ({e}); start again without --resume")
     if recorded != options:
         refuse(f"{path} is a run with other options; resume with the same ones, or start again without --resume")
@@ -153,14 +158,15 @@ def read_state(path: Path, options: str):
 
 
 def restore_state(state, md, data_names):
-    """Put a read_state state back in md; (step, steps, curve lines, block lines, seconds)."""
+    """Put a read_state state back in md; (step, steps, curve lines, block lines, seconds, sessions)."""
     if state["variables"].size != md.from_variables().size:
         refuse("the state is of another model (its size differs); start again without --resume")
     md.to_variables(state["variables"])
     for name in data_names:
         md.set_variable(name, state[name])
     return (int(state["step"]), int(state["steps"]), str(state["curve"]).splitlines(keepends=True),
-            str(state["blocks"]).splitlines(keepends=True), float(state["seconds"]))
+            str(state["blocks"]).splitlines(keepends=True), float(state["seconds"]),
+            json.loads(str(state["sessions"])))
 
 
 def main() -> int:
@@ -195,6 +201,8 @@ def main() -> int:
     compliance = 1.0 / k_n if k_n else 0.0  # mm/MPa, the faces' (0: rigid)
     share = 2 ** len(axes)  # the whole slab's load per the model's
     out.mkdir(parents=True, exist_ok=True)  # (after the refusals of the slab and its span)
+    if state is None and state_file.exists():
+        state_file.unlink()  # another run's: it must not sit beside this one's curves
     size, radius, deflection = args.element_size * h, args.punch_radius * h, args.deflection * h
     free = [k for k, b in enumerate(blocks) if not b.fixed]
 
@@ -355,7 +363,7 @@ def main() -> int:
         while position < end:
             target = min(end, position + (end - start) / steps)
             if solve(target):
-                position = target
+                position = end if end - target < 1e-9 * (end - start) else target
             elif steps < MOST_SUBSTEPS:
                 steps, failed = 2 * steps, True
             else:
@@ -370,7 +378,7 @@ def main() -> int:
                    "contact": "integral large sliding contact (raytracing, augmented Lagrangian)",
                    "faces_k_n_MPa_per_mm": 1.0 / compliance if compliance else None,  # None: rigid faces
                    "large_displacements": args.large_displacements,
-                   "augmentation": args.augmentation,  # (of the last session, where resumed)
+                   "sessions": [{"after_increment": k, "augmentation": a} for k, a in sessions],
                    "youngs_modulus_Pa": args.youngs_modulus, "block_stiffness": args.block_stiffness,
                    "neighbour_stiffness": args.neighbour_stiffness,
                    "poisson": args.poisson, "friction": args.friction,
@@ -384,11 +392,12 @@ def main() -> int:
         return peak
 
     data_names = [p[4] for p in parts.values()] + [f"{p[5]}_last" for p in parts.values() if p[5]]
-    done, curve_lines, block_lines, earlier = 0, [], [], 0.0  # earlier: the seconds of the runs resumed
+    done, curve_lines, block_lines, earlier, sessions = 0, [], [], 0.0, []  # earlier: the resumed runs' seconds
     if state is not None:
-        done, steps, curve_lines, block_lines, earlier = restore_state(state, md, data_names)
+        done, steps, curve_lines, block_lines, earlier, sessions = restore_state(state, md, data_names)
         md.set_variable("pressed", [0.0, 0.0, -deflection * done / args.increments])
         print(f"getfem_case: resuming after increment {done} ({state_file})", flush=True)
+    sessions.append((done, args.augmentation))
     rows = [tuple(float(x) for x in line.split(",")[:3]) for line in curve_lines]
     status = "reached the deflection"
     curve = open(out / "curve.csv", "w")  # written as it goes: a stopped run keeps its increments
@@ -421,7 +430,7 @@ def main() -> int:
         sinks.write(block_lines[-1])
         sinks.flush()
         save_state(state_file, md, data_names, step, steps, curve_lines, block_lines, options,
-                   earlier + time.time() - start)
+                   earlier + time.time() - start, sessions)
         write_summary(rows, f"running: {step} of {args.increments} increments")
         left = (time.time() - stepping) / (step - done) * (args.increments - step)
         print(f"  increment {step}/{args.increments}: delta {delta:.4f} mm, load {load:.2f} N, "

@@ -40,10 +40,10 @@ def main() -> int:
     lines = ["| case | FE run | FE P_max (N) | at δ_b (mm) | rule | Tessera P_max (N) | at δ_b (mm) | "
              "Tessera at the FE's P_max δ_b (N) |", "|---|---|---|---|---|---|---|---|"]
     # one row of axes per friction: 0.23 (with the frictionless runs), and 1 where a case has it
-    rows = 2 if any((out / c / "tessera_span_mu1").exists() for c in cases) else 1
+    rows = 2 if any(list((out / c).glob("*_mu1/curve.csv")) for c in cases) else 1
     fig, axes = plt.subplots(rows, len(cases), figsize=(6 * len(cases), 4.5 * rows), squeeze=False)
     for column, case in enumerate(cases):
-        def ax_for(suffix):
+        def ax_for(suffix):  # (runs at another friction: drawn in the first row)
             return axes[1 if suffix == "_mu1" and rows == 2 else 0][column]
         # Tessera's curves under each rule, at the cases' friction 0.23 (tessera_RULE) and others
         # (tessera_RULE_muF: _mu0 frictionless, _mu1)
@@ -53,7 +53,7 @@ def main() -> int:
                         for suffix in ("", "_mu0", "_mu1")}
         for run in sorted((out / case).glob("getfem*/summary.json")):
             s = json.loads(run.read_text())
-            tessera = tessera_runs[friction_suffix(s["friction"])]
+            tessera = tessera_runs.get(friction_suffix(s["friction"]), {})
             fe = np.genfromtxt(run.parent / "curve.csv", delimiter=",", names=True, ndmin=1)
             if fe.size == 0:
                 continue
@@ -76,6 +76,9 @@ def main() -> int:
                 label += f", μ = {s['friction']:g}"
             if s["poisson"] != 0.2:
                 label += f", ν = {s['poisson']:g}"
+            augmentations = sorted({a["augmentation"] for a in s.get("sessions", [])} | {s.get("augmentation", 1.0)})
+            if augmentations != [1.0]:
+                label += ", augmentation x " + ", ".join(f"{a:g}" for a in augmentations)
             ax_for(friction_suffix(s["friction"])).plot(fe["block_displacement_mm"], fe["load_N"], "o-", ms=3,
                                                          label="GetFEM, " + run.parent.name)
             last = fe["block_displacement_mm"][-1]

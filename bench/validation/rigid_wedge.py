@@ -57,9 +57,10 @@ def overlap(blocks, loaded, face, neighbour, other, sink: float) -> float:
 def nearest_face_area(blocks, loaded, face, neighbour, other, sink: float, samples: int = 400) -> float:
     """The pair's contact area as a level-set contact evaluated both ways with half areas finds it
     with exact level sets and a continuous surface (no nodes): each face's points inside the other
-    block (on a grid of `samples` cells across the face's longer side), each weighted by max(0, -n . n_nearest), n_nearest the normal of the other block's plane
-    nearest to the point (a convex block's signed distance inside is max_j (n_j . x - o_j), its
-    gradient the normal of the plane that attains it); half of the sum over the two faces (mm^2).
+    block (on a grid of `samples` cells across the face's longer side), each weighted by
+    max(0, -n . n_nearest), n_nearest the normal of the other block's plane nearest to the point
+    (a convex block's signed distance inside is max_j (n_j . x - o_j), its gradient the normal of
+    the plane that attains it); half of the sum over the two faces (mm^2).
     A point within d of the other block's next face takes that face's normal, across its own: the
     strips along the overlap's edges that carry nothing."""
     shift = np.array([0.0, 0.0, -sink])
