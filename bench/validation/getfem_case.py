@@ -61,7 +61,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import fe_model as fe  # noqa: E402
-from run_case import add_slab_arguments, face_stiffness, factor, slab_part  # noqa: E402
+from run_case import add_slab_arguments, face_stiffness, factor, refuse, slab_part  # noqa: E402
 
 
 def convex_points(nodes, corners):
@@ -140,27 +140,23 @@ def save_state(path: Path, md, data_names, step: int, steps: int, curve_lines, b
     partial.replace(path)
 
 
-def refuse(message: str) -> None:
-    print(f"getfem_case: {message}", file=sys.stderr)
-    raise SystemExit(2)
-
-
 def read_state(path: Path, options: str):
     """The state save_state wrote, for a run with these options (else the reason and exit 2)."""
     try:
         state = np.load(path)
         recorded = str(state["options"])
     except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as e:
-        refuse(f"{path}: not a state this script wrote ({e}); start again without --resume")
+        refuse("getfem_case", f"{path}: not a state this script wrote ({e}); start again without --resume")
     if recorded != options:
-        refuse(f"{path} is a run with other options; resume with the same ones, or start again without --resume")
+        refuse("getfem_case", f"{path} is a run with other options; resume with the same ones, or start again "
+               "without --resume")
     return state
 
 
 def restore_state(state, md, data_names):
     """Put a read_state state back in md; (step, steps, curve lines, block lines, seconds, sessions)."""
     if state["variables"].size != md.from_variables().size:
-        refuse("the state is of another model (its size differs); start again without --resume")
+        refuse("getfem_case", "the state is of another model (its size differs); start again without --resume")
     md.to_variables(state["variables"])
     for name in data_names:
         md.set_variable(name, state[name])

@@ -79,6 +79,12 @@ def add_slab_arguments(parser: argparse.ArgumentParser) -> None:
                              "in run_case.py; a bundle without a span: exit 2")
 
 
+def refuse(program: str, message: str) -> None:
+    """A refusal: the program's name and the reason on stderr, and exit 2."""
+    print(f"{program}: {message}", file=sys.stderr)
+    raise SystemExit(2)
+
+
 def face_stiffness(args, program: str) -> float | None:
     """The faces' k_n (MPa/mm) that --span-contact asks for (E the case's, not the blocks'), or None.
     A bundle without a span: the reason on stderr, after the program's name, and exit 2."""
@@ -87,8 +93,7 @@ def face_stiffness(args, program: str) -> float | None:
     try:
         interfaces, length = fe.span(args.bundle)
     except ValueError as e:
-        print(f"{program}: {e}", file=sys.stderr)
-        raise SystemExit(2)
+        refuse(program, str(e))
     return args.youngs_modulus / 1e6 * interfaces / length
 
 
@@ -106,8 +111,7 @@ def slab_part(bundle: str, mirror: bool, program: str):
         try:
             blocks, axes = fe.mirror_part(blocks, centre)
         except ValueError as e:
-            print(f"{program}: {e}", file=sys.stderr)
-            raise SystemExit(2)
+            refuse(program, str(e))
         loaded = next(k for k, b in enumerate(blocks) if b.name == name)
     return blocks, loaded, h, centre, axes
 
